@@ -1,0 +1,261 @@
+//! The step trace: what the scheduler did and saw at every step.
+//!
+//! Designed for the step slider and the explainer: a step records the candidate,
+//! the valid start intervals of every constraint category, every phase-2 try, and
+//! the generated activities it added or retired. Generated activities carry the step
+//! that added them and the step that retired them, so the state after any step k is
+//! a filter over one list (deltas, not N copies).
+
+use serde::Serialize;
+
+use crate::timeline::{Interval, IntervalSet};
+
+/// A phase-1 constraint category (names as in the spec).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Category {
+    /// Windows, cutoff and plan bounds.
+    Execution,
+    /// `after` dependencies.
+    Dependency,
+    /// Unit resources.
+    UnitResource,
+    /// Sequence engines.
+    SequenceEngines,
+    /// The activity's state requirements.
+    StateRequirement,
+    /// The activity's effects against placed requirements.
+    StateEffect,
+    /// Data volume capacity and the handover data limit.
+    DataVolume,
+    /// UHF / comm interactions.
+    Uhf,
+}
+
+impl Category {
+    /// All categories, in the order they are reported.
+    pub const ALL: [Category; 8] = [
+        Category::Execution,
+        Category::Dependency,
+        Category::UnitResource,
+        Category::SequenceEngines,
+        Category::StateRequirement,
+        Category::StateEffect,
+        Category::DataVolume,
+        Category::Uhf,
+    ];
+
+    /// The spec's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Category::Execution => "execution",
+            Category::Dependency => "dependency",
+            Category::UnitResource => "unit_resource",
+            Category::SequenceEngines => "sequence_engines",
+            Category::StateRequirement => "state_requirement",
+            Category::StateEffect => "state_effect",
+            Category::DataVolume => "data_volume",
+            Category::Uhf => "uhf",
+        }
+    }
+}
+
+/// Why a start failed in phase 2, with the numbers a planner needs.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Phase2Reason {
+    /// The activity's awake need overlaps a manual sleep (or, for a manual sleep,
+    /// an awake period overlaps it).
+    ForcedSleep {
+        /// The manual sleep activity (index), if the conflict is with one.
+        sleep: Option<usize>,
+    },
+    /// Merging awake periods to respect `min_sleep` would run through a manual sleep.
+    MinSleep {
+        /// The manual sleep activity (index).
+        sleep: usize,
+    },
+    /// The awake period cannot be made `min_awake` long.
+    MinAwake {
+        /// The manual sleep in the way, if any (else the plan bounds).
+        sleep: Option<usize>,
+    },
+    /// The preheat would start before `horizon.start`.
+    PreheatOutsidePlan {
+        /// Zone index (in plan order of `thermal_zones`).
+        zone: usize,
+        /// Start of the preheat.
+        preheat_start: i64,
+    },
+    /// The preheat would start outside its zone's operable periods.
+    PreheatOperability {
+        /// Zone index.
+        zone: usize,
+        /// Start of the preheat (plan time).
+        preheat_start: i64,
+    },
+    /// The total peak power would exceed `max_peak`.
+    MaxPeakPower {
+        /// First second where it does.
+        at: i64,
+        /// Peak reached there (mW).
+        peak_mw: i64,
+    },
+    /// The state of charge would go below `min_soc`.
+    MinSoc {
+        /// First second of the lowest state of charge.
+        at: i64,
+        /// Lowest state of charge (mJ).
+        soc_mj: i64,
+    },
+    /// The state of charge at handover would be below `handover.min_soc`.
+    HandoverSoc {
+        /// State of charge at handover (mJ).
+        soc_mj: i64,
+    },
+}
+
+impl Phase2Reason {
+    /// The spec's reason kind.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Phase2Reason::ForcedSleep { .. } => "forced_sleep",
+            Phase2Reason::MinSleep { .. } => "min_sleep",
+            Phase2Reason::MinAwake { .. } => "min_awake",
+            Phase2Reason::PreheatOutsidePlan { .. } => "preheat_outside_plan",
+            Phase2Reason::PreheatOperability { .. } => "preheat_operability",
+            Phase2Reason::MaxPeakPower { .. } => "max_peak_power",
+            Phase2Reason::MinSoc { .. } => "min_soc",
+            Phase2Reason::HandoverSoc { .. } => "handover_soc",
+        }
+    }
+}
+
+/// One phase-2 try: a range of starts (for one duration) that share an outcome.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Try {
+    /// The starts covered.
+    pub starts: Interval,
+    /// The duration tried.
+    pub duration: i64,
+    /// `None`: these starts pass phase 2. `Some`: why they fail (evaluated at
+    /// `probe`).
+    pub reason: Option<Phase2Reason>,
+    /// The start at which `reason` was evaluated.
+    pub probe: i64,
+}
+
+/// Why an activity failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FailurePhase {
+    /// A dependency target is not scheduled.
+    Dependency {
+        /// The dependency target (activity index).
+        on: usize,
+    },
+    /// No start satisfies the phase-1 categories together.
+    ValidIntervals,
+    /// Phase-1 candidates exist but phase 2 rejected all of them.
+    Placement,
+}
+
+/// What happened at a step.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Outcome {
+    /// Placed at `[start, end)`.
+    Scheduled {
+        /// Start time.
+        start: i64,
+        /// End time.
+        end: i64,
+    },
+    /// Not placed.
+    Failed(FailurePhase),
+    /// Another member of the group was already scheduled.
+    Skipped {
+        /// The scheduled member (activity index).
+        by: usize,
+    },
+}
+
+/// Phase-1 valid starts of one category for one duration.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct CategoryIntervals {
+    /// The category.
+    pub category: Category,
+    /// Its valid starts.
+    pub valid: IntervalSet,
+}
+
+/// Everything recorded about one step.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Step {
+    /// Step number, 1-based.
+    pub step: usize,
+    /// The activity (index into `plan.activities`).
+    pub activity: usize,
+    /// What happened.
+    pub outcome: Outcome,
+    /// The duration the recorded intervals are for: the chosen one when scheduled,
+    /// else the longest one tried.
+    pub duration: i64,
+    /// Valid starts per category for `duration` (empty for skipped and
+    /// dependency-failed steps).
+    pub categories: Vec<CategoryIntervals>,
+    /// Intersection of all categories for `duration`, restricted per window.
+    pub intersection: IntervalSet,
+    /// Every phase-2 try, in the order tried (all durations).
+    pub tries: Vec<Try>,
+    /// Generated activities added at this step (indices into `Schedule::generated`).
+    pub added: Vec<usize>,
+    /// Generated activities retired at this step (merged into a new awake period).
+    pub retired: Vec<usize>,
+}
+
+/// What a generated activity is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GeneratedKind {
+    /// An awake period (wakeup at its start, shutdown at its end).
+    Awake,
+    /// Preheating of a zone before an activity.
+    Preheat {
+        /// Zone index.
+        zone: usize,
+        /// The activity heated for.
+        activity: usize,
+    },
+    /// Maintenance heating of a zone during an activity.
+    Maintenance {
+        /// Zone index.
+        zone: usize,
+        /// The activity heated for.
+        activity: usize,
+    },
+}
+
+/// A generated activity with its lifetime in steps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct Generated {
+    /// What it is.
+    pub kind: GeneratedKind,
+    /// Start time.
+    pub start: i64,
+    /// End time (exclusive).
+    pub end: i64,
+    /// Power drawn (mW): heater power, or for awake periods `awake - asleep`.
+    pub power_mw: i64,
+    /// The step that added it.
+    pub added_at: usize,
+    /// The step that retired it (awake periods merged into a larger one).
+    pub retired_at: Option<usize>,
+}
+
+impl Generated {
+    /// Whether it exists in the state after step `k`.
+    pub fn alive_after(&self, k: usize) -> bool {
+        self.added_at <= k && self.retired_at.is_none_or(|r| r > k)
+    }
+}
