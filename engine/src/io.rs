@@ -1,8 +1,13 @@
 //! Reading plans and writing schedule documents.
 
+use serde::Serialize;
+
 use crate::error::{Error, Warning};
 use crate::model::Plan;
-use crate::validate::validate;
+use crate::scheduler::{
+    BIT_PER_MBIT, Generated, GeneratedKind, MJ_PER_WH, MW_PER_W, Outcome, Schedule,
+};
+use crate::validate::{check_json_shape, validate};
 
 /// A plan that passed strict parsing and semantic validation, with its warnings.
 #[derive(Clone, Debug)]
@@ -16,11 +21,26 @@ pub struct LoadedPlan {
 /// Parses and validates a plan from JSON text. Errors name the JSON path.
 pub fn load_plan(text: &str) -> Result<LoadedPlan, Error> {
     let de = &mut serde_json::Deserializer::from_str(text);
-    let plan: Plan = serde_path_to_error::deserialize(de).map_err(|e| {
+    let typed: Result<Plan, _> = serde_path_to_error::deserialize(de);
+    // serde's derived impls also accept arrays for structs (fields by position);
+    // the format does not, and the shape error explains a failed parse better.
+    if let Ok(doc) = serde_json::from_str::<serde_json::Value>(text) {
+        check_json_shape(&doc)?;
+    }
+    let plan = typed.map_err(|e| {
+        // Drop trailing unknown segments (`activities[3].?` when the input ends
+        // inside an object key); the root is `$`.
         let path = e.path().to_string();
-        let inner = e.into_inner();
-        let path = if path == "." { "$".to_string() } else { path };
-        Error::invalid(path, inner.to_string())
+        let mut path = path.as_str();
+        while let Some(p) = path.strip_suffix('?') {
+            path = p.strip_suffix('.').unwrap_or(p);
+        }
+        let path = if path.is_empty() || path == "." {
+            "$"
+        } else {
+            path
+        };
+        Error::invalid(path, e.into_inner().to_string())
     })?;
     let warnings = validate(&plan)?;
     Ok(LoadedPlan { plan, warnings })
@@ -36,27 +56,163 @@ pub fn load_plan_file(path: &std::path::Path) -> Result<LoadedPlan, Error> {
 }
 
 /// `solscope.schedule/1` document; see the spec. Built by [`schedule_document`].
-#[derive(Clone, Debug, serde::Serialize)]
+#[derive(Clone, Debug, Serialize)]
 pub struct ScheduleDoc {
     /// Always `solscope.schedule/1`.
     pub format: &'static str,
     /// Plan name.
     pub plan: String,
+    /// Every activity, in step order.
+    pub activities: Vec<ActivityEntry>,
+    /// Generated activities alive at the end: awake periods by start, then heating
+    /// by zone and start.
+    pub generated: Vec<GeneratedEntry>,
+    /// Loader warnings, as `path: message`.
+    pub warnings: Vec<String>,
+    /// Resource profiles as breakpoints.
+    pub profiles: Profiles,
+}
+
+/// One activity's outcome in a schedule document.
+#[derive(Clone, Debug, Serialize)]
+pub struct ActivityEntry {
+    /// Activity id.
+    pub id: String,
+    /// `scheduled`, `failed` or `skipped`.
+    pub status: &'static str,
+    /// Its step.
+    pub step: usize,
+    /// Start, when scheduled.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub start: Option<i64>,
+    /// End, when scheduled.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub end: Option<i64>,
+}
+
+/// One generated activity in a schedule document.
+#[derive(Clone, Debug, Serialize)]
+pub struct GeneratedEntry {
+    /// `awake`, `preheat` or `maintenance`.
+    pub kind: &'static str,
+    /// Zone name (heating only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub zone: Option<String>,
+    /// The activity heated for (heating only).
+    #[serde(rename = "for", skip_serializing_if = "Option::is_none")]
+    pub for_activity: Option<String>,
+    /// Start.
+    pub start: i64,
+    /// End.
+    pub end: i64,
+    /// Heater power in W (heating only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub power: Option<f64>,
+    /// The step that created it (solscope addition).
+    pub step: usize,
+}
+
+/// Resource profiles: `[t, value]` breakpoints.
+#[derive(Clone, Debug, Serialize)]
+pub struct Profiles {
+    /// State of charge (Wh), linear between points.
+    pub soc: Vec<(i64, f64)>,
+    /// Total peak power (W), constant from each point to the next.
+    pub peak_power: Vec<(i64, f64)>,
+    /// Data volume (Mbit), linear between points.
+    pub data_volume: Vec<(i64, f64)>,
 }
 
 /// Builds the schedule document of a run.
 pub fn schedule_document(
     loaded: &LoadedPlan,
-    schedule: &crate::scheduler::Schedule,
+    schedule: &Schedule,
     default_name: &str,
 ) -> ScheduleDoc {
-    let _ = schedule;
+    let plan = &loaded.plan;
+    let pb = &schedule.problem;
+    let activities = schedule
+        .steps
+        .iter()
+        .map(|st| {
+            let (status, start, end) = match st.outcome {
+                Outcome::Scheduled { start, end } => ("scheduled", Some(start), Some(end)),
+                Outcome::Failed(_) => ("failed", None, None),
+                Outcome::Skipped { .. } => ("skipped", None, None),
+            };
+            ActivityEntry {
+                id: plan.activities[st.activity].id.clone(),
+                status,
+                step: st.step,
+                start,
+                end,
+            }
+        })
+        .collect();
+    let last = schedule.steps.len();
+    let mut alive: Vec<&Generated> = schedule.generated_after(last).collect();
+    let key = |g: &Generated| match g.kind {
+        GeneratedKind::Awake => (0, 0, g.start, 0, 0),
+        GeneratedKind::Preheat { zone, activity } => (1, zone, g.start, 0, activity),
+        GeneratedKind::Maintenance { zone, activity } => (1, zone, g.start, 1, activity),
+    };
+    alive.sort_by_key(|g| key(g));
+    let generated = alive
+        .into_iter()
+        .map(|g| {
+            let (kind, heat) = match g.kind {
+                GeneratedKind::Awake => ("awake", None),
+                GeneratedKind::Preheat { zone, activity } => ("preheat", Some((zone, activity))),
+                GeneratedKind::Maintenance { zone, activity } => {
+                    ("maintenance", Some((zone, activity)))
+                }
+            };
+            GeneratedEntry {
+                kind,
+                zone: heat.map(|(z, _)| pb.zone_names[z].clone()),
+                for_activity: heat.map(|(_, a)| plan.activities[a].id.clone()),
+                start: g.start,
+                end: g.end,
+                power: heat.map(|_| g.power_mw as f64 / MW_PER_W),
+                step: g.added_at,
+            }
+        })
+        .collect();
+    let state = schedule.state_after(last);
+    let soc = state
+        .soc
+        .profile()
+        .into_iter()
+        .map(|(t, l)| (t, l as f64 / MJ_PER_WH))
+        .collect();
+    let data_volume = state
+        .data
+        .profile()
+        .into_iter()
+        .map(|(t, l)| (t, -l as f64 / BIT_PER_MBIT + 0.0))
+        .collect();
+    let mut peak_power: Vec<(i64, f64)> = state
+        .peak
+        .points()
+        .iter()
+        .map(|&(t, v)| (t, v as f64 / MW_PER_W))
+        .collect();
+    if let Some(&(_, v)) = peak_power.last() {
+        peak_power.push((pb.h1, v));
+    }
     ScheduleDoc {
         format: "solscope.schedule/1",
-        plan: loaded
-            .plan
+        plan: plan
             .name
             .clone()
             .unwrap_or_else(|| default_name.to_string()),
+        activities,
+        generated,
+        warnings: loaded.warnings.iter().map(ToString::to_string).collect(),
+        profiles: Profiles {
+            soc,
+            peak_power,
+            data_volume,
+        },
     }
 }

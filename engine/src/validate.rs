@@ -1,10 +1,1921 @@
 //! Semantic validation of plans (beyond what serde checks), with JSON paths.
+//!
+//! [`validate`] walks the plan in document order (the field order of
+//! [`Plan`](crate::model::Plan) and [`Activity`]) and stops at the first error, an
+//! [`Error::Invalid`] whose `path` names the offending value exactly as
+//! `serde_path_to_error` would (`activities[3].windows[0].end`) and whose `reason`
+//! quotes the offending numbers (`must be >= start (got 120 < 300)`).
+//!
+//! # Errors
+//!
+//! - `format` is `solscope.plan/1`.
+//! - Times (`horizon`, `local_time.offset`, window `cutoff`s) lie within ±1e10 s;
+//!   durations, delays and table/period entries are at most 1e10 s;
+//!   `horizon.start < horizon.end` and the horizon is at most 1e9 s long;
+//!   `local_time.sol_length > 0`.
+//! - Every number is finite; powers and rates are at most 1e6 (W, Mbit/s) in
+//!   magnitude, energies and data volumes at most 1e12 (Wh, Mbit).
+//! - Battery: `capacity > 0`, `min_soc >= 0`, `0 <= initial <= capacity`.
+//!   Power: `rtg`, `asleep`, `awake`, `max_peak >= 0`. Sleep durations `>= 0`.
+//!   Data: `capacity >= 0`, `0 <= initial <= capacity`. Handover: `time` inside
+//!   `[horizon.start, horizon.end]`, limits `>= 0`.
+//! - States: at least one value, values unique, `initial` among the values.
+//! - Thermal zones: a non-empty preheat table with an entry `from == 0`, every
+//!   `from` in `[0, sol_length)` and unique (order is free), durations `>= 0`, heater
+//!   powers `>= 0`; operable `from`/`to` in `[0, sol_length)`.
+//! - Activities: ids non-empty and unique (reported at the second occurrence);
+//!   duration `> 0`, or `0 < min <= max`; windows with `start <= end`, inside the
+//!   horizon, `preferred` in `[start, end]`, `cutoff > start` (a cutoff may lie past
+//!   `end` and past the horizon); `energy_rate`, `peak_power >= 0`; no duplicate
+//!   resources or thermal zones; thermal zones, `after` targets and states/values of
+//!   requirements and effects exist; no self-dependency; `meets: true` is not
+//!   combined with `min_delay`/`max_delay`; delays are `>= 0` (an activity always
+//!   starts at or after its dependency's end) and `min_delay <= max_delay`; at most
+//!   one requirement per state and one effect per (state, `at`); `group` and
+//!   `comm_kind` non-empty when given.
+//!
+//! # Warnings
+//!
+//! Returned in path order of appearance:
+//! - an optional activity comes before a mandatory one in step order (path
+//!   `activities[i]`);
+//! - a value is more precise than the fixed-point resolution (1 mW, 1 mJ, 1 bit,
+//!   1 bit/s) and is rounded (path of the value);
+//! - an `after` entry names an activity that comes later in step order, so the
+//!   activity can never be scheduled (path `activities[i].after[j]`);
+//! - a requirement that neither the state's initial value nor an effect of any
+//!   *other* activity can satisfy (an activity's own effects do not count for its
+//!   own requirements) (path `activities[i].requires[j]`).
+
+use std::collections::{BTreeMap, HashMap};
 
 use crate::error::{Error, Warning};
-use crate::model::Plan;
+use crate::model::{
+    Activity, Dependency, Duration, EffectAt, PLAN_FORMAT, Plan, StateDef, ThermalZone, Window,
+};
 
-/// Checks a parsed plan; returns its warnings or the first error.
+/// Largest magnitude of any time (plan seconds), and of any duration or delay.
+pub(crate) const MAX_TIME: i64 = 10_000_000_000;
+/// Longest allowed horizon, in seconds.
+pub(crate) const MAX_HORIZON_LENGTH: i64 = 1_000_000_000;
+/// Largest magnitude of a power (W) or data rate (Mbit/s).
+pub(crate) const MAX_RATE: f64 = 1e6;
+/// Largest magnitude of an energy (Wh) or data volume (Mbit).
+pub(crate) const MAX_AMOUNT: f64 = 1e12;
+
+/// Checks a parsed plan; returns its warnings (in path order) or the first error.
 pub fn validate(plan: &Plan) -> Result<Vec<Warning>, Error> {
-    let _ = plan;
-    Ok(Vec::new())
+    let mut v = Validator {
+        plan,
+        warnings: Vec::new(),
+    };
+    v.plan()?;
+    Ok(v.warnings)
+}
+
+/// Rejects JSON shapes that serde's derived impls would quietly accept although the
+/// format does not allow them: an array where an object is expected (serde reads
+/// `"horizon": [0, 10]` as a struct by field position) and an object where a
+/// string-valued enum is expected (`"awake": { "any": null }`). Walks the document in
+/// order; returns the first offending path.
+pub(crate) fn check_json_shape(doc: &serde_json::Value) -> Result<(), Error> {
+    use serde_json::Value;
+
+    fn object<'a>(
+        v: &'a Value,
+        path: &str,
+    ) -> Result<Option<&'a serde_json::Map<String, Value>>, Error> {
+        match v {
+            Value::Array(_) => Err(invalid(
+                if path.is_empty() { "$" } else { path },
+                "invalid type: array, expected a JSON object",
+            )),
+            Value::Object(map) => Ok(Some(map)),
+            _ => Ok(None), // serde reports other wrong types itself
+        }
+    }
+    fn join(base: &str, key: &str) -> String {
+        if base.is_empty() {
+            key.to_string()
+        } else {
+            format!("{base}.{key}")
+        }
+    }
+    /// Each element of an array field must be an object; returns them with paths.
+    fn objects<'a>(
+        map: &'a serde_json::Map<String, Value>,
+        base: &str,
+        key: &str,
+    ) -> Result<Vec<(String, &'a serde_json::Map<String, Value>)>, Error> {
+        let mut out = Vec::new();
+        if let Some(Value::Array(items)) = map.get(key) {
+            for (i, item) in items.iter().enumerate() {
+                let path = format!("{}[{i}]", join(base, key));
+                if let Some(m) = object(item, &path)? {
+                    out.push((path, m));
+                }
+            }
+        }
+        Ok(out)
+    }
+    fn string_enum(
+        map: &serde_json::Map<String, Value>,
+        base: &str,
+        key: &str,
+    ) -> Result<(), Error> {
+        if let Some(v @ (Value::Object(_) | Value::Array(_))) = map.get(key) {
+            let got = if v.is_object() { "object" } else { "array" };
+            return Err(invalid(
+                join(base, key),
+                format!("invalid type: {got}, expected a string"),
+            ));
+        }
+        Ok(())
+    }
+
+    let Some(root) = object(doc, "")? else {
+        return Ok(());
+    };
+    // In the field order of the model (Value maps are sorted by key).
+    for key in [
+        "horizon",
+        "local_time",
+        "battery",
+        "power",
+        "sleep",
+        "data",
+        "handover",
+    ] {
+        if let Some(value) = root.get(key) {
+            object(value, key)?;
+        }
+    }
+    for key in ["states", "thermal_zones"] {
+        let Some(Value::Object(named)) = root.get(key) else {
+            continue;
+        };
+        for (name, def) in named {
+            let path = format!("{key}.{name}");
+            if let Some(def) = object(def, &path)?
+                && key == "thermal_zones"
+            {
+                objects(def, &path, "preheat")?;
+                objects(def, &path, "operable")?;
+            }
+        }
+    }
+    for (path, act) in objects(root, "", "activities")? {
+        objects(act, &path, "windows")?;
+        string_enum(act, &path, "awake")?;
+        objects(act, &path, "after")?;
+        objects(act, &path, "requires")?;
+        for (epath, eff) in objects(act, &path, "effects")? {
+            string_enum(eff, &epath, "at")?;
+        }
+    }
+    Ok(())
+}
+
+/// The kind of a real-valued quantity: its unit, fixed-point scale and limit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Quantity {
+    /// W, stored as mW.
+    Power,
+    /// Wh, stored as mJ.
+    Energy,
+    /// Mbit, stored as bit.
+    DataVolume,
+    /// Mbit/s, stored as bit/s.
+    DataRate,
+}
+
+impl Quantity {
+    fn unit(self) -> &'static str {
+        match self {
+            Quantity::Power => "W",
+            Quantity::Energy => "Wh",
+            Quantity::DataVolume => "Mbit",
+            Quantity::DataRate => "Mbit/s",
+        }
+    }
+
+    /// Internal units per JSON unit.
+    fn scale(self) -> f64 {
+        match self {
+            Quantity::Power => 1e3,
+            Quantity::Energy => 3.6e6,
+            Quantity::DataVolume | Quantity::DataRate => 1e6,
+        }
+    }
+
+    fn resolution(self) -> &'static str {
+        match self {
+            Quantity::Power => "1 mW",
+            Quantity::Energy => "1 mJ (1/3600000 Wh)",
+            Quantity::DataVolume => "1 bit (1e-6 Mbit)",
+            Quantity::DataRate => "1 bit/s (1e-6 Mbit/s)",
+        }
+    }
+
+    fn max(self) -> f64 {
+        match self {
+            Quantity::Power | Quantity::DataRate => MAX_RATE,
+            Quantity::Energy | Quantity::DataVolume => MAX_AMOUNT,
+        }
+    }
+}
+
+/// Which signs a number may have.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Sign {
+    Any,
+    NonNegative,
+    Positive,
+}
+
+fn invalid(path: impl Into<String>, reason: impl Into<String>) -> Error {
+    Error::invalid(path, reason)
+}
+
+/// `a, b, c` for an error message listing the allowed names.
+fn list<'a>(items: impl IntoIterator<Item = &'a String>) -> String {
+    items
+        .into_iter()
+        .map(String::as_str)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn at_name(at: EffectAt) -> &'static str {
+    match at {
+        EffectAt::Start => "start",
+        EffectAt::End => "end",
+    }
+}
+
+struct Validator<'p> {
+    plan: &'p Plan,
+    warnings: Vec<Warning>,
+}
+
+impl<'p> Validator<'p> {
+    fn warn(&mut self, path: impl Into<String>, message: impl Into<String>) {
+        self.warnings.push(Warning {
+            path: path.into(),
+            message: message.into(),
+        });
+    }
+
+    // ----- primitive checks -------------------------------------------------
+
+    /// A finite number of kind `q` with the given sign, within the magnitude limit;
+    /// warns when it is rounded to the fixed-point resolution.
+    fn number(&mut self, path: &str, x: f64, q: Quantity, sign: Sign) -> Result<(), Error> {
+        if !x.is_finite() {
+            return Err(invalid(path, format!("must be a finite number (got {x})")));
+        }
+        match sign {
+            Sign::NonNegative if x < 0.0 => {
+                return Err(invalid(path, format!("must be >= 0 (got {x})")));
+            }
+            Sign::Positive if x <= 0.0 => {
+                return Err(invalid(path, format!("must be > 0 (got {x})")));
+            }
+            _ => {}
+        }
+        if x.abs() > q.max() {
+            return Err(invalid(
+                path,
+                format!(
+                    "must be at most {} {} in magnitude (got {x})",
+                    q.max(),
+                    q.unit()
+                ),
+            ));
+        }
+        let scaled = (x * q.scale()).round();
+        let back = scaled / q.scale();
+        if (back - x).abs() > x.abs() * 4.0 * f64::EPSILON {
+            self.warn(
+                path,
+                format!(
+                    "{x} {unit} is more precise than {res} and is rounded to {back} {unit}",
+                    unit = q.unit(),
+                    res = q.resolution()
+                ),
+            );
+        }
+        Ok(())
+    }
+
+    /// A time of the plan: within ±[`MAX_TIME`].
+    fn time(&self, path: &str, t: i64) -> Result<(), Error> {
+        if !(-MAX_TIME..=MAX_TIME).contains(&t) {
+            return Err(invalid(
+                path,
+                format!("must be between -{MAX_TIME} and {MAX_TIME} (got {t})"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// A duration or delay: `>= 0` (or `> 0`) and at most [`MAX_TIME`].
+    fn length(&self, path: &str, d: i64, positive: bool) -> Result<(), Error> {
+        if positive && d <= 0 {
+            return Err(invalid(path, format!("must be > 0 (got {d})")));
+        }
+        if d < 0 {
+            return Err(invalid(path, format!("must be >= 0 (got {d})")));
+        }
+        if d > MAX_TIME {
+            return Err(invalid(
+                path,
+                format!("must be at most {MAX_TIME} s (got {d})"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// A local time of day: within `[0, sol_length)`.
+    fn time_of_day(&self, path: &str, t: i64) -> Result<(), Error> {
+        let len = self.plan.local_time.sol_length;
+        if !(0..len).contains(&t) {
+            return Err(invalid(
+                path,
+                format!("must be a local time of day in [0, {len}) (got {t})"),
+            ));
+        }
+        Ok(())
+    }
+
+    fn non_empty(&self, path: &str, s: &str) -> Result<(), Error> {
+        if s.trim().is_empty() {
+            return Err(invalid(path, "must not be empty"));
+        }
+        Ok(())
+    }
+
+    // ----- the plan -----------------------------------------------------------
+
+    fn plan(&mut self) -> Result<(), Error> {
+        let plan = self.plan;
+        if plan.format != PLAN_FORMAT {
+            return Err(invalid(
+                "format",
+                format!("must be \"{PLAN_FORMAT}\" (got \"{}\")", plan.format),
+            ));
+        }
+        self.horizon()?;
+        self.local_time()?;
+        self.battery()?;
+        self.power()?;
+        self.sleep()?;
+        self.data()?;
+        self.handover()?;
+        for (name, def) in &plan.states {
+            self.state(name, def)?;
+        }
+        for (name, zone) in &plan.thermal_zones {
+            self.zone(name, zone)?;
+        }
+        self.activities()
+    }
+
+    fn horizon(&self) -> Result<(), Error> {
+        let h = self.plan.horizon;
+        self.time("horizon.start", h.start)?;
+        self.time("horizon.end", h.end)?;
+        if h.start >= h.end {
+            return Err(invalid(
+                "horizon.end",
+                format!("must be > start (got {} <= {})", h.end, h.start),
+            ));
+        }
+        let len = h.end - h.start;
+        if len > MAX_HORIZON_LENGTH {
+            return Err(invalid(
+                "horizon.end",
+                format!("the horizon may be at most {MAX_HORIZON_LENGTH} s long (got {len} s)"),
+            ));
+        }
+        Ok(())
+    }
+
+    fn local_time(&self) -> Result<(), Error> {
+        let lt = self.plan.local_time;
+        self.length("local_time.sol_length", lt.sol_length, true)?;
+        self.time("local_time.offset", lt.offset)
+    }
+
+    fn battery(&mut self) -> Result<(), Error> {
+        let b = self.plan.battery;
+        self.number(
+            "battery.capacity",
+            b.capacity,
+            Quantity::Energy,
+            Sign::Positive,
+        )?;
+        self.number(
+            "battery.initial",
+            b.initial,
+            Quantity::Energy,
+            Sign::NonNegative,
+        )?;
+        if b.initial > b.capacity {
+            return Err(invalid(
+                "battery.initial",
+                format!("must be <= capacity (got {} > {})", b.initial, b.capacity),
+            ));
+        }
+        self.number(
+            "battery.min_soc",
+            b.min_soc,
+            Quantity::Energy,
+            Sign::NonNegative,
+        )
+    }
+
+    fn power(&mut self) -> Result<(), Error> {
+        let p = self.plan.power;
+        self.number("power.rtg", p.rtg, Quantity::Power, Sign::NonNegative)?;
+        self.number("power.asleep", p.asleep, Quantity::Power, Sign::NonNegative)?;
+        self.number("power.awake", p.awake, Quantity::Power, Sign::NonNegative)?;
+        if let Some(max_peak) = p.max_peak {
+            self.number(
+                "power.max_peak",
+                max_peak,
+                Quantity::Power,
+                Sign::NonNegative,
+            )?;
+        }
+        Ok(())
+    }
+
+    fn sleep(&self) -> Result<(), Error> {
+        let s = self.plan.sleep;
+        self.length("sleep.wakeup_duration", s.wakeup_duration, false)?;
+        self.length("sleep.shutdown_duration", s.shutdown_duration, false)?;
+        self.length("sleep.min_awake", s.min_awake, false)?;
+        self.length("sleep.min_sleep", s.min_sleep, false)
+    }
+
+    fn data(&mut self) -> Result<(), Error> {
+        let d = self.plan.data;
+        if let Some(capacity) = d.capacity {
+            self.number(
+                "data.capacity",
+                capacity,
+                Quantity::DataVolume,
+                Sign::NonNegative,
+            )?;
+        }
+        self.number(
+            "data.initial",
+            d.initial,
+            Quantity::DataVolume,
+            Sign::NonNegative,
+        )?;
+        if let Some(capacity) = d.capacity
+            && d.initial > capacity
+        {
+            return Err(invalid(
+                "data.initial",
+                format!("must be <= capacity (got {} > {capacity})", d.initial),
+            ));
+        }
+        Ok(())
+    }
+
+    fn handover(&mut self) -> Result<(), Error> {
+        let Some(h) = self.plan.handover else {
+            return Ok(());
+        };
+        let hz = self.plan.horizon;
+        if h.time < hz.start || h.time > hz.end {
+            return Err(invalid(
+                "handover.time",
+                format!(
+                    "must be inside the horizon [{}, {}] (got {})",
+                    hz.start, hz.end, h.time
+                ),
+            ));
+        }
+        if let Some(min_soc) = h.min_soc {
+            self.number(
+                "handover.min_soc",
+                min_soc,
+                Quantity::Energy,
+                Sign::NonNegative,
+            )?;
+        }
+        if let Some(max) = h.max_data_volume {
+            self.number(
+                "handover.max_data_volume",
+                max,
+                Quantity::DataVolume,
+                Sign::NonNegative,
+            )?;
+        }
+        Ok(())
+    }
+
+    fn state(&self, name: &str, def: &StateDef) -> Result<(), Error> {
+        let base = format!("states.{name}");
+        if def.values.is_empty() {
+            return Err(invalid(
+                format!("{base}.values"),
+                "must list at least one value",
+            ));
+        }
+        let mut seen: HashMap<&str, usize> = HashMap::new();
+        for (i, value) in def.values.iter().enumerate() {
+            if let Some(first) = seen.insert(value.as_str(), i) {
+                return Err(invalid(
+                    format!("{base}.values[{i}]"),
+                    format!("duplicate value \"{value}\" (first at {base}.values[{first}])"),
+                ));
+            }
+        }
+        if !def.values.contains(&def.initial) {
+            return Err(invalid(
+                format!("{base}.initial"),
+                format!(
+                    "unknown value \"{}\" for state \"{name}\" (allowed: {})",
+                    def.initial,
+                    list(&def.values)
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    fn zone(&mut self, name: &str, zone: &ThermalZone) -> Result<(), Error> {
+        let base = format!("thermal_zones.{name}");
+        if zone.preheat.is_empty() {
+            return Err(invalid(
+                format!("{base}.preheat"),
+                "must have at least one entry (one with from 0)",
+            ));
+        }
+        let mut seen: HashMap<i64, usize> = HashMap::new();
+        for (i, entry) in zone.preheat.iter().enumerate() {
+            let path = format!("{base}.preheat[{i}]");
+            self.time_of_day(&format!("{path}.from"), entry.from)?;
+            if let Some(first) = seen.insert(entry.from, i) {
+                return Err(invalid(
+                    format!("{path}.from"),
+                    format!(
+                        "duplicate from {} (first at {base}.preheat[{first}])",
+                        entry.from
+                    ),
+                ));
+            }
+            self.length(&format!("{path}.duration"), entry.duration, false)?;
+        }
+        if !seen.contains_key(&0) {
+            return Err(invalid(
+                format!("{base}.preheat"),
+                "must have an entry with from 0",
+            ));
+        }
+        self.number(
+            &format!("{base}.preheat_power"),
+            zone.preheat_power,
+            Quantity::Power,
+            Sign::NonNegative,
+        )?;
+        self.number(
+            &format!("{base}.maintenance_power"),
+            zone.maintenance_power,
+            Quantity::Power,
+            Sign::NonNegative,
+        )?;
+        for (i, period) in zone.operable.iter().flatten().enumerate() {
+            let path = format!("{base}.operable[{i}]");
+            self.time_of_day(&format!("{path}.from"), period.from)?;
+            self.time_of_day(&format!("{path}.to"), period.to)?;
+        }
+        Ok(())
+    }
+
+    // ----- activities ---------------------------------------------------------
+
+    fn activities(&mut self) -> Result<(), Error> {
+        let acts = &self.plan.activities;
+        // First occurrence of every id, so that `after` may name later activities
+        // and a duplicate is reported where it occurs.
+        let mut first: HashMap<&str, usize> = HashMap::new();
+        for (i, a) in acts.iter().enumerate() {
+            first.entry(a.id.as_str()).or_insert(i);
+        }
+        // Step order: by (priority, file index); step[i] is 1-based.
+        let mut order: Vec<usize> = (0..acts.len()).collect();
+        order.sort_by_key(|&i| (acts[i].priority, i));
+        let mut step = vec![0usize; acts.len()];
+        for (k, &i) in order.iter().enumerate() {
+            step[i] = k + 1;
+        }
+        // Which activities set each (state, value).
+        let mut setters: HashMap<(&str, &str), Vec<usize>> = HashMap::new();
+        for (i, a) in acts.iter().enumerate() {
+            for e in &a.effects {
+                setters
+                    .entry((e.state.as_str(), e.value.as_str()))
+                    .or_default()
+                    .push(i);
+            }
+        }
+        let ctx = ActivityContext {
+            first,
+            order,
+            step,
+            setters,
+        };
+        for (i, a) in acts.iter().enumerate() {
+            self.activity(i, a, &ctx)?;
+        }
+        Ok(())
+    }
+
+    fn activity(&mut self, i: usize, a: &Activity, ctx: &ActivityContext<'_>) -> Result<(), Error> {
+        let base = format!("activities[{i}]");
+        let id = a.id.as_str();
+
+        // id
+        self.non_empty(&format!("{base}.id"), id)?;
+        if let Some(&f) = ctx.first.get(id)
+            && f != i
+        {
+            return Err(invalid(
+                format!("{base}.id"),
+                format!("duplicate id \"{id}\" (first at activities[{f}])"),
+            ));
+        }
+
+        // step-order warning: optional before mandatory
+        if !a.mandatory {
+            let later_mandatory = ctx.order[ctx.step[i]..]
+                .iter()
+                .copied()
+                .find(|&j| self.plan.activities[j].mandatory);
+            if let Some(j) = later_mandatory {
+                let other = &self.plan.activities[j];
+                self.warn(
+                    base.clone(),
+                    format!(
+                        "optional activity \"{id}\" (step {}, priority {}) comes before \
+                         mandatory activity \"{}\" (step {}, priority {}) in step order and \
+                         may take what the mandatory one needs",
+                        ctx.step[i], a.priority, other.id, ctx.step[j], other.priority
+                    ),
+                );
+            }
+        }
+
+        self.duration(&base, a.duration)?;
+        for (w, window) in a.windows.iter().flatten().enumerate() {
+            self.window(&format!("{base}.windows[{w}]"), window)?;
+        }
+        unique_names(&format!("{base}.resources"), &a.resources, "resource")?;
+        self.number(
+            &format!("{base}.energy_rate"),
+            a.energy_rate,
+            Quantity::Power,
+            Sign::NonNegative,
+        )?;
+        self.number(
+            &format!("{base}.peak_power"),
+            a.peak_power,
+            Quantity::Power,
+            Sign::NonNegative,
+        )?;
+        self.number(
+            &format!("{base}.data_rate"),
+            a.data_rate,
+            Quantity::DataRate,
+            Sign::Any,
+        )?;
+
+        // thermal zones
+        for (z, zone) in a.thermal_zones.iter().enumerate() {
+            if !self.plan.thermal_zones.contains_key(zone) {
+                return Err(invalid(
+                    format!("{base}.thermal_zones[{z}]"),
+                    format!(
+                        "unknown thermal zone \"{zone}\" ({})",
+                        known(self.plan.thermal_zones.keys(), "thermal zones")
+                    ),
+                ));
+            }
+        }
+        unique_names(
+            &format!("{base}.thermal_zones"),
+            &a.thermal_zones,
+            "thermal zone",
+        )?;
+
+        // dependencies
+        for (d, dep) in a.after.iter().enumerate() {
+            self.dependency(&format!("{base}.after[{d}]"), i, a, dep, ctx)?;
+        }
+
+        // requirements
+        let mut required: HashMap<&str, usize> = HashMap::new();
+        for (r, req) in a.requires.iter().enumerate() {
+            let path = format!("{base}.requires[{r}]");
+            let def = self.state_value(&path, &req.state, &req.value)?;
+            if let Some(f) = required.insert(req.state.as_str(), r) {
+                return Err(invalid(
+                    path,
+                    format!(
+                        "duplicate requirement on state \"{}\" (first at {base}.requires[{f}]); \
+                         at most one per state",
+                        req.state
+                    ),
+                ));
+            }
+            let by_other = ctx
+                .setters
+                .get(&(req.state.as_str(), req.value.as_str()))
+                .is_some_and(|who| who.iter().any(|&j| j != i));
+            if def.initial != req.value && !by_other {
+                self.warn(
+                    path,
+                    format!(
+                        "state \"{}\" is never \"{}\": it is not the initial value and no \
+                         other activity has an effect setting it, so \"{id}\" can never be \
+                         scheduled",
+                        req.state, req.value
+                    ),
+                );
+            }
+        }
+
+        // effects
+        let mut effected: BTreeMap<(&str, EffectAt), usize> = BTreeMap::new();
+        for (e, eff) in a.effects.iter().enumerate() {
+            let path = format!("{base}.effects[{e}]");
+            self.state_value(&path, &eff.state, &eff.value)?;
+            if let Some(f) = effected.insert((eff.state.as_str(), eff.at), e) {
+                return Err(invalid(
+                    path,
+                    format!(
+                        "duplicate effect on state \"{}\" at \"{}\" (first at {base}.effects[{f}])",
+                        eff.state,
+                        at_name(eff.at)
+                    ),
+                ));
+            }
+        }
+
+        if let Some(kind) = &a.comm_kind {
+            self.non_empty(&format!("{base}.comm_kind"), kind)?;
+        }
+        if let Some(group) = &a.group {
+            self.non_empty(&format!("{base}.group"), group)?;
+        }
+        Ok(())
+    }
+
+    fn duration(&self, base: &str, d: Duration) -> Result<(), Error> {
+        match d {
+            Duration::Fixed(d) => self.length(&format!("{base}.duration"), d, true),
+            Duration::Expanding { min, max } => {
+                self.length(&format!("{base}.duration.min"), min, true)?;
+                if max < min {
+                    return Err(invalid(
+                        format!("{base}.duration.max"),
+                        format!("must be >= min (got {max} < {min})"),
+                    ));
+                }
+                self.length(&format!("{base}.duration.max"), max, true)
+            }
+        }
+    }
+
+    fn window(&self, path: &str, w: &Window) -> Result<(), Error> {
+        let h = self.plan.horizon;
+        if w.start < h.start {
+            return Err(invalid(
+                format!("{path}.start"),
+                format!("must be >= horizon.start (got {} < {})", w.start, h.start),
+            ));
+        }
+        if w.end < w.start {
+            return Err(invalid(
+                format!("{path}.end"),
+                format!("must be >= start (got {} < {})", w.end, w.start),
+            ));
+        }
+        if w.end > h.end {
+            return Err(invalid(
+                format!("{path}.end"),
+                format!("must be <= horizon.end (got {} > {})", w.end, h.end),
+            ));
+        }
+        if let Some(p) = w.preferred
+            && (p < w.start || p > w.end)
+        {
+            return Err(invalid(
+                format!("{path}.preferred"),
+                format!(
+                    "must be within the window [{}, {}] (got {p})",
+                    w.start, w.end
+                ),
+            ));
+        }
+        if let Some(c) = w.cutoff {
+            let cpath = format!("{path}.cutoff");
+            if c <= w.start {
+                return Err(invalid(
+                    cpath,
+                    format!("must be > start (got {c} <= {})", w.start),
+                ));
+            }
+            self.time(&cpath, c)?;
+        }
+        Ok(())
+    }
+
+    fn dependency(
+        &mut self,
+        path: &str,
+        i: usize,
+        a: &Activity,
+        dep: &Dependency,
+        ctx: &ActivityContext<'_>,
+    ) -> Result<(), Error> {
+        let target = dep.activity.as_str();
+        let Some(&j) = ctx.first.get(target) else {
+            return Err(invalid(
+                format!("{path}.activity"),
+                format!("unknown activity \"{target}\""),
+            ));
+        };
+        if target == a.id {
+            return Err(invalid(
+                format!("{path}.activity"),
+                format!("activity \"{target}\" cannot depend on itself"),
+            ));
+        }
+        if dep.meets {
+            for (field, value) in [("min_delay", dep.min_delay), ("max_delay", dep.max_delay)] {
+                if value.is_some() {
+                    return Err(invalid(
+                        format!("{path}.{field}"),
+                        "cannot be combined with \"meets\": true",
+                    ));
+                }
+            }
+        }
+        if let Some(min) = dep.min_delay {
+            self.length(&format!("{path}.min_delay"), min, false)?;
+        }
+        if let Some(max) = dep.max_delay {
+            self.length(&format!("{path}.max_delay"), max, false)?;
+            if let Some(min) = dep.min_delay
+                && max < min
+            {
+                return Err(invalid(
+                    format!("{path}.max_delay"),
+                    format!("must be >= min_delay (got {max} < {min})"),
+                ));
+            }
+        }
+        if ctx.step[j] > ctx.step[i] {
+            self.warn(
+                path,
+                format!(
+                    "depends on \"{target}\" (step {}), which comes later in step order than \
+                     \"{}\" (step {}), so \"{}\" can never be scheduled",
+                    ctx.step[j], a.id, ctx.step[i], a.id
+                ),
+            );
+        }
+        Ok(())
+    }
+
+    /// Checks that `state` exists and `value` is one of its values.
+    fn state_value(&self, path: &str, state: &str, value: &str) -> Result<&'p StateDef, Error> {
+        let Some(def) = self.plan.states.get(state) else {
+            return Err(invalid(
+                format!("{path}.state"),
+                format!(
+                    "unknown state \"{state}\" ({})",
+                    known(self.plan.states.keys(), "states")
+                ),
+            ));
+        };
+        if !def.values.iter().any(|v| v == value) {
+            return Err(invalid(
+                format!("{path}.value"),
+                format!(
+                    "unknown value \"{value}\" for state \"{state}\" (allowed: {})",
+                    list(&def.values)
+                ),
+            ));
+        }
+        Ok(def)
+    }
+}
+
+/// Precomputed facts about all activities.
+struct ActivityContext<'p> {
+    /// Index of the first activity with each id.
+    first: HashMap<&'p str, usize>,
+    /// Activity indices in step order.
+    order: Vec<usize>,
+    /// 1-based step of each activity index.
+    step: Vec<usize>,
+    /// Activities with an effect setting each (state, value).
+    setters: HashMap<(&'p str, &'p str), Vec<usize>>,
+}
+
+/// `known: a, b` or `the plan defines no <what>`.
+fn known<'a>(names: impl Iterator<Item = &'a String>, what: &str) -> String {
+    let names: Vec<&String> = names.collect();
+    if names.is_empty() {
+        format!("the plan defines no {what}")
+    } else {
+        format!("known: {}", list(names))
+    }
+}
+
+/// Rejects a repeated name in a list, at its second occurrence.
+fn unique_names(path: &str, names: &[String], what: &str) -> Result<(), Error> {
+    let mut seen: BTreeMap<&str, usize> = BTreeMap::new();
+    for (k, name) in names.iter().enumerate() {
+        if let Some(f) = seen.insert(name.as_str(), k) {
+            return Err(invalid(
+                format!("{path}[{k}]"),
+                format!("duplicate {what} \"{name}\" (first at {path}[{f}])"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::{Value, json};
+
+    /// A small valid plan exercising every section; no warnings.
+    fn base_json() -> Value {
+        json!({
+            "format": "solscope.plan/1",
+            "horizon": { "start": 0, "end": 88775 },
+            "local_time": { "sol_length": 88775, "offset": 0 },
+            "battery": { "capacity": 1600.0, "initial": 1200.0, "min_soc": 500.0 },
+            "power": { "rtg": 110.0, "asleep": 25.0, "awake": 190.0, "max_peak": 900.0 },
+            "sleep": { "wakeup_duration": 300, "shutdown_duration": 300, "min_awake": 1800, "min_sleep": 3600 },
+            "sequence_engines": 3,
+            "data": { "capacity": 8000.0, "initial": 0.0 },
+            "handover": { "time": 86000, "min_soc": 900.0, "max_data_volume": 4000.0 },
+            "states": { "drill": { "values": ["stowed", "deployed"], "initial": "stowed" } },
+            "thermal_zones": { "arm": {
+                "preheat": [ { "from": 0, "duration": 3600 }, { "from": 36000, "duration": 1200 } ],
+                "preheat_power": 45.0, "maintenance_power": 15.0,
+                "operable": [ { "from": 25200, "to": 61200 } ] } },
+            "activities": [
+                { "id": "unstow", "priority": 1, "duration": 600,
+                  "windows": [ { "start": 30000, "end": 40000, "preferred": 35000, "cutoff": 45000 } ],
+                  "resources": ["arm"], "thermal_zones": ["arm"], "energy_rate": 40.0,
+                  "requires": [ { "state": "drill", "value": "stowed" } ],
+                  "effects": [ { "state": "drill", "value": "deployed", "at": "end" } ] },
+                { "id": "drill", "priority": 2, "duration": { "min": 600, "max": 2400 },
+                  "resources": ["arm", "drill"], "peak_power": 220.0, "data_rate": -0.5,
+                  "after": [ { "activity": "unstow", "min_delay": 0, "max_delay": 600 } ],
+                  "requires": [ { "state": "drill", "value": "deployed" } ],
+                  "effects": [ { "state": "drill", "value": "stowed", "at": "start" },
+                               { "state": "drill", "value": "stowed", "at": "end" } ],
+                  "comm_kind": "uhf", "group": "g" },
+                { "id": "pano", "priority": 3, "mandatory": false, "duration": 100,
+                  "after": [ { "activity": "drill", "meets": true } ] }
+            ]
+        })
+    }
+
+    fn push(array: &mut Value, item: Value) {
+        array.as_array_mut().expect("an array").push(item);
+    }
+
+    fn parse(v: Value) -> Plan {
+        serde_json::from_value(v).expect("test plan parses")
+    }
+
+    fn with(edit: impl FnOnce(&mut Value)) -> Plan {
+        let mut v = base_json();
+        edit(&mut v);
+        parse(v)
+    }
+
+    /// The error of a plan, as `(path, reason)`.
+    fn err(plan: &Plan) -> (String, String) {
+        match validate(plan) {
+            Err(Error::Invalid { path, reason }) => (path, reason),
+            other => panic!("expected an Invalid error, got {other:?}"),
+        }
+    }
+
+    fn assert_err(edit: impl FnOnce(&mut Value), path: &str, fragment: &str) {
+        let (p, reason) = err(&with(edit));
+        assert_eq!(p, path, "reason was: {reason}");
+        assert!(
+            reason.contains(fragment),
+            "reason {reason:?} does not contain {fragment:?}"
+        );
+    }
+
+    fn warnings(edit: impl FnOnce(&mut Value)) -> Vec<Warning> {
+        validate(&with(edit)).expect("plan is valid")
+    }
+
+    #[test]
+    fn base_plan_is_valid_without_warnings() {
+        assert_eq!(validate(&parse(base_json())).unwrap(), vec![]);
+    }
+
+    #[test]
+    fn spec_example_error_format() {
+        let (p, r) = err(&with(|v| {
+            v["activities"][0]["windows"][0] = json!({ "start": 300, "end": 120 });
+        }));
+        assert_eq!(
+            format!("{p}: {r}"),
+            "activities[0].windows[0].end: must be >= start (got 120 < 300)"
+        );
+    }
+
+    #[test]
+    fn format_string() {
+        assert_err(
+            |v| v["format"] = json!("solscope.plan/2"),
+            "format",
+            "solscope.plan/1",
+        );
+    }
+
+    #[test]
+    fn horizon() {
+        assert_err(
+            |v| v["horizon"] = json!({ "start": 10, "end": 10 }),
+            "horizon.end",
+            "must be > start (got 10 <= 10)",
+        );
+        assert_err(
+            |v| v["horizon"] = json!({ "start": 10, "end": 5 }),
+            "horizon.end",
+            "got 5 <= 10",
+        );
+        assert_err(
+            |v| v["horizon"]["start"] = json!(-20_000_000_000i64),
+            "horizon.start",
+            "between",
+        );
+        assert_err(
+            |v| v["horizon"]["end"] = json!(20_000_000_000i64),
+            "horizon.end",
+            "between",
+        );
+        assert_err(
+            |v| v["horizon"] = json!({ "start": -1_000_000_000, "end": 1 }),
+            "horizon.end",
+            "at most 1000000000 s long (got 1000000001 s)",
+        );
+        // exactly 1e9 long is fine
+        let plan = with(|v| {
+            v["horizon"] = json!({ "start": 0, "end": 1_000_000_000 });
+            v["handover"]["time"] = json!(1000);
+        });
+        assert!(validate(&plan).is_ok());
+    }
+
+    #[test]
+    fn local_time() {
+        assert_err(
+            |v| v["local_time"]["sol_length"] = json!(0),
+            "local_time.sol_length",
+            "must be > 0 (got 0)",
+        );
+        assert_err(
+            |v| v["local_time"]["sol_length"] = json!(-5),
+            "local_time.sol_length",
+            "must be > 0",
+        );
+        assert_err(
+            |v| v["local_time"]["offset"] = json!(20_000_000_000i64),
+            "local_time.offset",
+            "between",
+        );
+    }
+
+    #[test]
+    fn battery() {
+        assert_err(
+            |v| v["battery"]["capacity"] = json!(0.0),
+            "battery.capacity",
+            "must be > 0 (got 0)",
+        );
+        assert_err(
+            |v| v["battery"]["initial"] = json!(-1.0),
+            "battery.initial",
+            "must be >= 0 (got -1)",
+        );
+        assert_err(
+            |v| v["battery"]["initial"] = json!(1700.0),
+            "battery.initial",
+            "must be <= capacity (got 1700 > 1600)",
+        );
+        assert_err(
+            |v| v["battery"]["min_soc"] = json!(-0.5),
+            "battery.min_soc",
+            "must be >= 0",
+        );
+        assert_err(
+            |v| v["battery"]["capacity"] = json!(2e12),
+            "battery.capacity",
+            "at most 1000000000000 Wh",
+        );
+    }
+
+    #[test]
+    fn non_finite_numbers_are_rejected() {
+        // JSON cannot carry them, but a Plan built in code can.
+        let mut plan = parse(base_json());
+        plan.battery.capacity = f64::NAN;
+        assert_eq!(
+            err(&plan),
+            (
+                "battery.capacity".into(),
+                "must be a finite number (got NaN)".into()
+            )
+        );
+        let mut plan = parse(base_json());
+        plan.activities[1].data_rate = f64::NEG_INFINITY;
+        assert_eq!(err(&plan).0, "activities[1].data_rate");
+        let mut plan = parse(base_json());
+        plan.power.rtg = f64::INFINITY;
+        assert_eq!(
+            err(&plan),
+            (
+                "power.rtg".into(),
+                "must be a finite number (got inf)".into()
+            )
+        );
+    }
+
+    #[test]
+    fn power() {
+        assert_err(
+            |v| v["power"]["rtg"] = json!(-1.0),
+            "power.rtg",
+            "must be >= 0",
+        );
+        assert_err(
+            |v| v["power"]["asleep"] = json!(-1.0),
+            "power.asleep",
+            "must be >= 0",
+        );
+        assert_err(
+            |v| v["power"]["awake"] = json!(-1.0),
+            "power.awake",
+            "must be >= 0",
+        );
+        assert_err(
+            |v| v["power"]["max_peak"] = json!(-1.0),
+            "power.max_peak",
+            "must be >= 0",
+        );
+        assert_err(
+            |v| v["power"]["awake"] = json!(1.5e6),
+            "power.awake",
+            "at most 1000000 W in magnitude (got 1500000)",
+        );
+    }
+
+    #[test]
+    fn sleep() {
+        for f in [
+            "wakeup_duration",
+            "shutdown_duration",
+            "min_awake",
+            "min_sleep",
+        ] {
+            assert_err(
+                |v| v["sleep"][f] = json!(-1),
+                &format!("sleep.{f}"),
+                "must be >= 0 (got -1)",
+            );
+        }
+        assert_err(
+            |v| v["sleep"]["min_sleep"] = json!(20_000_000_000i64),
+            "sleep.min_sleep",
+            "at most",
+        );
+    }
+
+    #[test]
+    fn data() {
+        assert_err(
+            |v| v["data"]["capacity"] = json!(-1.0),
+            "data.capacity",
+            "must be >= 0",
+        );
+        assert_err(
+            |v| v["data"]["initial"] = json!(-1.0),
+            "data.initial",
+            "must be >= 0",
+        );
+        assert_err(
+            |v| v["data"]["initial"] = json!(9000.0),
+            "data.initial",
+            "must be <= capacity (got 9000 > 8000)",
+        );
+        // no capacity: unlimited
+        let plan = with(|v| v["data"] = json!({ "initial": 9000.0 }));
+        assert!(validate(&plan).is_ok());
+    }
+
+    #[test]
+    fn handover() {
+        assert_err(
+            |v| v["handover"]["time"] = json!(90000),
+            "handover.time",
+            "inside the horizon [0, 88775] (got 90000)",
+        );
+        assert_err(
+            |v| v["handover"]["time"] = json!(-1),
+            "handover.time",
+            "inside the horizon",
+        );
+        assert_err(
+            |v| v["handover"]["min_soc"] = json!(-1.0),
+            "handover.min_soc",
+            "must be >= 0",
+        );
+        assert_err(
+            |v| v["handover"]["max_data_volume"] = json!(-1.0),
+            "handover.max_data_volume",
+            "must be >= 0",
+        );
+        // the horizon end itself is allowed
+        assert!(validate(&with(|v| v["handover"]["time"] = json!(88775))).is_ok());
+    }
+
+    #[test]
+    fn states() {
+        assert_err(
+            |v| v["states"]["drill"]["values"] = json!([]),
+            "states.drill.values",
+            "at least one value",
+        );
+        assert_err(
+            |v| v["states"]["drill"]["values"] = json!(["stowed", "deployed", "stowed"]),
+            "states.drill.values[2]",
+            "duplicate value \"stowed\" (first at states.drill.values[0])",
+        );
+        assert_err(
+            |v| v["states"]["drill"]["initial"] = json!("open"),
+            "states.drill.initial",
+            "unknown value \"open\" for state \"drill\" (allowed: stowed, deployed)",
+        );
+    }
+
+    #[test]
+    fn thermal_zones() {
+        let z = "thermal_zones.arm";
+        assert_err(
+            |v| v["thermal_zones"]["arm"]["preheat"] = json!([]),
+            &format!("{z}.preheat"),
+            "at least one entry",
+        );
+        assert_err(
+            |v| v["thermal_zones"]["arm"]["preheat"] = json!([{ "from": 100, "duration": 10 }]),
+            &format!("{z}.preheat"),
+            "entry with from 0",
+        );
+        assert_err(
+            |v| v["thermal_zones"]["arm"]["preheat"][1]["from"] = json!(88775),
+            &format!("{z}.preheat[1].from"),
+            "[0, 88775) (got 88775)",
+        );
+        assert_err(
+            |v| v["thermal_zones"]["arm"]["preheat"][1]["from"] = json!(-1),
+            &format!("{z}.preheat[1].from"),
+            "got -1",
+        );
+        assert_err(
+            |v| v["thermal_zones"]["arm"]["preheat"] = json!([{ "from": 0, "duration": 1 }, { "from": 500, "duration": 2 }, { "from": 500, "duration": 3 }]),
+            &format!("{z}.preheat[2].from"),
+            "duplicate from 500 (first at thermal_zones.arm.preheat[1])",
+        );
+        assert_err(
+            |v| v["thermal_zones"]["arm"]["preheat"][0]["duration"] = json!(-1),
+            &format!("{z}.preheat[0].duration"),
+            "must be >= 0",
+        );
+        assert_err(
+            |v| v["thermal_zones"]["arm"]["preheat_power"] = json!(-1.0),
+            &format!("{z}.preheat_power"),
+            ">= 0",
+        );
+        assert_err(
+            |v| v["thermal_zones"]["arm"]["maintenance_power"] = json!(-1.0),
+            &format!("{z}.maintenance_power"),
+            ">= 0",
+        );
+        assert_err(
+            |v| v["thermal_zones"]["arm"]["operable"][0]["to"] = json!(88775),
+            &format!("{z}.operable[0].to"),
+            "got 88775",
+        );
+        assert_err(
+            |v| v["thermal_zones"]["arm"]["operable"][0]["from"] = json!(-3),
+            &format!("{z}.operable[0].from"),
+            "got -3",
+        );
+        // unsorted tables and wrapping periods are fine
+        let plan = with(|v| {
+            v["thermal_zones"]["arm"]["preheat"] =
+                json!([{ "from": 500, "duration": 2 }, { "from": 0, "duration": 1 }]);
+            v["thermal_zones"]["arm"]["operable"] = json!([{ "from": 80000, "to": 1000 }]);
+        });
+        assert!(validate(&plan).is_ok());
+    }
+
+    #[test]
+    fn activity_ids() {
+        assert_err(
+            |v| v["activities"][2]["id"] = json!("unstow"),
+            "activities[2].id",
+            "duplicate id \"unstow\" (first at activities[0])",
+        );
+        assert_err(
+            |v| v["activities"][0]["id"] = json!(""),
+            "activities[0].id",
+            "must not be empty",
+        );
+    }
+
+    #[test]
+    fn durations() {
+        assert_err(
+            |v| v["activities"][0]["duration"] = json!(0),
+            "activities[0].duration",
+            "must be > 0 (got 0)",
+        );
+        assert_err(
+            |v| v["activities"][0]["duration"] = json!(-5),
+            "activities[0].duration",
+            "must be > 0 (got -5)",
+        );
+        assert_err(
+            |v| v["activities"][0]["duration"] = json!(20_000_000_000i64),
+            "activities[0].duration",
+            "at most",
+        );
+        assert_err(
+            |v| v["activities"][1]["duration"] = json!({ "min": 0, "max": 10 }),
+            "activities[1].duration.min",
+            "must be > 0",
+        );
+        assert_err(
+            |v| v["activities"][1]["duration"] = json!({ "min": 10, "max": 5 }),
+            "activities[1].duration.max",
+            "must be >= min (got 5 < 10)",
+        );
+        // min == max is fine
+        assert!(
+            validate(&with(
+                |v| v["activities"][1]["duration"] = json!({ "min": 10, "max": 10 })
+            ))
+            .is_ok()
+        );
+    }
+
+    #[test]
+    fn windows() {
+        let w = "activities[0].windows[0]";
+        assert_err(
+            |v| v["activities"][0]["windows"][0]["start"] = json!(-1),
+            &format!("{w}.start"),
+            "must be >= horizon.start (got -1 < 0)",
+        );
+        assert_err(
+            |v| v["activities"][0]["windows"][0]["end"] = json!(88776),
+            &format!("{w}.end"),
+            "must be <= horizon.end (got 88776 > 88775)",
+        );
+        assert_err(
+            |v| v["activities"][0]["windows"][0]["preferred"] = json!(29999),
+            &format!("{w}.preferred"),
+            "within the window [30000, 40000] (got 29999)",
+        );
+        assert_err(
+            |v| v["activities"][0]["windows"][0]["preferred"] = json!(40001),
+            &format!("{w}.preferred"),
+            "got 40001",
+        );
+        assert_err(
+            |v| v["activities"][0]["windows"][0]["cutoff"] = json!(30000),
+            &format!("{w}.cutoff"),
+            "must be > start (got 30000 <= 30000)",
+        );
+        assert_err(
+            |v| v["activities"][0]["windows"][0]["cutoff"] = json!(20_000_000_000i64),
+            &format!("{w}.cutoff"),
+            "between",
+        );
+        // a second window is checked too
+        assert_err(
+            |v| {
+                push(
+                    &mut v["activities"][0]["windows"],
+                    json!({ "start": 10, "end": 5 }),
+                )
+            },
+            "activities[0].windows[1].end",
+            "got 5 < 10",
+        );
+        // cutoff after end and past the horizon; start == end; preferred at the bounds
+        let plan = with(|v| {
+            v["activities"][0]["windows"] = json!([
+                { "start": 88000, "end": 88775, "cutoff": 90000, "preferred": 88775 },
+                { "start": 100, "end": 100, "preferred": 100 }
+            ]);
+        });
+        assert!(validate(&plan).is_ok());
+    }
+
+    #[test]
+    fn activity_numbers() {
+        assert_err(
+            |v| v["activities"][0]["energy_rate"] = json!(-1.0),
+            "activities[0].energy_rate",
+            "must be >= 0 (got -1)",
+        );
+        assert_err(
+            |v| v["activities"][0]["peak_power"] = json!(-1.0),
+            "activities[0].peak_power",
+            "must be >= 0",
+        );
+        assert_err(
+            |v| v["activities"][0]["data_rate"] = json!(2e6),
+            "activities[0].data_rate",
+            "at most 1000000 Mbit/s",
+        );
+        assert_err(
+            |v| v["activities"][0]["data_rate"] = json!(-2e6),
+            "activities[0].data_rate",
+            "in magnitude",
+        );
+    }
+
+    #[test]
+    fn resources_and_zones() {
+        assert_err(
+            |v| v["activities"][1]["resources"] = json!(["arm", "drill", "arm"]),
+            "activities[1].resources[2]",
+            "duplicate resource \"arm\" (first at activities[1].resources[0])",
+        );
+        assert_err(
+            |v| v["activities"][0]["thermal_zones"] = json!(["mast"]),
+            "activities[0].thermal_zones[0]",
+            "unknown thermal zone \"mast\" (known: arm)",
+        );
+        assert_err(
+            |v| v["activities"][0]["thermal_zones"] = json!(["arm", "arm"]),
+            "activities[0].thermal_zones[1]",
+            "duplicate thermal zone \"arm\"",
+        );
+        assert_err(
+            |v| {
+                v["thermal_zones"] = json!({});
+            },
+            "activities[0].thermal_zones[0]",
+            "the plan defines no thermal zones",
+        );
+    }
+
+    #[test]
+    fn dependencies() {
+        let d = "activities[1].after[0]";
+        assert_err(
+            |v| v["activities"][1]["after"][0]["activity"] = json!("nope"),
+            &format!("{d}.activity"),
+            "unknown activity \"nope\"",
+        );
+        assert_err(
+            |v| v["activities"][1]["after"][0]["activity"] = json!("drill"),
+            &format!("{d}.activity"),
+            "cannot depend on itself",
+        );
+        assert_err(
+            |v| v["activities"][1]["after"][0]["meets"] = json!(true),
+            &format!("{d}.min_delay"),
+            "cannot be combined with \"meets\": true",
+        );
+        assert_err(
+            |v| {
+                v["activities"][1]["after"][0] =
+                    json!({ "activity": "unstow", "meets": true, "max_delay": 5 })
+            },
+            &format!("{d}.max_delay"),
+            "meets",
+        );
+        assert_err(
+            |v| v["activities"][1]["after"][0]["min_delay"] = json!(-1),
+            &format!("{d}.min_delay"),
+            "must be >= 0 (got -1)",
+        );
+        assert_err(
+            |v| v["activities"][1]["after"][0]["max_delay"] = json!(-1),
+            &format!("{d}.max_delay"),
+            "must be >= 0 (got -1)",
+        );
+        assert_err(
+            |v| {
+                v["activities"][1]["after"][0] =
+                    json!({ "activity": "unstow", "min_delay": 700, "max_delay": 600 })
+            },
+            &format!("{d}.max_delay"),
+            "must be >= min_delay (got 600 < 700)",
+        );
+        // meets: false with delays is fine
+        assert!(
+            validate(&with(
+                |v| v["activities"][1]["after"][0]["meets"] = json!(false)
+            ))
+            .is_ok()
+        );
+    }
+
+    #[test]
+    fn requirements_and_effects() {
+        assert_err(
+            |v| v["activities"][0]["requires"][0]["state"] = json!("mast"),
+            "activities[0].requires[0].state",
+            "unknown state \"mast\" (known: drill)",
+        );
+        assert_err(
+            |v| v["activities"][0]["requires"][0]["value"] = json!("open"),
+            "activities[0].requires[0].value",
+            "unknown value \"open\" for state \"drill\" (allowed: stowed, deployed)",
+        );
+        assert_err(
+            |v| {
+                push(
+                    &mut v["activities"][0]["requires"],
+                    json!({ "state": "drill", "value": "stowed" }),
+                )
+            },
+            "activities[0].requires[1]",
+            "duplicate requirement on state \"drill\" (first at activities[0].requires[0])",
+        );
+        assert_err(
+            |v| v["activities"][0]["effects"][0]["value"] = json!("open"),
+            "activities[0].effects[0].value",
+            "unknown value \"open\"",
+        );
+        assert_err(
+            |v| v["activities"][0]["effects"][0]["state"] = json!("mast"),
+            "activities[0].effects[0].state",
+            "unknown state \"mast\"",
+        );
+        assert_err(
+            |v| v["activities"][1]["effects"][0]["at"] = json!("end"),
+            "activities[1].effects[1]",
+            "duplicate effect on state \"drill\" at \"end\" (first at activities[1].effects[0])",
+        );
+        // the default `at` is end
+        assert_err(
+            |v| {
+                push(
+                    &mut v["activities"][0]["effects"],
+                    json!({ "state": "drill", "value": "stowed" }),
+                )
+            },
+            "activities[0].effects[1]",
+            "at \"end\"",
+        );
+        assert_err(
+            |v| {
+                v["states"] = json!({});
+                v["activities"][0]["requires"] = json!([]);
+            },
+            "activities[0].effects[0].state",
+            "the plan defines no states",
+        );
+    }
+
+    #[test]
+    fn group_and_comm_kind() {
+        assert_err(
+            |v| v["activities"][1]["group"] = json!(""),
+            "activities[1].group",
+            "must not be empty",
+        );
+        assert_err(
+            |v| v["activities"][1]["comm_kind"] = json!(" "),
+            "activities[1].comm_kind",
+            "must not be empty",
+        );
+    }
+
+    #[test]
+    fn first_error_in_document_order() {
+        // A duplicate id at activities[2] does not hide an earlier window error.
+        let plan = with(|v| {
+            v["activities"][2]["id"] = json!("unstow");
+            v["activities"][1]["windows"] = json!([{ "start": 5, "end": 1 }]);
+        });
+        assert_eq!(err(&plan).0, "activities[1].windows[0].end");
+    }
+
+    #[test]
+    fn warns_optional_before_mandatory() {
+        let w = warnings(|v| v["activities"][0]["mandatory"] = json!(false));
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert_eq!(w[0].path, "activities[0]");
+        assert!(
+            w[0].message
+                .contains("optional activity \"unstow\" (step 1"),
+            "{}",
+            w[0].message
+        );
+        assert!(
+            w[0].message
+                .contains("mandatory activity \"drill\" (step 2"),
+            "{}",
+            w[0].message
+        );
+        // an optional activity after every mandatory one is fine (pano in the base plan)
+        assert!(warnings(|_| {}).is_empty());
+        // step order uses priority, then file index
+        let w = warnings(|v| {
+            v["activities"][2]["priority"] = json!(0);
+            v["activities"][2]["after"] = json!([]);
+        });
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert_eq!(w[0].path, "activities[2]");
+        assert!(
+            w[0].message.contains("(step 1, priority 0)"),
+            "{}",
+            w[0].message
+        );
+        // equal priorities: file order decides
+        let w = warnings(|v| {
+            v["activities"][2]["priority"] = json!(1);
+            v["activities"][2]["after"] = json!([]);
+        });
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(
+            w[0].message.contains("(step 2, priority 1)"),
+            "{}",
+            w[0].message
+        );
+    }
+
+    #[test]
+    fn warns_dependency_on_later_activity() {
+        let w = warnings(|v| v["activities"][0]["priority"] = json!(3));
+        // unstow is now step 2 (priority ties go by file index), after drill (step 1)
+        // which depends on it.
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert_eq!(w[0].path, "activities[1].after[0]");
+        assert!(
+            w[0].message.contains("depends on \"unstow\" (step 2)"),
+            "{}",
+            w[0].message
+        );
+        assert!(
+            w[0].message.contains("\"drill\" can never be scheduled"),
+            "{}",
+            w[0].message
+        );
+    }
+
+    #[test]
+    fn warns_unsatisfiable_requirement() {
+        let w = warnings(|v| {
+            v["activities"][0]["effects"] = json!([]);
+        });
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert_eq!(w[0].path, "activities[1].requires[0]");
+        assert!(
+            w[0].message
+                .contains("state \"drill\" is never \"deployed\""),
+            "{}",
+            w[0].message
+        );
+        // only its own effect sets the value: still unsatisfiable
+        let w = warnings(|v| {
+            v["activities"][0]["effects"] = json!([]);
+            v["activities"][1]["effects"] =
+                json!([{ "state": "drill", "value": "deployed", "at": "start" }]);
+        });
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert_eq!(w[0].path, "activities[1].requires[0]");
+        // the initial value satisfies it
+        let w = warnings(|v| {
+            v["activities"][0]["effects"] = json!([]);
+            v["states"]["drill"]["initial"] = json!("deployed");
+        });
+        assert!(
+            w.iter().all(|w| w.path != "activities[1].requires[0]"),
+            "{w:?}"
+        );
+    }
+
+    #[test]
+    fn warns_rounded_values() {
+        let w = warnings(|v| {
+            v["power"]["rtg"] = json!(110.0004);
+            v["activities"][0]["energy_rate"] = json!(40.0015);
+            v["activities"][1]["data_rate"] = json!(-0.0000005);
+            v["battery"]["initial"] = json!(1200.0000001);
+            v["data"]["initial"] = json!(1.23456789);
+        });
+        let paths: Vec<&str> = w.iter().map(|w| w.path.as_str()).collect();
+        assert_eq!(
+            paths,
+            [
+                "battery.initial",
+                "power.rtg",
+                "data.initial",
+                "activities[0].energy_rate",
+                "activities[1].data_rate"
+            ]
+        );
+        assert!(
+            w[1].message
+                .contains("110.0004 W is more precise than 1 mW and is rounded to 110 W"),
+            "{}",
+            w[1].message
+        );
+        assert!(
+            w[2].message.contains("rounded to 1.234568 Mbit"),
+            "{}",
+            w[2].message
+        );
+        assert!(
+            w[3].message.contains("rounded to 40.002 W"),
+            "{}",
+            w[3].message
+        );
+        assert!(w[4].message.contains("1 bit/s"), "{}", w[4].message);
+        // values exactly on the resolution do not warn
+        let w = warnings(|v| {
+            v["power"]["rtg"] = json!(110.001);
+            v["battery"]["initial"] = json!(0.1);
+            v["battery"]["min_soc"] = json!(1.0 / 3.6e6 * 7.0);
+            v["activities"][1]["data_rate"] = json!(0.000001);
+            v["data"]["initial"] = json!(1234.567891);
+            v["activities"][0]["peak_power"] = json!(999999.999);
+        });
+        assert!(w.is_empty(), "{w:?}");
+    }
+
+    #[test]
+    fn warnings_in_path_order() {
+        let w = warnings(|v| {
+            v["activities"][0]["mandatory"] = json!(false);
+            v["activities"][0]["energy_rate"] = json!(1.0001);
+            v["activities"][0]["effects"] = json!([]);
+            v["activities"][2]["priority"] = json!(0);
+            v["battery"]["min_soc"] = json!(0.0000001);
+        });
+        let paths: Vec<&str> = w.iter().map(|w| w.path.as_str()).collect();
+        assert_eq!(
+            paths,
+            [
+                "battery.min_soc",
+                "activities[0]",
+                "activities[0].energy_rate",
+                "activities[1].requires[0]",
+                "activities[2]",
+                "activities[2].after[0]"
+            ]
+        );
+    }
+
+    fn load_err(text: &str) -> (String, String) {
+        match crate::io::load_plan(text) {
+            Err(Error::Invalid { path, reason }) => (path, reason),
+            other => panic!("expected an Invalid error, got {other:?}"),
+        }
+    }
+
+    fn shape_err(edit: impl FnOnce(&mut Value)) -> (String, String) {
+        let mut v = base_json();
+        edit(&mut v);
+        load_err(&v.to_string())
+    }
+
+    #[test]
+    fn shape_rejects_arrays_for_objects() {
+        let cases: Vec<(Box<dyn FnOnce(&mut Value)>, &str)> = vec![
+            (Box::new(|v| v["horizon"] = json!([0, 88775])), "horizon"),
+            (
+                Box::new(|v| v["battery"] = json!([1600.0, 1200.0, 500.0])),
+                "battery",
+            ),
+            (Box::new(|v| v["handover"] = json!([86000])), "handover"),
+            (
+                Box::new(|v| v["states"]["drill"] = json!([["stowed"], "stowed"])),
+                "states.drill",
+            ),
+            (
+                Box::new(|v| v["thermal_zones"]["arm"]["preheat"][1] = json!([36000, 1200])),
+                "thermal_zones.arm.preheat[1]",
+            ),
+            (
+                Box::new(|v| v["thermal_zones"]["arm"]["operable"][0] = json!([1, 2])),
+                "thermal_zones.arm.operable[0]",
+            ),
+            (
+                Box::new(|v| v["activities"][2] = json!(["x", null, 1, true, 10])),
+                "activities[2]",
+            ),
+            (
+                Box::new(|v| v["activities"][0]["windows"][0] = json!([30000, 40000])),
+                "activities[0].windows[0]",
+            ),
+            (
+                Box::new(|v| v["activities"][1]["after"][0] = json!(["unstow"])),
+                "activities[1].after[0]",
+            ),
+            (
+                Box::new(|v| v["activities"][0]["requires"][0] = json!(["drill", "stowed"])),
+                "activities[0].requires[0]",
+            ),
+            (
+                Box::new(|v| {
+                    v["activities"][0]["effects"][0] = json!(["drill", "deployed", "end"])
+                }),
+                "activities[0].effects[0]",
+            ),
+        ];
+        for (edit, path) in cases {
+            let (p, r) = shape_err(edit);
+            assert_eq!(p, path);
+            assert_eq!(r, "invalid type: array, expected a JSON object");
+        }
+        let (p, r) = load_err(&format!("[{}]", base_json()));
+        assert_eq!(
+            (p.as_str(), r.as_str()),
+            ("$", "invalid type: array, expected a JSON object")
+        );
+    }
+
+    #[test]
+    fn shape_rejects_objects_for_enums() {
+        let (p, r) = shape_err(|v| v["activities"][2]["awake"] = json!({ "any": null }));
+        assert_eq!(
+            (p.as_str(), r.as_str()),
+            (
+                "activities[2].awake",
+                "invalid type: object, expected a string"
+            )
+        );
+        let (p, _) =
+            shape_err(|v| v["activities"][0]["effects"][0]["at"] = json!({ "start": null }));
+        assert_eq!(p, "activities[0].effects[0].at");
+    }
+
+    #[test]
+    fn load_plan_paths() {
+        // serde errors keep serde_path_to_error's path; the root is `$`
+        assert_eq!(load_err("").0, "$");
+        assert_eq!(load_err("42").0, "$");
+        assert_eq!(
+            shape_err(|v| v["activities"][1]["priority"] = json!("high")).0,
+            "activities[1].priority"
+        );
+        assert_eq!(
+            shape_err(|v| v["activities"][1]["duration"] = json!(1.5)).0,
+            "activities[1].duration"
+        );
+        assert_eq!(
+            shape_err(|v| v["activities"][1]["bogus"] = json!(1)).0,
+            "activities[1].bogus"
+        );
+        let (p, r) = shape_err(|v| {
+            v.as_object_mut().unwrap().remove("battery");
+        });
+        assert_eq!(p, "$");
+        assert!(r.contains("missing field `battery`"), "{r}");
+        // input ending inside an object key: no `.?` segment
+        let text = base_json().to_string();
+        let cut = text.find("\"energy_rate\"").unwrap() + 3;
+        let (p, r) = load_err(&text[..cut]);
+        assert_eq!(p, "activities[0]");
+        assert!(r.contains("EOF"), "{r}");
+        // semantic errors come from `validate`
+        assert_eq!(
+            shape_err(|v| v["battery"]["initial"] = json!(2000.0)).0,
+            "battery.initial"
+        );
+    }
 }

@@ -1,7 +1,19 @@
 //! Timelines: the flight design's core abstraction. Each kind answers "at which
 //! start times can this candidate go without violating my constraints" as sorted
 //! disjoint integer intervals.
+//!
+//! - [`StateTimeline`]: a named state's value over time (requirements, effects).
+//! - [`atomic_valid`]: unit resources (no overlap).
+//! - [`claimable_valid`]: sequence engines and peak power (usage under a cap).
+//! - [`cumulative_valid`]: a total over a time range (handover data produced).
+//! - [`RateTimeline`]: cumulative-rate levels (state of charge, data volume).
 
 mod intervals;
+mod kinds;
+mod rate;
+mod step;
 
 pub use intervals::{Interval, IntervalSet};
+pub use kinds::{StateTimeline, atomic_valid, claimable_valid, cumulative_valid};
+pub use rate::RateTimeline;
+pub use step::StepFn;

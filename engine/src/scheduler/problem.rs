@@ -1,0 +1,395 @@
+//! The compiled plan: interned ids and fixed-point quantities (docs/semantics.md).
+
+use std::collections::BTreeMap;
+
+use crate::error::Error;
+use crate::model::{AwakeMode, Duration, EffectAt, Plan};
+
+/// mW per W.
+pub const MW_PER_W: f64 = 1_000.0;
+/// mJ per Wh.
+pub const MJ_PER_WH: f64 = 3_600_000.0;
+/// bit per Mbit (and bit/s per Mbit/s).
+pub const BIT_PER_MBIT: f64 = 1_000_000.0;
+
+/// Rounds `x * scale` to the nearest integer (half away from zero).
+pub fn to_fixed(x: f64, scale: f64) -> i64 {
+    let v = (x * scale).round();
+    if v.is_finite() {
+        // Validation bounds every quantity far inside the i64 range.
+        v.clamp(i64::MIN as f64, i64::MAX as f64) as i64
+    } else {
+        0
+    }
+}
+
+/// A window in compiled form.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Win {
+    /// Earliest start.
+    pub start: i64,
+    /// Latest start.
+    pub end: i64,
+    /// Preferred start.
+    pub preferred: i64,
+    /// Latest end.
+    pub cutoff: Option<i64>,
+}
+
+/// A dependency in compiled form.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Dep {
+    /// Target activity index.
+    pub target: usize,
+    /// Lower bound on `start - target.end`.
+    pub min_delay: i64,
+    /// Upper bound on `start - target.end`.
+    pub max_delay: Option<i64>,
+}
+
+/// An activity in compiled form.
+#[derive(Clone, Debug)]
+pub struct Act {
+    /// Shortest duration.
+    pub dur_min: i64,
+    /// Longest duration.
+    pub dur_max: i64,
+    /// Mandatory?
+    pub mandatory: bool,
+    /// Windows (the whole horizon when the plan gives none).
+    pub windows: Vec<Win>,
+    /// Unit resources (interned).
+    pub resources: Vec<usize>,
+    /// Sequence engines held.
+    pub engines: i64,
+    /// Energy rate (mW).
+    pub energy: i64,
+    /// Peak power (mW).
+    pub peak: i64,
+    /// Data rate (bit/s).
+    pub data: i64,
+    /// Awake mode.
+    pub awake: AwakeMode,
+    /// Zones (indices).
+    pub zones: Vec<usize>,
+    /// Dependencies.
+    pub after: Vec<Dep>,
+    /// `(state, value)` requirements.
+    pub requires: Vec<(usize, usize)>,
+    /// `(state, value, at)` effects.
+    pub effects: Vec<(usize, usize, EffectAt)>,
+    /// Allowed comm kinds (interned); `None` = all.
+    pub uhf: Option<Vec<usize>>,
+    /// Comm kind (interned).
+    pub comm: Option<usize>,
+    /// Group (interned).
+    pub group: Option<usize>,
+}
+
+impl Act {
+    /// Whether this activity may overlap a comm activity of kind `kind`.
+    pub fn allows(&self, kind: usize) -> bool {
+        self.uhf.as_ref().is_none_or(|k| k.contains(&kind))
+    }
+}
+
+/// A thermal zone in compiled form.
+#[derive(Clone, Debug)]
+pub struct Zone {
+    /// `(from, duration)`, sorted by `from`.
+    pub table: Vec<(i64, i64)>,
+    /// Preheat power (mW).
+    pub preheat: i64,
+    /// Maintenance power (mW).
+    pub maintenance: i64,
+    /// Operable periods `(from, to)` in local time; `None` = always.
+    pub operable: Option<Vec<(i64, i64)>>,
+}
+
+/// The compiled plan the scheduler works on.
+#[derive(Clone, Debug)]
+pub struct Problem {
+    /// Horizon start.
+    pub h0: i64,
+    /// Horizon end.
+    pub h1: i64,
+    /// Sol length.
+    pub sol: i64,
+    /// Local-time offset.
+    pub offset: i64,
+    /// Battery capacity (mJ).
+    pub capacity: i128,
+    /// Initial state of charge (mJ).
+    pub soc0: i128,
+    /// Minimum state of charge (mJ).
+    pub min_soc: i128,
+    /// RTG power (mW).
+    pub rtg: i64,
+    /// Asleep draw (mW).
+    pub asleep: i64,
+    /// Awake draw (mW).
+    pub awake: i64,
+    /// Peak power limit (mW).
+    pub max_peak: Option<i64>,
+    /// Wakeup duration.
+    pub wake: i64,
+    /// Shutdown duration.
+    pub shut: i64,
+    /// Minimum awake period.
+    pub min_awake: i64,
+    /// Minimum sleep between awake periods.
+    pub min_sleep: i64,
+    /// Sequence engines available.
+    pub engines: Option<i64>,
+    /// Data capacity (bit).
+    pub data_cap: Option<i128>,
+    /// Initial data volume (bit).
+    pub data0: i128,
+    /// Handover time.
+    pub handover_time: Option<i64>,
+    /// Handover minimum state of charge (mJ).
+    pub handover_soc: Option<i128>,
+    /// Handover data limit (bit).
+    pub handover_data: Option<i128>,
+    /// Initial value of each state (interned value index).
+    pub state_initial: Vec<usize>,
+    /// Zones, in name order.
+    pub zones: Vec<Zone>,
+    /// Zone names, in the same order.
+    pub zone_names: Vec<String>,
+    /// Number of distinct unit resources.
+    pub resource_count: usize,
+    /// Activities, in file order.
+    pub acts: Vec<Act>,
+    /// Step order: `order[k - 1]` is the activity of step k.
+    pub order: Vec<usize>,
+}
+
+impl Problem {
+    /// Local time of day of plan time `t`.
+    pub fn tod(&self, t: i64) -> i64 {
+        (self.offset + t).rem_euclid(self.sol)
+    }
+
+    /// Preheat duration of zone `z` for an activity starting at `s`.
+    pub fn preheat_duration(&self, z: usize, s: i64) -> i64 {
+        let tod = self.tod(s);
+        let table = &self.zones[z].table;
+        let i = table.partition_point(|e| e.0 <= tod);
+        i.checked_sub(1).map_or(0, |i| table[i].1)
+    }
+
+    /// Whether a preheat of zone `z` may start at plan time `t`.
+    pub fn operable(&self, z: usize, t: i64) -> bool {
+        let tod = self.tod(t);
+        self.zones[z].operable.as_ref().is_none_or(|periods| {
+            periods.iter().any(|&(from, to)| {
+                if from <= to {
+                    from <= tod && tod <= to
+                } else {
+                    tod >= from || tod <= to
+                }
+            })
+        })
+    }
+
+    /// Compiles a validated plan.
+    pub fn compile(plan: &Plan) -> Result<Problem, Error> {
+        let ids: BTreeMap<&str, usize> = plan
+            .activities
+            .iter()
+            .enumerate()
+            .map(|(i, a)| (a.id.as_str(), i))
+            .collect();
+        let mut resources: BTreeMap<&str, usize> = BTreeMap::new();
+        let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
+        let mut groups: BTreeMap<&str, usize> = BTreeMap::new();
+        let state_names: Vec<&str> = plan.states.keys().map(String::as_str).collect();
+        let zone_names: Vec<String> = plan.thermal_zones.keys().cloned().collect();
+        let state_index = |path: &str, name: &str| {
+            state_names
+                .iter()
+                .position(|s| *s == name)
+                .ok_or_else(|| Error::invalid(path, format!("unknown state \"{name}\"")))
+        };
+        let value_index = |path: &str, state: &str, value: &str| {
+            plan.states
+                .get(state)
+                .and_then(|s| s.values.iter().position(|v| v == value))
+                .ok_or_else(|| {
+                    Error::invalid(
+                        path,
+                        format!("unknown value \"{value}\" for state \"{state}\""),
+                    )
+                })
+        };
+        let horizon = plan.horizon;
+        let mut acts = Vec::with_capacity(plan.activities.len());
+        for (i, a) in plan.activities.iter().enumerate() {
+            let p = format!("activities[{i}]");
+            let (dur_min, dur_max) = match a.duration {
+                Duration::Fixed(d) => (d, d),
+                Duration::Expanding { min, max } => (min, max),
+            };
+            let windows = match &a.windows {
+                Some(ws) => ws
+                    .iter()
+                    .map(|w| Win {
+                        start: w.start,
+                        end: w.end,
+                        preferred: w.preferred_start(),
+                        cutoff: w.cutoff,
+                    })
+                    .collect(),
+                None => vec![Win {
+                    start: horizon.start,
+                    end: horizon.end,
+                    preferred: horizon.start,
+                    cutoff: None,
+                }],
+            };
+            let mut res = Vec::new();
+            for r in &a.resources {
+                let n = resources.len();
+                res.push(*resources.entry(r.as_str()).or_insert(n));
+            }
+            let mut zones = Vec::new();
+            for (k, z) in a.thermal_zones.iter().enumerate() {
+                let zi = zone_names.iter().position(|n| n == z).ok_or_else(|| {
+                    Error::invalid(
+                        format!("{p}.thermal_zones[{k}]"),
+                        format!("unknown zone \"{z}\""),
+                    )
+                })?;
+                zones.push(zi);
+            }
+            let mut after = Vec::new();
+            for (k, d) in a.after.iter().enumerate() {
+                let target = *ids.get(d.activity.as_str()).ok_or_else(|| {
+                    Error::invalid(
+                        format!("{p}.after[{k}].activity"),
+                        format!("unknown activity \"{}\"", d.activity),
+                    )
+                })?;
+                let (min_delay, max_delay) = if d.meets {
+                    (0, Some(0))
+                } else {
+                    (d.min_delay.unwrap_or(0), d.max_delay)
+                };
+                after.push(Dep {
+                    target,
+                    min_delay,
+                    max_delay,
+                });
+            }
+            let mut requires = Vec::new();
+            for (k, r) in a.requires.iter().enumerate() {
+                let path = format!("{p}.requires[{k}]");
+                requires.push((
+                    state_index(&path, &r.state)?,
+                    value_index(&path, &r.state, &r.value)?,
+                ));
+            }
+            let mut effects = Vec::new();
+            for (k, e) in a.effects.iter().enumerate() {
+                let path = format!("{p}.effects[{k}]");
+                effects.push((
+                    state_index(&path, &e.state)?,
+                    value_index(&path, &e.state, &e.value)?,
+                    e.at,
+                ));
+            }
+            let uhf = a.uhf_interactions.as_ref().map(|list| {
+                list.iter()
+                    .map(|k| {
+                        let n = kinds.len();
+                        *kinds.entry(k.as_str()).or_insert(n)
+                    })
+                    .collect()
+            });
+            let comm = a.comm_kind.as_deref().map(|k| {
+                let n = kinds.len();
+                *kinds.entry(k).or_insert(n)
+            });
+            let group = a.group.as_deref().map(|g| {
+                let n = groups.len();
+                *groups.entry(g).or_insert(n)
+            });
+            acts.push(Act {
+                dur_min,
+                dur_max,
+                mandatory: a.mandatory,
+                windows,
+                resources: res,
+                engines: i64::from(a.sequence_engines),
+                energy: to_fixed(a.energy_rate, MW_PER_W),
+                peak: to_fixed(a.peak_power, MW_PER_W),
+                data: to_fixed(a.data_rate, BIT_PER_MBIT),
+                awake: a.awake,
+                zones,
+                after,
+                requires,
+                effects,
+                uhf,
+                comm,
+                group,
+            });
+        }
+        let mut order: Vec<usize> = (0..plan.activities.len()).collect();
+        order.sort_by_key(|&i| (plan.activities[i].priority, i));
+        let zones = plan
+            .thermal_zones
+            .values()
+            .map(|z| {
+                let mut table: Vec<(i64, i64)> =
+                    z.preheat.iter().map(|e| (e.from, e.duration)).collect();
+                table.sort_unstable();
+                Zone {
+                    table,
+                    preheat: to_fixed(z.preheat_power, MW_PER_W),
+                    maintenance: to_fixed(z.maintenance_power, MW_PER_W),
+                    operable: z
+                        .operable
+                        .as_ref()
+                        .map(|ps| ps.iter().map(|p| (p.from, p.to)).collect()),
+                }
+            })
+            .collect();
+        let state_initial = plan
+            .states
+            .iter()
+            .map(|(name, s)| value_index(&format!("states.{name}.initial"), name, &s.initial))
+            .collect::<Result<_, _>>()?;
+        let wh = |x: f64| i128::from(to_fixed(x, MJ_PER_WH));
+        let mbit = |x: f64| i128::from(to_fixed(x, BIT_PER_MBIT));
+        Ok(Problem {
+            h0: horizon.start,
+            h1: horizon.end,
+            sol: plan.local_time.sol_length.max(1),
+            offset: plan.local_time.offset,
+            capacity: wh(plan.battery.capacity),
+            soc0: wh(plan.battery.initial),
+            min_soc: wh(plan.battery.min_soc),
+            rtg: to_fixed(plan.power.rtg, MW_PER_W),
+            asleep: to_fixed(plan.power.asleep, MW_PER_W),
+            awake: to_fixed(plan.power.awake, MW_PER_W),
+            max_peak: plan.power.max_peak.map(|x| to_fixed(x, MW_PER_W)),
+            wake: plan.sleep.wakeup_duration,
+            shut: plan.sleep.shutdown_duration,
+            min_awake: plan.sleep.min_awake,
+            min_sleep: plan.sleep.min_sleep,
+            engines: plan.sequence_engines.map(i64::from),
+            data_cap: plan.data.capacity.map(mbit),
+            data0: mbit(plan.data.initial),
+            handover_time: plan.handover.map(|h| h.time),
+            handover_soc: plan.handover.and_then(|h| h.min_soc).map(wh),
+            handover_data: plan.handover.and_then(|h| h.max_data_volume).map(mbit),
+            state_initial,
+            zones,
+            zone_names,
+            resource_count: resources.len(),
+            acts,
+            order,
+        })
+    }
+}

@@ -1,0 +1,686 @@
+//! Finding starts: phase-1 valid intervals per category, and the exact phase-2
+//! search over cells between critical points.
+//!
+//! Phase 2 is exact at 1-second resolution without scanning every second. The
+//! critical points are every fixed breakpoint (power, peak, heater, awake, sleep,
+//! state changes, handover) shifted by every offset at which the candidate's
+//! generated pieces start or end (0, d, -wakeup, d + shutdown, the min_awake
+//! extensions, -preheat for every table duration), the merge thresholds
+//! (`± min_sleep`), and the local times where the preheat table or operability
+//! changes. Between two consecutive critical points the structure of the candidate
+//! (which periods merge, which preheats exist, which segments its pieces overlap) is
+//! fixed, so every structural and peak-power check is constant, and the lowest state
+//! of charge is a concave function of the start (a minimum of linear functions and
+//! of linear-minus-running-maximum terms). Each cell is therefore decided by a
+//! handful of evaluations: its ends, and a binary search for the maximum and the
+//! boundaries of the feasible part.
+
+use super::problem::Problem;
+use super::state::{Placement, State, uncovered};
+use super::trace::{Category, CategoryIntervals, Phase2Reason, Try};
+use crate::model::{AwakeMode, EffectAt};
+use crate::timeline::{Interval, IntervalSet, atomic_valid, claimable_valid, cumulative_valid};
+
+/// A candidate that passed the structural and peak checks, with its energy margin.
+#[derive(Clone, Debug)]
+pub struct Evaluated {
+    /// The placement it would make.
+    pub placement: Placement,
+    /// `min(lowest soc - min_soc, handover soc - handover min)`; feasible iff >= 0.
+    pub margin: i128,
+    /// The energy reason when `margin < 0`.
+    pub soc_reason: Option<Phase2Reason>,
+}
+
+impl State<'_> {
+    /// Valid starts of every phase-1 category for activity `a` with duration `d`.
+    pub fn phase1(&self, a: usize, d: i64) -> Vec<CategoryIntervals> {
+        let pb = self.pb;
+        let act = &pb.acts[a];
+        let (lo, hi) = (pb.h0, pb.h1);
+        let all = || IntervalSet::single(lo, hi);
+        let mut out = Vec::with_capacity(8);
+        // execution
+        let (wake, shut) = if act.awake == AwakeMode::Required {
+            (pb.wake, pb.shut)
+        } else {
+            (0, 0)
+        };
+        let exec: IntervalSet = act
+            .windows
+            .iter()
+            .map(|w| self.window_range(a, w.start, w.end, w.cutoff, d, wake, shut))
+            .collect();
+        out.push((Category::Execution, exec));
+        // dependency
+        let mut dep = all();
+        for x in &act.after {
+            match self.placed[x.target] {
+                Some((_, end)) => {
+                    let lo = end.saturating_add(x.min_delay);
+                    let hi = x.max_delay.map_or(i64::MAX, |m| end.saturating_add(m));
+                    dep = dep.clip(lo, hi);
+                }
+                None => dep = IntervalSet::empty(),
+            }
+        }
+        out.push((Category::Dependency, dep));
+        // unit_resource
+        let mut res = all();
+        for &r in &act.resources {
+            res = res.intersect(&atomic_valid(&self.busy[r], d, lo, hi));
+        }
+        out.push((Category::UnitResource, res));
+        // sequence_engines
+        let eng = match pb.engines {
+            Some(cap) if act.engines > 0 => {
+                claimable_valid(&self.engines, cap - act.engines, d, lo, hi)
+            }
+            _ => all(),
+        };
+        out.push((Category::SequenceEngines, eng));
+        // state_requirement
+        let mut req = all();
+        for &(st, v) in &act.requires {
+            req = req.intersect(&self.states[st].requirement_valid(v, d, lo, hi));
+        }
+        out.push((Category::StateRequirement, req));
+        // state_effect
+        let mut eff = all();
+        let mut states: Vec<usize> = act.effects.iter().map(|e| e.0).collect();
+        states.sort_unstable();
+        states.dedup();
+        for st in states {
+            let mut own: Vec<(i64, usize)> = act
+                .effects
+                .iter()
+                .filter(|e| e.0 == st)
+                .map(|e| (if e.2 == EffectAt::Start { 0 } else { d }, e.1))
+                .collect();
+            own.sort_unstable();
+            eff = eff.intersect(&self.states[st].effect_valid(&own, lo, hi));
+        }
+        out.push((Category::StateEffect, eff));
+        // data_volume
+        let mut data = all();
+        if act.data > 0 {
+            if let Some(cap) = pb.data_cap {
+                data = self.data_valid(act.data, d, cap, lo, hi);
+            }
+            if let (false, Some(ht), Some(max)) =
+                (act.mandatory, pb.handover_time, pb.handover_data)
+            {
+                data = data.intersect(&cumulative_valid(
+                    self.produced,
+                    max,
+                    act.data,
+                    d,
+                    (pb.h0, ht),
+                    (lo, hi),
+                ));
+            }
+        }
+        out.push((Category::DataVolume, data));
+        // uhf
+        let mut busy = Vec::new();
+        for &(s, e, kind, _) in &self.comms {
+            if !act.allows(kind) {
+                busy.push((s, e));
+            }
+        }
+        if let Some(kind) = act.comm {
+            for &(s, e, other) in &self.restricted {
+                if !pb.acts[other].allows(kind) {
+                    busy.push((s, e));
+                }
+            }
+        }
+        out.push((Category::Uhf, atomic_valid(&busy, d, lo, hi)));
+        out.into_iter()
+            .map(|(category, valid)| CategoryIntervals { category, valid })
+            .collect()
+    }
+
+    /// The execution range of one window for duration `d`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn window_range(
+        &self,
+        _a: usize,
+        start: i64,
+        end: i64,
+        cutoff: Option<i64>,
+        d: i64,
+        wake: i64,
+        shut: i64,
+    ) -> Interval {
+        let pb = self.pb;
+        let lo = start.max(pb.h0.saturating_add(wake));
+        let mut hi = end.min(pb.h1.saturating_sub(d).saturating_sub(shut));
+        if let Some(c) = cutoff {
+            hi = hi.min(c.saturating_sub(d));
+        }
+        Interval::new(lo, hi)
+    }
+
+    /// Starts where adding `rate` bit/s over `[s, s + d)` keeps the volume <= `cap`.
+    fn data_valid(&self, rate: i64, d: i64, cap: i128, lo: i64, hi: i64) -> IntervalSet {
+        let margin = |s: i64| self.data.check(&[(s, s + d, rate)], None).min + cap;
+        let mut points: Vec<i64> = Vec::new();
+        for &x in self.data.breakpoints() {
+            for o in [0, d] {
+                points.extend([x - o, x - o + 1]);
+            }
+        }
+        let mut feasible = Vec::new();
+        for (a, b) in cells(&IntervalSet::single(lo, hi), points) {
+            if let Some(iv) = concave_feasible(a, b, &margin).0 {
+                feasible.push(iv);
+            }
+        }
+        IntervalSet::from_intervals(feasible)
+    }
+
+    /// Phase 2 at start `s` with duration `d`: the generated activities and every
+    /// check. `Err` is a structural or peak reason (constant within a cell).
+    pub fn evaluate(&self, a: usize, s: i64, d: i64) -> Result<Evaluated, Phase2Reason> {
+        let pb = self.pb;
+        let act = &pb.acts[a];
+        let e = s + d;
+        let mut retire = Vec::new();
+        let mut new_awake = None;
+        match act.awake {
+            AwakeMode::Forbidden => {
+                if self.awake.iter().any(|p| p.0 < e && s < p.1) {
+                    return Err(Phase2Reason::ForcedSleep { sleep: None });
+                }
+            }
+            AwakeMode::Any => {}
+            AwakeMode::Required => {
+                let need = (s - pb.wake, e + pb.shut);
+                if let Some(f) = self.sleep_overlapping(need) {
+                    return Err(Phase2Reason::ForcedSleep { sleep: Some(f) });
+                }
+                if !self.awake.iter().any(|p| p.0 <= need.0 && need.1 <= p.1) {
+                    let (q1, merged1) = self.merge(need);
+                    if let Some(f) = self.sleep_overlapping(q1) {
+                        return Err(Phase2Reason::MinSleep { sleep: f });
+                    }
+                    let (q2, merged2) = if q1.1 - q1.0 < pb.min_awake {
+                        let ext = if q1.0 + pb.min_awake <= pb.h1 {
+                            (q1.0, q1.0 + pb.min_awake)
+                        } else if q1.1 - pb.min_awake >= pb.h0 {
+                            (q1.1 - pb.min_awake, q1.1)
+                        } else {
+                            return Err(Phase2Reason::MinAwake { sleep: None });
+                        };
+                        let (q2, m2) = self.merge((ext.0.min(q1.0), ext.1.max(q1.1)));
+                        if let Some(f) = self.sleep_overlapping(q2) {
+                            return Err(Phase2Reason::MinAwake { sleep: Some(f) });
+                        }
+                        (q2, m2)
+                    } else {
+                        (q1, merged1)
+                    };
+                    retire = merged2;
+                    new_awake = Some(q2);
+                }
+            }
+        }
+        // Heating.
+        let mut preheats = Vec::new();
+        for &z in &act.zones {
+            if self.heater_on(z, s - 1) {
+                continue;
+            }
+            let p = pb.preheat_duration(z, s);
+            if p > 0 {
+                preheats.push((z, s - p, s));
+            }
+        }
+        if let Some(&(zone, ps, _)) = preheats.iter().find(|x| x.1 < pb.h0) {
+            return Err(Phase2Reason::PreheatOutsidePlan {
+                zone,
+                preheat_start: ps,
+            });
+        }
+        if let Some(&(zone, ps, _)) = preheats.iter().find(|x| !pb.operable(x.0, x.1)) {
+            return Err(Phase2Reason::PreheatOperability {
+                zone,
+                preheat_start: ps,
+            });
+        }
+        // Load pieces: (t, +energy, +peak) boundary events.
+        let mut events: Vec<(i64, i64, i64)> = Vec::new();
+        let mut piece = |x: i64, y: i64, energy: i64, peak: i64| {
+            if x < y && (energy != 0 || peak != 0) {
+                events.push((x, energy, peak));
+                events.push((y, -energy, -peak));
+            }
+        };
+        piece(s, e, act.energy, act.peak);
+        if let Some((qa, qb)) = new_awake {
+            let extra = pb.awake - pb.asleep;
+            for (x, y) in uncovered(qa, qb, retire.iter().map(|&i| self.awake[i])) {
+                piece(x, y, extra, extra);
+            }
+        }
+        for &z in &act.zones {
+            let zone = &pb.zones[z];
+            let mut demands = vec![(s, e, zone.maintenance)];
+            if let Some(&(_, ps, pe)) = preheats.iter().find(|x| x.0 == z) {
+                demands.push((ps, pe, zone.preheat));
+            }
+            for (x, y, power) in demands {
+                for (u, v, cur) in self.zone_draw[z].segments(x, y) {
+                    if power > cur {
+                        piece(u, v, power - cur, power - cur);
+                    }
+                }
+            }
+        }
+        events.sort_unstable();
+        let mut pieces: Vec<(i64, i64, i64, i64)> = Vec::new();
+        let (mut energy, mut peak) = (0i64, 0i64);
+        for (k, &(t, de, dp)) in events.iter().enumerate() {
+            energy += de;
+            peak += dp;
+            if let Some(&(next, _, _)) = events.get(k + 1) {
+                if next > t && (energy != 0 || peak != 0) {
+                    pieces.push((t, next, energy, peak));
+                }
+            }
+        }
+        // Peak power.
+        if let Some(max) = pb.max_peak {
+            if let Some((v, at)) = self.peak.max_on(pb.h0, pb.h1).filter(|(v, _)| *v > max) {
+                return Err(Phase2Reason::MaxPeakPower { at, peak_mw: v });
+            }
+            for &(x, y, _, dp) in &pieces {
+                if let Some((v, at)) = self.peak.max_on(x, y) {
+                    if v + dp > max {
+                        return Err(Phase2Reason::MaxPeakPower {
+                            at,
+                            peak_mw: v + dp,
+                        });
+                    }
+                }
+            }
+        }
+        // Energy.
+        let drain: Vec<(i64, i64, i64)> = pieces.iter().map(|p| (p.0, p.1, p.2)).collect();
+        let handover = match (act.mandatory, pb.handover_time, pb.handover_soc) {
+            (false, Some(t), Some(min)) => Some((t, min)),
+            _ => None,
+        };
+        let check = self.soc.check(&drain, handover.map(|h| h.0));
+        let mut margin = check.min - pb.min_soc;
+        let mut soc_reason = (margin < 0).then(|| Phase2Reason::MinSoc {
+            at: check.min_at,
+            soc_mj: clamp_i64(check.min),
+        });
+        if let (Some((_, min)), Some(level)) = (handover, check.at_probe) {
+            let hm = level - min;
+            if hm < 0 && soc_reason.is_none() {
+                soc_reason = Some(Phase2Reason::HandoverSoc {
+                    soc_mj: clamp_i64(level),
+                });
+            }
+            margin = margin.min(hm);
+        }
+        Ok(Evaluated {
+            placement: Placement {
+                act: a,
+                start: s,
+                duration: d,
+                retire,
+                new_awake,
+                preheats,
+            },
+            margin,
+            soc_reason,
+        })
+    }
+
+    /// The first manual sleep overlapping `[a, b)`.
+    fn sleep_overlapping(&self, (a, b): (i64, i64)) -> Option<usize> {
+        self.sleeps.iter().find(|x| x.0 < b && a < x.1).map(|x| x.2)
+    }
+
+    /// Merges `q` with every awake period closer than `max(min_sleep, 1)`, repeatedly.
+    fn merge(&self, mut q: (i64, i64)) -> ((i64, i64), Vec<usize>) {
+        let gap = self.pb.min_sleep.max(1);
+        let mut merged = vec![false; self.awake.len()];
+        loop {
+            let mut changed = false;
+            for (i, p) in self.awake.iter().enumerate() {
+                if !merged[i] && p.0 - q.1 < gap && q.0 - p.1 < gap {
+                    merged[i] = true;
+                    q = (q.0.min(p.0), q.1.max(p.1));
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        (
+            q,
+            merged
+                .iter()
+                .enumerate()
+                .filter(|(_, m)| **m)
+                .map(|(i, _)| i)
+                .collect(),
+        )
+    }
+
+    /// The critical points for activity `a` with duration `d` and starts in `[lo, hi]`.
+    fn critical_points(&self, a: usize, d: i64, lo: i64, hi: i64) -> Vec<i64> {
+        let pb = self.pb;
+        let act = &pb.acts[a];
+        let mut offsets = vec![0, d];
+        let mut preheat_lengths = Vec::new();
+        if act.awake == AwakeMode::Required {
+            offsets.extend([
+                -pb.wake,
+                d + pb.shut,
+                -pb.wake + pb.min_awake,
+                d + pb.shut - pb.min_awake,
+            ]);
+        }
+        for &z in &act.zones {
+            for &(_, p) in &pb.zones[z].table {
+                preheat_lengths.push(p);
+                offsets.push(-p);
+            }
+        }
+        offsets.sort_unstable();
+        offsets.dedup();
+        preheat_lengths.sort_unstable();
+        preheat_lengths.dedup();
+        let (omin, omax) = (offsets[0], offsets[offsets.len() - 1]);
+        let gap = pb.min_sleep.max(1);
+        let (xlo, xhi) = (lo + omin - gap - 2, hi + omax + gap + 2);
+        let mut fixed: Vec<i64> = Vec::new();
+        let in_range = |x: &i64| xlo <= *x && *x <= xhi;
+        fixed.extend(self.net.points().iter().map(|p| p.0).filter(in_range));
+        fixed.extend(self.peak.points().iter().map(|p| p.0).filter(in_range));
+        for &z in &act.zones {
+            fixed.extend(
+                self.zone_draw[z]
+                    .points()
+                    .iter()
+                    .map(|p| p.0)
+                    .filter(in_range),
+            );
+            for &(x, y) in &self.zone_on[z] {
+                fixed.extend([x, y, x + 1, y + 1]);
+            }
+        }
+        for &(x, y, _) in &self.sleeps {
+            fixed.extend([x, y]);
+        }
+        fixed.extend([pb.h0, pb.h1]);
+        if let Some(t) = pb.handover_time {
+            fixed.push(t);
+        }
+        let mut awake_pts = Vec::new();
+        for &(x, y) in &self.awake {
+            awake_pts.extend([x, y, x - gap, y + gap]);
+        }
+        fixed.extend(awake_pts);
+        fixed.sort_unstable();
+        fixed.dedup();
+        let mut points = Vec::with_capacity(fixed.len() * offsets.len() * 2 + 16);
+        for &x in &fixed {
+            for &o in &offsets {
+                points.push(x - o);
+                points.push(x - o + 1);
+            }
+        }
+        for &p in &preheat_lengths {
+            points.push(pb.h0 + p);
+        }
+        // Local-time structure: table rows at tod(s), operability at tod(s - p).
+        for &z in &act.zones {
+            let zone = &pb.zones[z];
+            for &(from, _) in &zone.table {
+                points.extend(tod_points(pb, from, 0, lo, hi));
+            }
+            if let Some(periods) = &zone.operable {
+                for &p in &preheat_lengths {
+                    for &(from, to) in periods {
+                        points.extend(tod_points(pb, from, p, lo, hi));
+                        points.extend(tod_points(pb, (to + 1).rem_euclid(pb.sol), p, lo, hi));
+                        points.extend(tod_points(pb, 0, p, lo, hi));
+                    }
+                }
+            }
+        }
+        points
+    }
+
+    /// The best start in `cand` (nearest `preferred`, ties earlier) passing phase 2,
+    /// and every try made.
+    pub fn search(
+        &self,
+        a: usize,
+        d: i64,
+        cand: &IntervalSet,
+        preferred: i64,
+    ) -> (Option<Evaluated>, Vec<Try>) {
+        let mut tries = Vec::new();
+        let (Some(lo), Some(hi)) = (cand.first(), cand.intervals().last().map(|i| i.hi)) else {
+            return (None, tries);
+        };
+        let mut cells = cells(cand, self.critical_points(a, d, lo, hi));
+        let dist = |c: &(i64, i64)| {
+            if c.0 > preferred {
+                c.0 - preferred
+            } else if c.1 < preferred {
+                preferred - c.1
+            } else {
+                0
+            }
+        };
+        cells.sort_by_key(|c| (dist(c), c.0));
+        let mut best: Option<(i64, i64)> = None; // (distance, start)
+        for cell in cells {
+            if best.is_some_and(|b| dist(&cell) > b.0) {
+                break;
+            }
+            let (ca, cb) = cell;
+            let first = match self.evaluate(a, ca, d) {
+                Err(reason) => {
+                    tries.push(Try {
+                        starts: Interval::new(ca, cb),
+                        duration: d,
+                        reason: Some(reason),
+                        probe: ca,
+                    });
+                    continue;
+                }
+                Ok(ev) => ev,
+            };
+            let margin = |s: i64| {
+                if s == ca {
+                    first.margin
+                } else {
+                    self.evaluate(a, s, d).map_or(i128::MIN, |ev| ev.margin)
+                }
+            };
+            let (feasible, probe) = concave_feasible(ca, cb, &margin);
+            let reason_at = |s: i64| self.evaluate(a, s, d).ok().and_then(|ev| ev.soc_reason);
+            match feasible {
+                None => tries.push(Try {
+                    starts: Interval::new(ca, cb),
+                    duration: d,
+                    reason: reason_at(probe),
+                    probe,
+                }),
+                Some(iv) => {
+                    if iv.lo > ca {
+                        tries.push(Try {
+                            starts: Interval::new(ca, iv.lo - 1),
+                            duration: d,
+                            reason: reason_at(ca),
+                            probe: ca,
+                        });
+                    }
+                    tries.push(Try {
+                        starts: iv,
+                        duration: d,
+                        reason: None,
+                        probe: iv.lo,
+                    });
+                    if iv.hi < cb {
+                        tries.push(Try {
+                            starts: Interval::new(iv.hi + 1, cb),
+                            duration: d,
+                            reason: reason_at(cb),
+                            probe: cb,
+                        });
+                    }
+                    let s = preferred.clamp(iv.lo, iv.hi);
+                    let key = ((s - preferred).abs(), s);
+                    if best.is_none_or(|b| key < b) {
+                        best = Some(key);
+                    }
+                }
+            }
+        }
+        let chosen = best.and_then(|(_, s)| self.evaluate(a, s, d).ok());
+        (chosen, tries)
+    }
+}
+
+/// Plan times `s` in `[lo, hi + 1]` with `tod(s - shift) == tod`.
+fn tod_points(pb: &Problem, tod: i64, shift: i64, lo: i64, hi: i64) -> Vec<i64> {
+    // s - shift = tod - offset + k * sol
+    let base = tod - pb.offset + shift;
+    let k0 = (lo - base).div_euclid(pb.sol);
+    let mut out = Vec::new();
+    let mut s = base + k0 * pb.sol;
+    while s <= hi + 1 {
+        if s >= lo {
+            out.push(s);
+        }
+        s += pb.sol;
+    }
+    out
+}
+
+/// Splits `set` at every point of `points` that falls strictly inside one of its
+/// intervals: the cells `[a, b]` between consecutive critical points.
+fn cells(set: &IntervalSet, mut points: Vec<i64>) -> Vec<(i64, i64)> {
+    points.sort_unstable();
+    points.dedup();
+    let mut out = Vec::new();
+    for iv in set.intervals() {
+        let mut a = iv.lo;
+        let from = points.partition_point(|&p| p <= iv.lo);
+        for &p in &points[from..] {
+            if p > iv.hi {
+                break;
+            }
+            out.push((a, p - 1));
+            a = p;
+        }
+        out.push((a, iv.hi));
+    }
+    out
+}
+
+/// For a concave integer function `g` on `[a, b]`: the interval where `g >= 0`
+/// (if any), and the start of the highest value (a probe for reporting).
+fn concave_feasible(a: i64, b: i64, g: &dyn Fn(i64) -> i128) -> (Option<Interval>, i64) {
+    let (ga, gb) = (g(a), g(b));
+    // Largest x in [from, to] with g(x) >= 0, given g(from) >= 0 and the feasible set
+    // an interval.
+    let last_ok = |from: i64, to: i64| {
+        let (mut ok, mut bad) = (from, to + 1);
+        while bad - ok > 1 {
+            let mid = ok + (bad - ok) / 2;
+            if g(mid) >= 0 { ok = mid } else { bad = mid }
+        }
+        ok
+    };
+    let first_ok = |from: i64, to: i64| {
+        let (mut bad, mut ok) = (from - 1, to);
+        while ok - bad > 1 {
+            let mid = bad + (ok - bad) / 2;
+            if g(mid) >= 0 { ok = mid } else { bad = mid }
+        }
+        ok
+    };
+    if ga >= 0 && gb >= 0 {
+        return (Some(Interval::new(a, b)), a);
+    }
+    if ga >= 0 {
+        return (Some(Interval::new(a, last_ok(a, b - 1))), a);
+    }
+    if gb >= 0 {
+        return (Some(Interval::new(first_ok(a + 1, b), b)), b);
+    }
+    // Both ends fail: find the maximum (first s with g(s + 1) <= g(s)).
+    let (mut l, mut r) = (a, b);
+    while l < r {
+        let mid = l + (r - l) / 2;
+        if g(mid + 1) > g(mid) {
+            l = mid + 1
+        } else {
+            r = mid
+        }
+    }
+    if g(l) < 0 {
+        return (None, l);
+    }
+    (
+        Some(Interval::new(first_ok(a + 1, l), last_ok(l, b - 1))),
+        l,
+    )
+}
+
+fn clamp_i64(x: i128) -> i64 {
+    i64::try_from(x).unwrap_or(if x < 0 { i64::MIN } else { i64::MAX })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn concave_search_finds_exact_boundaries() {
+        // Tent function peaking at 40: feasible where g >= 0.
+        for (peak, width) in [(40i64, 5i64), (40, 0), (0, 3), (100, 200), (40, -1)] {
+            let g = move |s: i64| i128::from(width - (s - peak).abs());
+            let (iv, _) = concave_feasible(0, 100, &g);
+            let brute: Vec<i64> = (0..=100).filter(|&s| g(s) >= 0).collect();
+            match iv {
+                None => assert!(brute.is_empty(), "{peak} {width}"),
+                Some(iv) => {
+                    assert_eq!(
+                        (iv.lo, iv.hi),
+                        (brute[0], *brute.last().unwrap()),
+                        "{peak} {width}"
+                    )
+                }
+            }
+        }
+        // Plateau at the maximum.
+        let g = |s: i64| i128::from((s.min(60) - s.max(30)).min(0) + 1 - i64::from(s > 90) * 100);
+        let (iv, _) = concave_feasible(0, 100, &g);
+        assert!(iv.is_some());
+    }
+
+    #[test]
+    fn cells_split_at_points() {
+        let set: IntervalSet = [Interval::new(0, 10), Interval::new(20, 30)]
+            .into_iter()
+            .collect();
+        assert_eq!(
+            cells(&set, vec![5, 0, 21, 40, 10]),
+            vec![(0, 4), (5, 9), (10, 10), (20, 20), (21, 30)]
+        );
+    }
+}

@@ -1,0 +1,250 @@
+//! The scheduler's state after some steps: every timeline, updated in place as
+//! activities are placed. `Schedule::state_after(k)` rebuilds it for any step by
+//! replaying placements (the trace stores deltas, not copies).
+
+use super::problem::Problem;
+use crate::model::{AwakeMode, EffectAt};
+use crate::timeline::{RateTimeline, StateTimeline, StepFn};
+
+/// A decided placement with everything phase 2 generated for it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Placement {
+    /// Activity index.
+    pub act: usize,
+    /// Start.
+    pub start: i64,
+    /// Duration.
+    pub duration: i64,
+    /// Awake periods (indices into `State::awake`) merged into `new_awake`.
+    pub retire: Vec<usize>,
+    /// The new awake period replacing them, if the awake periods change.
+    pub new_awake: Option<(i64, i64)>,
+    /// Generated preheats `(zone, start, end)`.
+    pub preheats: Vec<(usize, i64, i64)>,
+}
+
+/// The state of every timeline.
+#[derive(Clone, Debug)]
+pub struct State<'p> {
+    /// The problem.
+    pub pb: &'p Problem,
+    /// `[start, end)` of each placed activity.
+    pub placed: Vec<Option<(i64, i64)>>,
+    /// The scheduled member of each group.
+    pub group_member: Vec<Option<usize>>,
+    /// Busy intervals per unit resource.
+    pub busy: Vec<Vec<(i64, i64)>>,
+    /// Sequence engines in use.
+    pub engines: StepFn,
+    /// State timelines.
+    pub states: Vec<StateTimeline>,
+    /// Rate of `-D` (bit/s): minus the sum of data rates.
+    pub data_rate: StepFn,
+    /// `-D`, capped at 0.
+    pub data: RateTimeline,
+    /// Data produced in `[h0, handover)` (bit).
+    pub produced: i128,
+    /// Placed comm activities `(start, end, kind, act)`.
+    pub comms: Vec<(i64, i64, usize, usize)>,
+    /// Placed activities with a restricted `uhf_interactions` `(start, end, act)`.
+    pub restricted: Vec<(i64, i64, usize)>,
+    /// Awake periods, sorted, disjoint.
+    pub awake: Vec<(i64, i64)>,
+    /// Manual sleeps `(start, end, act)`, sorted by start.
+    pub sleeps: Vec<(i64, i64, usize)>,
+    /// Heater draw per zone (mW).
+    pub zone_draw: Vec<StepFn>,
+    /// Union of heater demand intervals per zone, sorted, merged.
+    pub zone_on: Vec<Vec<(i64, i64)>>,
+    /// Net charge rate (mW).
+    pub net: StepFn,
+    /// Total peak power (mW).
+    pub peak: StepFn,
+    /// State of charge (mJ).
+    pub soc: RateTimeline,
+}
+
+impl<'p> State<'p> {
+    /// The state before step 1.
+    pub fn new(pb: &'p Problem) -> Self {
+        let groups = pb
+            .acts
+            .iter()
+            .filter_map(|a| a.group)
+            .max()
+            .map_or(0, |g| g + 1);
+        let net = StepFn::constant(pb.h0, pb.h1, pb.rtg - pb.asleep);
+        let data_rate = StepFn::constant(pb.h0, pb.h1, 0);
+        Self {
+            pb,
+            placed: vec![None; pb.acts.len()],
+            group_member: vec![None; groups],
+            busy: vec![Vec::new(); pb.resource_count],
+            engines: StepFn::constant(pb.h0, pb.h1, 0),
+            states: pb
+                .state_initial
+                .iter()
+                .map(|&v| StateTimeline::new(v))
+                .collect(),
+            data: RateTimeline::new(&data_rate, -pb.data0, 0),
+            data_rate,
+            produced: 0,
+            comms: Vec::new(),
+            restricted: Vec::new(),
+            awake: Vec::new(),
+            sleeps: Vec::new(),
+            zone_draw: vec![StepFn::constant(pb.h0, pb.h1, 0); pb.zones.len()],
+            zone_on: vec![Vec::new(); pb.zones.len()],
+            soc: RateTimeline::new(&net, pb.soc0, pb.capacity),
+            net,
+            peak: StepFn::constant(pb.h0, pb.h1, pb.asleep),
+        }
+    }
+
+    /// Adds `delta` mW of load on `[a, b)` (drains charge, adds peak).
+    fn add_load(&mut self, a: i64, b: i64, energy: i64, peak: i64) {
+        self.net.add(a, b, -energy);
+        self.peak.add(a, b, peak);
+    }
+
+    /// Applies a placement decided at `step`.
+    pub fn apply(&mut self, step: usize, p: &Placement) {
+        let pb = self.pb;
+        let act = &pb.acts[p.act];
+        let (s, e) = (p.start, p.start + p.duration);
+        self.placed[p.act] = Some((s, e));
+        if let Some(g) = act.group {
+            self.group_member[g] = Some(p.act);
+        }
+        for &r in &act.resources {
+            self.busy[r].push((s, e));
+        }
+        self.engines.add(s, e, act.engines);
+        for &(st, v) in &act.requires {
+            self.states[st].add_requirement(s, e, v);
+        }
+        for &(st, v, at) in &act.effects {
+            let t = if at == EffectAt::Start { s } else { e };
+            self.states[st].add_effect(t, step, v);
+        }
+        if act.data != 0 {
+            self.data_rate.add(s, e, -act.data);
+            self.data.rebuild(&self.data_rate);
+        }
+        if let Some(ht) = pb.handover_time {
+            let overlap = (e.min(ht) - s.max(pb.h0)).max(0);
+            self.produced += i128::from(act.data.max(0)) * i128::from(overlap);
+        }
+        if let Some(k) = act.comm {
+            self.comms.push((s, e, k, p.act));
+        }
+        if act.uhf.is_some() {
+            self.restricted.push((s, e, p.act));
+        }
+        if act.awake == AwakeMode::Forbidden {
+            let at = self.sleeps.partition_point(|x| x.0 <= s);
+            self.sleeps.insert(at, (s, e, p.act));
+        }
+        if let Some((qa, qb)) = p.new_awake {
+            let extra = pb.awake - pb.asleep;
+            for part in uncovered(qa, qb, p.retire.iter().map(|&i| self.awake[i])) {
+                self.add_load(part.0, part.1, extra, extra);
+            }
+            let mut keep: Vec<(i64, i64)> = self
+                .awake
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| !p.retire.contains(i))
+                .map(|(_, &x)| x)
+                .collect();
+            let at = keep.partition_point(|x| x.0 < qa);
+            keep.insert(at, (qa, qb));
+            self.awake = keep;
+        }
+        for &z in &act.zones {
+            let zone = &pb.zones[z];
+            let mut demands = vec![(s, e, zone.maintenance)];
+            if let Some(&(_, ps, pe)) = p.preheats.iter().find(|x| x.0 == z) {
+                demands.push((ps, pe, zone.preheat));
+            }
+            for (a, b, power) in demands {
+                let raise: Vec<(i64, i64, i64)> = self.zone_draw[z]
+                    .segments(a, b)
+                    .filter(|seg| seg.2 < power)
+                    .map(|(x, y, v)| (x, y, power - v))
+                    .collect();
+                for (x, y, dv) in raise {
+                    self.zone_draw[z].add(x, y, dv);
+                    self.add_load(x, y, dv, dv);
+                }
+                insert_merged(&mut self.zone_on[z], (a, b));
+            }
+        }
+        self.add_load(s, e, act.energy, act.peak);
+        self.soc.rebuild(&self.net);
+    }
+
+    /// Whether the heater of zone `z` is on over the second `t`.
+    pub fn heater_on(&self, z: usize, t: i64) -> bool {
+        let on = &self.zone_on[z];
+        let i = on.partition_point(|x| x.1 <= t);
+        on.get(i).is_some_and(|x| x.0 <= t)
+    }
+}
+
+/// Parts of `[a, b)` not covered by `covered` (sorted, disjoint).
+pub fn uncovered(a: i64, b: i64, covered: impl Iterator<Item = (i64, i64)>) -> Vec<(i64, i64)> {
+    let mut out = Vec::new();
+    let mut t = a;
+    for (x, y) in covered {
+        if x > t {
+            out.push((t, x.min(b)));
+        }
+        t = t.max(y);
+    }
+    if t < b {
+        out.push((t, b));
+    }
+    out.retain(|p| p.0 < p.1);
+    out
+}
+
+/// Inserts `[a, b)` into a sorted union of intervals, merging touching ones.
+fn insert_merged(set: &mut Vec<(i64, i64)>, (a, b): (i64, i64)) {
+    if a >= b {
+        return;
+    }
+    let i = set.partition_point(|x| x.1 < a);
+    let mut j = i;
+    let (mut lo, mut hi) = (a, b);
+    while j < set.len() && set[j].0 <= hi {
+        lo = lo.min(set[j].0);
+        hi = hi.max(set[j].1);
+        j += 1;
+    }
+    set.splice(i..j, [(lo, hi)]);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uncovered_parts() {
+        assert_eq!(
+            uncovered(0, 100, [(10, 20), (50, 60)].into_iter()),
+            vec![(0, 10), (20, 50), (60, 100)]
+        );
+        assert_eq!(uncovered(0, 100, [(0, 100)].into_iter()), vec![]);
+    }
+
+    #[test]
+    fn merged_insert() {
+        let mut v = vec![(0, 10), (20, 30)];
+        insert_merged(&mut v, (10, 20));
+        assert_eq!(v, vec![(0, 30)]);
+        insert_merged(&mut v, (40, 50));
+        insert_merged(&mut v, (35, 36));
+        assert_eq!(v, vec![(0, 30), (35, 36), (40, 50)]);
+    }
+}

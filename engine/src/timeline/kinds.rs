@@ -1,0 +1,263 @@
+//! The discrete timeline kinds: state, atomic, claimable and cumulative.
+//!
+//! Every query takes the candidate's duration `d` and a domain `[lo, hi]` of starts
+//! and returns the valid starts within it. Occupancy is half-open `[start, end)`:
+//! a candidate at `s` overlaps `[a, b)` exactly when `a - d < s < b`.
+
+use super::{Interval, IntervalSet, StepFn};
+
+/// Starts `s` in `[lo, hi]` for which `[s, s + d)` overlaps none of `busy`
+/// (half-open intervals, any order). The atomic (unit resource) timeline.
+pub fn atomic_valid(busy: &[(i64, i64)], d: i64, lo: i64, hi: i64) -> IntervalSet {
+    let forbidden: IntervalSet = busy
+        .iter()
+        .map(|&(a, b)| Interval::new(a.saturating_sub(d).saturating_add(1), b.saturating_sub(1)))
+        .collect();
+    IntervalSet::single(lo, hi).subtract(&forbidden)
+}
+
+/// Starts `s` in `[lo, hi]` for which `usage <= limit` at every second of
+/// `[s, s + d)`. The claimable timeline (sequence engines, peak power).
+pub fn claimable_valid(usage: &StepFn, limit: i64, d: i64, lo: i64, hi: i64) -> IntervalSet {
+    let forbidden: IntervalSet = usage
+        .segments(lo, hi.saturating_add(d))
+        .filter(|&(_, _, v)| v > limit)
+        .map(|(a, b, _)| Interval::new(a.saturating_sub(d).saturating_add(1), b.saturating_sub(1)))
+        .collect();
+    IntervalSet::single(lo, hi).subtract(&forbidden)
+}
+
+/// Starts `s` in `[lo, hi]` for which `total + rate * |[s, s + d) ∩ [from, to)|
+/// <= max`. The cumulative timeline (data produced before handover).
+pub fn cumulative_valid(
+    total: i128,
+    max: i128,
+    rate: i64,
+    d: i64,
+    (from, to): (i64, i64),
+    (lo, hi): (i64, i64),
+) -> IntervalSet {
+    if rate <= 0 || to <= from {
+        return if total <= max {
+            IntervalSet::single(lo, hi)
+        } else {
+            IntervalSet::empty()
+        };
+    }
+    if total > max {
+        return IntervalSet::empty();
+    }
+    // The largest overlap allowed, in whole seconds.
+    let allowed = (max - total) / i128::from(rate);
+    let full = i128::from(d.min(to - from));
+    if allowed >= full {
+        return IntervalSet::single(lo, hi);
+    }
+    let allowed = i64::try_from(allowed).unwrap_or(0);
+    // Overlap <= allowed: the activity ends early enough or starts late enough.
+    let early = IntervalSet::single(lo, hi.min(from.saturating_add(allowed).saturating_sub(d)));
+    let late = IntervalSet::single(lo.max(to.saturating_sub(allowed)), hi);
+    early.union(&late)
+}
+
+/// One named state: its initial value, the placed effects and requirements.
+#[derive(Clone, Debug, Default)]
+pub struct StateTimeline {
+    initial: usize,
+    /// `(time, step, value)`, sorted by `(time, step)`.
+    effects: Vec<(i64, usize, usize)>,
+    /// Placed requirements `(start, end, value)`.
+    requirements: Vec<(i64, i64, usize)>,
+}
+
+impl StateTimeline {
+    /// A state holding `initial` until the first effect.
+    pub fn new(initial: usize) -> Self {
+        Self {
+            initial,
+            effects: Vec::new(),
+            requirements: Vec::new(),
+        }
+    }
+
+    /// Records an effect placed at `step`.
+    pub fn add_effect(&mut self, time: i64, step: usize, value: usize) {
+        let at = self.effects.partition_point(|e| (e.0, e.1) <= (time, step));
+        self.effects.insert(at, (time, step, value));
+    }
+
+    /// Records a placed requirement over `[start, end)`.
+    pub fn add_requirement(&mut self, start: i64, end: i64, value: usize) {
+        self.requirements.push((start, end, value));
+    }
+
+    /// The distinct effect times with the value that wins there (the later step).
+    fn effective(&self) -> Vec<(i64, usize)> {
+        let mut out: Vec<(i64, usize)> = Vec::with_capacity(self.effects.len());
+        for &(t, _, v) in &self.effects {
+            match out.last_mut() {
+                Some(last) if last.0 == t => last.1 = v,
+                _ => out.push((t, v)),
+            }
+        }
+        out
+    }
+
+    /// The value held at time `t`.
+    pub fn value_at(&self, t: i64) -> usize {
+        self.effective()
+            .iter()
+            .take_while(|e| e.0 <= t)
+            .last()
+            .map_or(self.initial, |e| e.1)
+    }
+
+    /// Maximal segments `(from, to, value)` of constant value, with `i64::MIN` and
+    /// `i64::MAX` standing for the open ends.
+    pub fn segments(&self) -> Vec<(i64, i64, usize)> {
+        let eff = self.effective();
+        let mut out = Vec::with_capacity(eff.len() + 1);
+        let mut from = i64::MIN;
+        let mut value = self.initial;
+        for (t, v) in eff {
+            if v != value {
+                out.push((from, t, value));
+                from = t;
+                value = v;
+            }
+        }
+        out.push((from, i64::MAX, value));
+        out
+    }
+
+    /// Starts in `[lo, hi]` where the state holds `value` over `[s, s + d)`.
+    pub fn requirement_valid(&self, value: usize, d: i64, lo: i64, hi: i64) -> IntervalSet {
+        self.segments()
+            .into_iter()
+            .filter(|seg| seg.2 == value)
+            .map(|(a, b, _)| Interval::new(a, b.saturating_sub(d)))
+            .collect::<IntervalSet>()
+            .clip(lo, hi)
+    }
+
+    /// Starts in `[lo, hi]` where this activity's effects on the state (`own`:
+    /// `(offset, value)` sorted by offset, offsets 0 or `d`) change no value seen by
+    /// a placed requirement.
+    pub fn effect_valid(&self, own: &[(i64, usize)], lo: i64, hi: i64) -> IntervalSet {
+        let times: Vec<i64> = self.effective().iter().map(|e| e.0).collect();
+        let mut bad = Vec::new();
+        for (k, &(offset, value)) in own.iter().enumerate() {
+            let next_own = own.get(k + 1).map(|e| e.0);
+            for &(rs, re, req) in &self.requirements {
+                if req == value {
+                    continue;
+                }
+                // The effect at tau = s + offset holds on [tau, next) where next is the
+                // first placed effect after tau (or our own next effect). A requirement
+                // [rs, re) is hit iff rs < next and re > tau.
+                let first = times.partition_point(|&e| e <= rs);
+                let mut j = first;
+                loop {
+                    let seg_lo = if j == 0 { i64::MIN } else { times[j - 1] };
+                    let seg_hi = times.get(j).copied().unwrap_or(i64::MAX);
+                    if seg_lo >= re {
+                        break;
+                    }
+                    // tau in [seg_lo, seg_hi) and tau < re, i.e. tau <= min(seg_hi, re) - 1.
+                    let tau_lo = seg_lo;
+                    let tau_hi = seg_hi.min(re).saturating_sub(1);
+                    let mut s_lo = tau_lo.saturating_sub(offset);
+                    let s_hi = tau_hi.saturating_sub(offset);
+                    if let Some(n) = next_own {
+                        // Our next effect cuts the span: need rs < s + n.
+                        s_lo = s_lo.max(rs.saturating_sub(n).saturating_add(1));
+                    }
+                    bad.push(Interval::new(s_lo, s_hi));
+                    if j >= times.len() {
+                        break;
+                    }
+                    j += 1;
+                }
+            }
+        }
+        IntervalSet::single(lo, hi).subtract(&IntervalSet::from_intervals(bad))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn set(v: &[(i64, i64)]) -> IntervalSet {
+        v.iter().map(|&(a, b)| Interval::new(a, b)).collect()
+    }
+
+    /// Brute-force overlap test for the atomic timeline.
+    #[test]
+    fn atomic_matches_brute_force() {
+        let busy = [(10, 20), (25, 26), (40, 60)];
+        for d in 1..8 {
+            let v = atomic_valid(&busy, d, 0, 80);
+            for s in 0..=80 {
+                let ok = busy.iter().all(|&(a, b)| s + d <= a || s >= b);
+                assert_eq!(v.contains(s), ok, "d={d} s={s}");
+            }
+        }
+    }
+
+    #[test]
+    fn claimable_limits_usage() {
+        let mut usage = StepFn::constant(0, 100, 0);
+        usage.add(10, 20, 2);
+        usage.add(15, 30, 1);
+        // Limit 2: forbidden where usage 3 ([15, 20)).
+        assert_eq!(
+            claimable_valid(&usage, 2, 5, 0, 95),
+            set(&[(0, 10), (20, 95)])
+        );
+        assert_eq!(
+            claimable_valid(&usage, 0, 1, 0, 99),
+            set(&[(0, 9), (30, 99)])
+        );
+        assert_eq!(claimable_valid(&usage, 3, 50, 0, 99), set(&[(0, 99)]));
+    }
+
+    #[test]
+    fn cumulative_bounds_overlap() {
+        // 10 already produced, max 40, rate 5: at most 6 s inside [100, 200).
+        let v = cumulative_valid(10, 40, 5, 20, (100, 200), (0, 300));
+        for s in 0..=300 {
+            let overlap = ((s + 20).min(200) - s.max(100)).max(0);
+            assert_eq!(v.contains(s), 10 + 5 * overlap <= 40, "s={s}");
+        }
+        assert!(cumulative_valid(50, 40, 5, 20, (100, 200), (0, 300)).is_empty());
+        assert_eq!(
+            cumulative_valid(0, 40, -5, 20, (100, 200), (0, 300)),
+            set(&[(0, 300)])
+        );
+    }
+
+    #[test]
+    fn state_requirement_and_effects() {
+        let mut st = StateTimeline::new(0);
+        st.add_effect(100, 1, 1);
+        st.add_effect(200, 2, 0);
+        st.add_effect(200, 3, 1); // same time, later step wins
+        assert_eq!(st.value_at(150), 1);
+        assert_eq!(st.value_at(250), 1);
+        assert_eq!(st.requirement_valid(0, 10, 0, 500), set(&[(0, 90)]));
+        assert_eq!(st.requirement_valid(1, 10, 0, 500), set(&[(100, 500)]));
+        st.add_requirement(120, 140, 1);
+        // Setting 0 at s must not hit [120, 140): s >= 140, or s < 100 (the effect at
+        // 100 takes over before the requirement).
+        assert_eq!(
+            st.effect_valid(&[(0, 0)], 0, 300),
+            set(&[(0, 99), (140, 300)])
+        );
+        // With our own end effect restoring 1 after 10 s: also fine when s + 10 <= 120.
+        assert_eq!(
+            st.effect_valid(&[(0, 0), (10, 1)], 0, 300),
+            set(&[(0, 110), (140, 300)])
+        );
+    }
+}

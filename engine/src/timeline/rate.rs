@@ -1,0 +1,306 @@
+//! Cumulative-rate timelines: a level integrated from a piecewise-constant rate,
+//! capped above. State of charge is one (capped at the battery capacity); data
+//! volume is the other, stored negated (`-D`, so the floor at 0 becomes a cap at 0).
+//!
+//! Rates are integers per second and change only at integer seconds, so the level
+//! at integer seconds is exact: `L(t+1) = min(cap, L(t) + rate(t))`, and the
+//! minimum over continuous time is attained at a breakpoint.
+
+use super::StepFn;
+
+/// Result of checking a hypothetical extra drain against a rate timeline.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LevelCheck {
+    /// Lowest level over the whole domain.
+    pub min: i128,
+    /// First time the lowest level is reached.
+    pub min_at: i64,
+    /// Level at the probe time, if one was asked for.
+    pub at_probe: Option<i128>,
+}
+
+/// A capped integrator of a piecewise-constant rate over `[start, end]`.
+#[derive(Clone, Debug)]
+pub struct RateTimeline {
+    cap: i128,
+    initial: i128,
+    /// Segment starts, then the domain end: `times[n] == end`.
+    times: Vec<i64>,
+    /// Rate on `[times[i], times[i + 1])`.
+    rates: Vec<i64>,
+    /// Level at `times[i]` (n + 1 values).
+    levels: Vec<i128>,
+    /// `(min over levels[0..=i], first index)`.
+    prefix_min: Vec<(i128, usize)>,
+    /// `(min over levels[i..], first index)`.
+    suffix_min: Vec<(i128, usize)>,
+}
+
+/// Level after running at `rate` for `dt` seconds from `level`, capped at `cap`.
+fn advance(level: i128, rate: i64, dt: i64, cap: i128) -> i128 {
+    let next = level + i128::from(rate) * i128::from(dt);
+    if rate > 0 {
+        next.min(cap.max(level))
+    } else {
+        next
+    }
+}
+
+impl RateTimeline {
+    /// Integrates `rate` from `initial`, capped at `cap`.
+    pub fn new(rate: &StepFn, initial: i128, cap: i128) -> Self {
+        let mut tl = Self {
+            cap,
+            initial,
+            times: Vec::new(),
+            rates: Vec::new(),
+            levels: Vec::new(),
+            prefix_min: Vec::new(),
+            suffix_min: Vec::new(),
+        };
+        tl.rebuild(rate);
+        tl
+    }
+
+    /// Recomputes the levels after the rate changed.
+    pub fn rebuild(&mut self, rate: &StepFn) {
+        self.times.clear();
+        self.rates.clear();
+        self.levels.clear();
+        let mut level = self.initial;
+        for (lo, hi, r) in rate.segments(rate.start(), rate.end()) {
+            self.times.push(lo);
+            self.rates.push(r);
+            self.levels.push(level);
+            level = advance(level, r, hi - lo, self.cap);
+        }
+        self.times.push(rate.end());
+        self.levels.push(level);
+        self.prefix_min.clear();
+        let mut best = (i128::MAX, 0);
+        for (i, &l) in self.levels.iter().enumerate() {
+            if l < best.0 {
+                best = (l, i);
+            }
+            self.prefix_min.push(best);
+        }
+        self.suffix_min = vec![(i128::MAX, 0); self.levels.len()];
+        let mut best = (i128::MAX, 0);
+        for i in (0..self.levels.len()).rev() {
+            if self.levels[i] <= best.0 {
+                best = (self.levels[i], i);
+            }
+            self.suffix_min[i] = best;
+        }
+    }
+
+    /// The cap.
+    pub fn cap(&self) -> i128 {
+        self.cap
+    }
+
+    /// Segment index containing `t` (the last segment for `t >= end`).
+    fn index(&self, t: i64) -> usize {
+        let n = self.rates.len();
+        self.times[..n]
+            .partition_point(|&x| x <= t)
+            .saturating_sub(1)
+    }
+
+    /// The level at time `t` (clamped to the domain).
+    pub fn level_at(&self, t: i64) -> i128 {
+        let i = self.index(t);
+        let t = t.clamp(self.times[0], self.times[self.rates.len()]);
+        advance(self.levels[i], self.rates[i], t - self.times[i], self.cap)
+    }
+
+    /// Breakpoints `(t, level)` including every time the level reaches the cap inside
+    /// a segment, so that linear interpolation between them is exact.
+    pub fn profile(&self) -> Vec<(i64, i128)> {
+        let mut out = Vec::with_capacity(self.times.len() + 4);
+        for i in 0..self.rates.len() {
+            let (t0, t1, r, l) = (
+                self.times[i],
+                self.times[i + 1],
+                self.rates[i],
+                self.levels[i],
+            );
+            out.push((t0, l));
+            if r > 0 && l < self.cap && l + i128::from(r) * i128::from(t1 - t0) > self.cap {
+                // Reaches the cap between whole seconds tc - 1 and tc; give both so
+                // that interpolation is exact at every whole second.
+                let dt = (self.cap - l + i128::from(r) - 1) / i128::from(r);
+                let tc = t0 + i64::try_from(dt).unwrap_or(t1 - t0);
+                if tc - 1 > t0 {
+                    out.push((tc - 1, l + i128::from(r) * i128::from(tc - 1 - t0)));
+                }
+                if tc < t1 {
+                    out.push((tc, self.cap));
+                }
+            }
+        }
+        if let (Some(&t), Some(&l)) = (self.times.last(), self.levels.last()) {
+            out.push((t, l));
+        }
+        out
+    }
+
+    /// The rate breakpoints (segment starts).
+    pub fn breakpoints(&self) -> &[i64] {
+        &self.times
+    }
+
+    /// Lowest level, and level at `probe`, if `drain` (sorted, disjoint `[a, b)`
+    /// pieces with a rate subtracted from the timeline's rate) were added.
+    pub fn check(&self, drain: &[(i64, i64, i64)], probe: Option<i64>) -> LevelCheck {
+        let n = self.rates.len();
+        let (start, end) = (self.times[0], self.times[n]);
+        let pieces: Vec<(i64, i64, i64)> = drain
+            .iter()
+            .map(|&(a, b, r)| (a.max(start), b.min(end), r))
+            .filter(|&(a, b, r)| a < b && r != 0)
+            .collect();
+        let (Some(first), Some(last)) = (pieces.first(), pieces.last()) else {
+            let (min, idx) = self.prefix_min[n];
+            return LevelCheck {
+                min,
+                min_at: self.times[idx],
+                at_probe: probe.map(|p| self.level_at(p)),
+            };
+        };
+        let (lo, hi) = (first.0, last.1);
+        let mut at_probe = probe.filter(|&p| p < lo).map(|p| self.level_at(p));
+
+        // Before the drain: unchanged.
+        let i_lo = self.index(lo);
+        let (mut min, idx) = self.prefix_min[i_lo];
+        let mut min_at = self.times[idx];
+        let mut level = self.level_at(lo);
+        if level < min {
+            (min, min_at) = (level, lo);
+        }
+
+        // Under the drain: simulate over the merged breakpoints.
+        let mut t = lo;
+        let mut i = i_lo;
+        let mut k = 0;
+        while t < hi {
+            while self.times[i + 1] <= t {
+                i += 1;
+            }
+            while pieces[k].1 <= t {
+                k += 1;
+            }
+            let (pa, pb, pr) = pieces[k];
+            let (extra, next_piece) = if t < pa { (0, pa) } else { (pr, pb) };
+            let next = self.times[i + 1].min(next_piece).min(hi);
+            let r = self.rates[i].saturating_sub(extra);
+            if let Some(p) = probe.filter(|&p| t <= p && p < next) {
+                at_probe = Some(advance(level, r, p - t, self.cap));
+            }
+            level = advance(level, r, next - t, self.cap);
+            if level < min {
+                (min, min_at) = (level, next);
+            }
+            t = next;
+        }
+
+        // After the drain: same rates, until the two trajectories meet again.
+        let mut i = self.index(hi);
+        let mut t = hi;
+        loop {
+            if i >= n {
+                break;
+            }
+            let next = self.times[i + 1];
+            if let Some(p) = probe.filter(|&p| t <= p && (p < next || (i + 1 == n && p <= next))) {
+                at_probe = Some(advance(level, self.rates[i], p - t, self.cap));
+            }
+            level = advance(level, self.rates[i], next - t, self.cap);
+            i += 1;
+            t = next;
+            if level == self.levels[i] {
+                let (m, idx) = self.suffix_min[i];
+                if m < min {
+                    (min, min_at) = (m, self.times[idx]);
+                }
+                if let Some(p) = probe.filter(|&p| p > t) {
+                    at_probe = Some(self.level_at(p));
+                }
+                break;
+            }
+            if level < min {
+                (min, min_at) = (level, t);
+            }
+        }
+        if at_probe.is_none() {
+            at_probe = probe.map(|p| if p >= end { level } else { self.level_at(p) });
+        }
+        LevelCheck {
+            min,
+            min_at,
+            at_probe,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Brute force: per-second simulation.
+    fn brute(rate: &StepFn, drain: &[(i64, i64, i64)], initial: i128, cap: i128) -> Vec<i128> {
+        let mut out = vec![initial];
+        let mut l = initial;
+        for t in rate.start()..rate.end() {
+            let d: i64 = drain
+                .iter()
+                .filter(|p| p.0 <= t && t < p.1)
+                .map(|p| p.2)
+                .sum();
+            l = advance(l, rate.value_at(t) - d, 1, cap);
+            out.push(l);
+        }
+        out
+    }
+
+    #[test]
+    fn capped_integration_matches_per_second() {
+        let mut rate = StepFn::constant(0, 100, 3);
+        rate.add(20, 40, -10);
+        rate.add(60, 70, 50);
+        let tl = RateTimeline::new(&rate, 100, 150);
+        let b = brute(&rate, &[], 100, 150);
+        for t in 0..=100 {
+            assert_eq!(tl.level_at(t), b[t as usize], "t={t}");
+        }
+        let drains: [&[(i64, i64, i64)]; 4] = [
+            &[(10, 30, 5)],
+            &[(0, 5, 100), (50, 65, 7)],
+            &[(90, 100, 40)],
+            &[(15, 16, 1000)],
+        ];
+        for drain in drains {
+            let b = brute(&rate, drain, 100, 150);
+            let min = *b.iter().min().unwrap();
+            let at = b.iter().position(|&x| x == min).unwrap() as i64;
+            for probe in [0, 17, 55, 66, 99, 100] {
+                let c = tl.check(drain, Some(probe));
+                assert_eq!(c.min, min, "{drain:?}");
+                assert_eq!(c.min_at, at, "{drain:?}");
+                assert_eq!(
+                    c.at_probe,
+                    Some(b[probe as usize]),
+                    "{drain:?} probe {probe}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn profile_marks_cap_hits() {
+        let rate = StepFn::constant(0, 10, 7);
+        let tl = RateTimeline::new(&rate, 0, 20);
+        assert_eq!(tl.profile(), vec![(0, 0), (2, 14), (3, 20), (10, 20)]);
+    }
+}
