@@ -8,6 +8,8 @@
 //!
 //! # Errors
 //!
+//! - (`check_json_shape`, on the raw JSON) no array where an object is expected and
+//!   no object where an enum string is expected: serde would accept both.
 //! - `format` is `solscope.plan/1`.
 //! - Times (`horizon`, `local_time.offset`, window `cutoff`s) lie within ±1e10 s;
 //!   durations, delays and table/period entries are at most 1e10 s;
@@ -76,15 +78,14 @@ pub fn validate(plan: &Plan) -> Result<Vec<Warning>, Error> {
 /// Rejects JSON shapes that serde's derived impls would quietly accept although the
 /// format does not allow them: an array where an object is expected (serde reads
 /// `"horizon": [0, 10]` as a struct by field position) and an object where a
-/// string-valued enum is expected (`"awake": { "any": null }`). Walks the document in
-/// order; returns the first offending path.
+/// string-valued enum is expected (`"awake": { "any": null }`). Called by `load_plan`
+/// on the raw JSON; walks it in the model's field order and returns the first
+/// offending path.
 pub(crate) fn check_json_shape(doc: &serde_json::Value) -> Result<(), Error> {
     use serde_json::Value;
+    type Object = serde_json::Map<String, Value>;
 
-    fn object<'a>(
-        v: &'a Value,
-        path: &str,
-    ) -> Result<Option<&'a serde_json::Map<String, Value>>, Error> {
+    fn object<'a>(v: &'a Value, path: &str) -> Result<Option<&'a Object>, Error> {
         match v {
             Value::Array(_) => Err(invalid(
                 if path.is_empty() { "$" } else { path },
@@ -103,10 +104,10 @@ pub(crate) fn check_json_shape(doc: &serde_json::Value) -> Result<(), Error> {
     }
     /// Each element of an array field must be an object; returns them with paths.
     fn objects<'a>(
-        map: &'a serde_json::Map<String, Value>,
+        map: &'a Object,
         base: &str,
         key: &str,
-    ) -> Result<Vec<(String, &'a serde_json::Map<String, Value>)>, Error> {
+    ) -> Result<Vec<(String, &'a Object)>, Error> {
         let mut out = Vec::new();
         if let Some(Value::Array(items)) = map.get(key) {
             for (i, item) in items.iter().enumerate() {
@@ -118,11 +119,7 @@ pub(crate) fn check_json_shape(doc: &serde_json::Value) -> Result<(), Error> {
         }
         Ok(out)
     }
-    fn string_enum(
-        map: &serde_json::Map<String, Value>,
-        base: &str,
-        key: &str,
-    ) -> Result<(), Error> {
+    fn string_enum(map: &Object, base: &str, key: &str) -> Result<(), Error> {
         if let Some(v @ (Value::Object(_) | Value::Array(_))) = map.get(key) {
             let got = if v.is_object() { "object" } else { "array" };
             return Err(invalid(
@@ -1815,50 +1812,55 @@ mod tests {
 
     #[test]
     fn shape_rejects_arrays_for_objects() {
-        let cases: Vec<(Box<dyn FnOnce(&mut Value)>, &str)> = vec![
-            (Box::new(|v| v["horizon"] = json!([0, 88775])), "horizon"),
+        // (JSON pointer of the value to replace, replacement, expected path)
+        let cases = [
+            ("/horizon", json!([0, 88775]), "horizon"),
+            ("/battery", json!([1600.0, 1200.0, 500.0]), "battery"),
+            ("/handover", json!([86000]), "handover"),
             (
-                Box::new(|v| v["battery"] = json!([1600.0, 1200.0, 500.0])),
-                "battery",
-            ),
-            (Box::new(|v| v["handover"] = json!([86000])), "handover"),
-            (
-                Box::new(|v| v["states"]["drill"] = json!([["stowed"], "stowed"])),
+                "/states/drill",
+                json!([["stowed"], "stowed"]),
                 "states.drill",
             ),
             (
-                Box::new(|v| v["thermal_zones"]["arm"]["preheat"][1] = json!([36000, 1200])),
+                "/thermal_zones/arm/preheat/1",
+                json!([36000, 1200]),
                 "thermal_zones.arm.preheat[1]",
             ),
             (
-                Box::new(|v| v["thermal_zones"]["arm"]["operable"][0] = json!([1, 2])),
+                "/thermal_zones/arm/operable/0",
+                json!([1, 2]),
                 "thermal_zones.arm.operable[0]",
             ),
             (
-                Box::new(|v| v["activities"][2] = json!(["x", null, 1, true, 10])),
+                "/activities/2",
+                json!(["x", null, 1, true, 10]),
                 "activities[2]",
             ),
             (
-                Box::new(|v| v["activities"][0]["windows"][0] = json!([30000, 40000])),
+                "/activities/0/windows/0",
+                json!([30000, 40000]),
                 "activities[0].windows[0]",
             ),
             (
-                Box::new(|v| v["activities"][1]["after"][0] = json!(["unstow"])),
+                "/activities/1/after/0",
+                json!(["unstow"]),
                 "activities[1].after[0]",
             ),
             (
-                Box::new(|v| v["activities"][0]["requires"][0] = json!(["drill", "stowed"])),
+                "/activities/0/requires/0",
+                json!(["drill", "stowed"]),
                 "activities[0].requires[0]",
             ),
             (
-                Box::new(|v| {
-                    v["activities"][0]["effects"][0] = json!(["drill", "deployed", "end"])
-                }),
+                "/activities/0/effects/0",
+                json!(["drill", "deployed", "end"]),
                 "activities[0].effects[0]",
             ),
         ];
-        for (edit, path) in cases {
-            let (p, r) = shape_err(edit);
+        for (pointer, replacement, path) in cases {
+            let (p, r) =
+                shape_err(|v| *v.pointer_mut(pointer).expect("pointer exists") = replacement);
             assert_eq!(p, path);
             assert_eq!(r, "invalid type: array, expected a JSON object");
         }

@@ -178,50 +178,66 @@ fn run_step(state: &State<'_>, a: usize, step_no: usize) -> (Step, Option<Placem
         return (step, None);
     }
     let mut any_candidate = false;
-    // Longest duration first; record the intervals of the chosen duration, or of
-    // the shortest when none fits.
-    for d in (act.dur_min..=act.dur_max).rev() {
-        let categories = state.phase1(a, d);
-        let (wake, shut) = if act.awake == AwakeMode::Required {
-            (pb.wake, pb.shut)
-        } else {
-            (0, 0)
-        };
-        let others = categories
-            .iter()
-            .skip(1)
-            .fold(IntervalSet::single(pb.h0, pb.h1), |acc, c| {
-                acc.intersect(&c.valid)
-            });
-        let mut union = IntervalSet::empty();
-        let mut found = None;
-        for w in &act.windows {
-            let range = state.window_range(a, w.start, w.end, w.cutoff, d, wake, shut);
-            let cand = others.clip(range.lo, range.hi);
-            if cand.is_empty() {
-                continue;
-            }
-            any_candidate = true;
-            union = union.union(&cand);
-            if found.is_none() {
-                let (chosen, tries) = state.search(a, d, &cand, w.preferred);
-                step.tries.extend(tries);
-                found = chosen;
-            }
-        }
-        if found.is_some() || d == act.dur_min {
+    let mut attempt = |d: i64, step: &mut Step, record: bool| {
+        let tried = try_duration(state, a, d);
+        any_candidate |= !tried.union.is_empty();
+        step.tries.extend(tried.tries);
+        if record || tried.found.is_some() {
             step.duration = d;
-            step.categories = categories;
-            step.intersection = union;
+            step.categories = tried.categories;
+            step.intersection = tried.union;
         }
-        if let Some(ev) = found {
-            let p = ev.placement;
-            step.outcome = Outcome::Scheduled {
-                start: p.start,
-                end: p.start + p.duration,
-            };
-            return (step, Some(p));
+        tried.found
+    };
+    let found = if act.dur_min == act.dur_max {
+        attempt(act.dur_max, &mut step, true)
+    } else if duration_monotone(pb, a) {
+        // Feasibility is downward closed in the duration: binary search the longest.
+        let (mut lo, mut hi) = (act.dur_min, act.dur_max);
+        let mut best = None;
+        while lo <= hi {
+            let mid = lo + (hi - lo) / 2;
+            match attempt(mid, &mut step, mid == act.dur_min) {
+                Some(ev) => {
+                    best = Some(ev);
+                    lo = mid + 1;
+                }
+                None => hi = mid - 1,
+            }
         }
+        if let Some(ev) = &best {
+            // Record the chosen duration's intervals last.
+            let d = ev.placement.duration;
+            let tried = try_duration(state, a, d);
+            step.duration = d;
+            step.categories = tried.categories;
+            step.intersection = tried.union;
+        }
+        best
+    } else {
+        // End effects (or a backward min_awake extension) can make a shorter
+        // duration fail where a longer one fits: scan down from the longest duration
+        // the monotone categories allow.
+        let top = longest_monotone(state, a);
+        let mut found = None;
+        for d in (act.dur_min..=top).rev() {
+            if let Some(ev) = attempt(d, &mut step, d == act.dur_min) {
+                found = Some(ev);
+                break;
+            }
+        }
+        if top < act.dur_min {
+            attempt(act.dur_min, &mut step, true);
+        }
+        found
+    };
+    if let Some(ev) = found {
+        let p = ev.placement;
+        step.outcome = Outcome::Scheduled {
+            start: p.start,
+            end: p.start + p.duration,
+        };
+        return (step, Some(p));
     }
     step.outcome = Outcome::Failed(if any_candidate {
         FailurePhase::Placement
@@ -229,4 +245,108 @@ fn run_step(state: &State<'_>, a: usize, step_no: usize) -> (Step, Option<Placem
         FailurePhase::ValidIntervals
     });
     (step, None)
+}
+
+/// What one duration gave.
+struct Tried {
+    categories: Vec<CategoryIntervals>,
+    union: IntervalSet,
+    found: Option<search::Evaluated>,
+    tries: Vec<Try>,
+}
+
+/// Phase 1 and the window-by-window phase-2 search for one duration.
+fn try_duration(state: &State<'_>, a: usize, d: i64) -> Tried {
+    let pb = state.pb;
+    let act = &pb.acts[a];
+    let categories = state.phase1(a, d);
+    let (wake, shut) = if act.awake == AwakeMode::Required {
+        (pb.wake, pb.shut)
+    } else {
+        (0, 0)
+    };
+    let others = categories
+        .iter()
+        .skip(1)
+        .fold(IntervalSet::single(pb.h0, pb.h1), |acc, c| {
+            acc.intersect(&c.valid)
+        });
+    let mut union = IntervalSet::empty();
+    let mut found = None;
+    let mut tries = Vec::new();
+    for w in &act.windows {
+        let range = state.window_range(a, w.start, w.end, w.cutoff, d, wake, shut);
+        let cand = others.clip(range.lo, range.hi);
+        if cand.is_empty() {
+            continue;
+        }
+        union = union.union(&cand);
+        if found.is_none() {
+            let (chosen, t) = state.search(a, d, &cand, w.preferred);
+            tries.extend(t);
+            found = chosen;
+        }
+    }
+    Tried {
+        categories,
+        union,
+        found,
+        tries,
+    }
+}
+
+/// Whether "fits with duration d" implies "fits with every shorter duration" for
+/// this activity: true unless it has an effect at its end (which moves with the
+/// duration) or its awake period could need extending backwards from its end
+/// (docs/semantics.md, min_awake extension near the plan end).
+fn duration_monotone(pb: &Problem, a: usize) -> bool {
+    let act = &pb.acts[a];
+    let end_effect = act
+        .effects
+        .iter()
+        .any(|e| e.2 == crate::model::EffectAt::End);
+    let backward = act.awake == AwakeMode::Required
+        && pb.min_awake > 0
+        && act
+            .windows
+            .iter()
+            .any(|w| w.end - pb.wake + pb.min_awake > pb.h1);
+    !end_effect && !backward
+}
+
+/// The longest duration for which the duration-monotone phase-1 categories (all but
+/// state_effect) leave a start in some window; below `dur_min` if none.
+fn longest_monotone(state: &State<'_>, a: usize) -> i64 {
+    let pb = state.pb;
+    let act = &pb.acts[a];
+    let (wake, shut) = if act.awake == AwakeMode::Required {
+        (pb.wake, pb.shut)
+    } else {
+        (0, 0)
+    };
+    let fits = |d: i64| {
+        let others = state
+            .phase1(a, d)
+            .iter()
+            .filter(|c| c.category != Category::Execution && c.category != Category::StateEffect)
+            .fold(IntervalSet::single(pb.h0, pb.h1), |acc, c| {
+                acc.intersect(&c.valid)
+            });
+        act.windows.iter().any(|w| {
+            let r = state.window_range(a, w.start, w.end, w.cutoff, d, wake, shut);
+            !others.clip(r.lo, r.hi).is_empty()
+        })
+    };
+    let (mut lo, mut hi) = (act.dur_min, act.dur_max);
+    let mut best = act.dur_min - 1;
+    while lo <= hi {
+        let mid = lo + (hi - lo) / 2;
+        if fits(mid) {
+            best = mid;
+            lo = mid + 1;
+        } else {
+            hi = mid - 1;
+        }
+    }
+    best
 }

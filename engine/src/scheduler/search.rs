@@ -292,7 +292,7 @@ impl State<'_> {
         }
         // Peak power.
         if let Some(max) = pb.max_peak {
-            if let Some((v, at)) = self.peak.max_on(pb.h0, pb.h1).filter(|(v, _)| *v > max) {
+            if let Some((v, at)) = self.peak_max.filter(|(v, _)| *v > max) {
                 return Err(Phase2Reason::MaxPeakPower { at, peak_mw: v });
             }
             for &(x, y, _, dp) in &pieces {

@@ -62,6 +62,8 @@ pub struct State<'p> {
     pub peak: StepFn,
     /// State of charge (mJ).
     pub soc: RateTimeline,
+    /// The highest total peak power and its first time (cached).
+    pub peak_max: Option<(i64, i64)>,
 }
 
 impl<'p> State<'p> {
@@ -98,6 +100,7 @@ impl<'p> State<'p> {
             soc: RateTimeline::new(&net, pb.soc0, pb.capacity),
             net,
             peak: StepFn::constant(pb.h0, pb.h1, pb.asleep),
+            peak_max: Some((pb.asleep, pb.h0)),
         }
     }
 
@@ -182,6 +185,7 @@ impl<'p> State<'p> {
         }
         self.add_load(s, e, act.energy, act.peak);
         self.soc.rebuild(&self.net);
+        self.peak_max = self.peak.max_on(pb.h0, pb.h1);
     }
 
     /// Whether the heater of zone `z` is on over the second `t`.

@@ -1,0 +1,220 @@
+//! `solscope check` through the real binary: the shared examples are valid, each
+//! loader warning is printed with its path, and a missing file is an error.
+
+// Test helpers outside `#[test]` functions are not covered by clippy.toml's
+// allow-*-in-tests; a failed expectation here is a test failure.
+#![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::{Value, json};
+
+fn solscope_check(plan: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_solscope"))
+        .arg("check")
+        .arg(plan)
+        .output()
+        .expect("solscope runs")
+}
+
+fn stdout(out: &Output) -> String {
+    String::from_utf8(out.stdout.clone()).expect("UTF-8 stdout")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8(out.stderr.clone()).expect("UTF-8 stderr")
+}
+
+/// Writes `plan` to a scratch file named `name` and returns its path.
+fn write_plan(name: &str, plan: &Value) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli_check");
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let path = dir.join(name);
+    std::fs::write(&path, serde_json::to_string_pretty(plan).expect("json")).expect("write plan");
+    path
+}
+
+/// A valid plan with the given activities.
+fn plan_with(activities: Value) -> Value {
+    json!({
+        "format": "solscope.plan/1",
+        "horizon": { "start": 0, "end": 7200 },
+        "battery": { "capacity": 1000.0, "initial": 900.0, "min_soc": 100.0 },
+        "power": { "rtg": 100.0, "asleep": 10.0, "awake": 60.0 },
+        "states": { "door": { "values": ["closed", "open"], "initial": "closed" } },
+        "activities": activities
+    })
+}
+
+/// Runs `check` on a plan expected to be valid and returns its warning lines
+/// (without the `warning: ` prefix), checking the ok line.
+fn check_warnings(name: &str, plan: &Value) -> Vec<String> {
+    let path = write_plan(name, plan);
+    let out = solscope_check(&path);
+    let (so, se) = (stdout(&out), stderr(&out));
+    assert_eq!(out.status.code(), Some(0), "stderr: {se}");
+    assert!(se.is_empty(), "stderr: {se}");
+    let lines: Vec<&str> = so.lines().collect();
+    let (ok, warnings) = lines.split_last().expect("at least the ok line");
+    let activities = plan["activities"].as_array().map_or(0, Vec::len);
+    assert_eq!(
+        *ok,
+        format!(
+            "ok: {} is a valid plan with {activities} activities and {} warning(s)",
+            path.display(),
+            warnings.len()
+        )
+    );
+    warnings
+        .iter()
+        .map(|w| {
+            w.strip_prefix("warning: ")
+                .unwrap_or_else(|| panic!("not a warning line: {w:?}"))
+                .to_string()
+        })
+        .collect()
+}
+
+#[test]
+fn shared_examples_are_valid() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/examples");
+    let mut plans: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.expect("directory entry").path())
+        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        .collect();
+    plans.sort();
+    assert!(!plans.is_empty(), "no examples in {}", dir.display());
+    for plan in plans {
+        let out = solscope_check(&plan);
+        let (so, se) = (stdout(&out), stderr(&out));
+        assert_eq!(out.status.code(), Some(0), "{}: {se}", plan.display());
+        assert!(se.is_empty(), "{}: {se}", plan.display());
+        let doc: Value =
+            serde_json::from_str(&std::fs::read_to_string(&plan).expect("read")).expect("json");
+        let activities = doc["activities"].as_array().map_or(0, Vec::len);
+        let lines: Vec<&str> = so.lines().collect();
+        let (ok, warnings) = lines.split_last().expect("output");
+        assert!(warnings.iter().all(|w| w.starts_with("warning: ")), "{so}");
+        assert_eq!(
+            *ok,
+            format!(
+                "ok: {} is a valid plan with {activities} activities and {} warning(s)",
+                plan.display(),
+                warnings.len()
+            )
+        );
+    }
+}
+
+#[test]
+fn drill_sol_example_warns_about_optional_before_manual_sleep() {
+    // supercam_big and supercam_small (optional, priorities 40/41) come before the
+    // mandatory night_sleep (priority 50).
+    let plan = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/examples/drill-sol.json");
+    let out = solscope_check(&plan);
+    let so = stdout(&out);
+    assert_eq!(out.status.code(), Some(0));
+    let warnings: Vec<&str> = so.lines().filter(|l| l.starts_with("warning: ")).collect();
+    assert_eq!(warnings.len(), 2, "{so}");
+    assert!(warnings[0].starts_with("warning: activities[7]: optional activity \"supercam_big\""));
+    assert!(
+        warnings[1].starts_with("warning: activities[8]: optional activity \"supercam_small\"")
+    );
+    assert!(
+        warnings
+            .iter()
+            .all(|w| w.contains("mandatory activity \"night_sleep\""))
+    );
+}
+
+#[test]
+fn clean_plan_has_no_warnings() {
+    let plan = plan_with(json!([
+        { "id": "a", "priority": 1, "duration": 60, "effects": [ { "state": "door", "value": "open" } ] },
+        { "id": "b", "priority": 2, "duration": 60, "after": [ { "activity": "a" } ],
+          "requires": [ { "state": "door", "value": "open" } ] },
+        { "id": "c", "priority": 3, "mandatory": false, "duration": 60, "energy_rate": 12.345 }
+    ]));
+    assert_eq!(check_warnings("clean.json", &plan), Vec::<String>::new());
+}
+
+#[test]
+fn warns_optional_before_mandatory() {
+    let plan = plan_with(json!([
+        { "id": "opt", "priority": 1, "mandatory": false, "duration": 60 },
+        { "id": "must", "priority": 2, "duration": 60 }
+    ]));
+    assert_eq!(
+        check_warnings("optional-first.json", &plan),
+        [
+            "activities[0]: optional activity \"opt\" (step 1, priority 1) comes before mandatory \
+          activity \"must\" (step 2, priority 2) in step order and may take what the mandatory \
+          one needs"
+        ]
+    );
+}
+
+#[test]
+fn warns_dependency_on_later_activity() {
+    let plan = plan_with(json!([
+        { "id": "late", "priority": 5, "duration": 60 },
+        { "id": "early", "priority": 1, "duration": 60, "after": [ { "activity": "late" } ] }
+    ]));
+    assert_eq!(
+        check_warnings("dependency-later.json", &plan),
+        [
+            "activities[1].after[0]: depends on \"late\" (step 2), which comes later in step order \
+          than \"early\" (step 1), so \"early\" can never be scheduled"
+        ]
+    );
+}
+
+#[test]
+fn warns_unsatisfiable_requirement() {
+    let plan = plan_with(json!([
+        { "id": "a", "priority": 1, "duration": 60,
+          "requires": [ { "state": "door", "value": "open" } ],
+          "effects": [ { "state": "door", "value": "open", "at": "start" } ] }
+    ]));
+    assert_eq!(
+        check_warnings("requirement.json", &plan),
+        [
+            "activities[0].requires[0]: state \"door\" is never \"open\": it is not the initial \
+          value and no other activity has an effect setting it, so \"a\" can never be scheduled"
+        ]
+    );
+}
+
+#[test]
+fn warns_values_rounded_to_fixed_point() {
+    let mut plan = plan_with(json!([
+        { "id": "a", "priority": 1, "duration": 60, "energy_rate": 12.3456, "data_rate": 0.0000004 }
+    ]));
+    plan["battery"]["initial"] = json!(900.00000001);
+    assert_eq!(
+        check_warnings("precision.json", &plan),
+        [
+            "battery.initial: 900.00000001 Wh is more precise than 1 mJ (1/3600000 Wh) and is \
+             rounded to 900 Wh",
+            "activities[0].energy_rate: 12.3456 W is more precise than 1 mW and is rounded to \
+             12.346 W",
+            "activities[0].data_rate: 0.0000004 Mbit/s is more precise than 1 bit/s (1e-6 \
+             Mbit/s) and is rounded to 0 Mbit/s",
+        ]
+    );
+}
+
+#[test]
+fn missing_file_is_an_error_naming_it() {
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli_check/no-such-plan.json");
+    let out = solscope_check(&path);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    let se = stderr(&out);
+    assert!(
+        se.starts_with(&format!("error: {}: ", path.display())),
+        "stderr: {se}"
+    );
+}
