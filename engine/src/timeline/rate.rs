@@ -34,6 +34,55 @@ pub struct RateTimeline {
     prefix_min: Vec<(i128, usize)>,
     /// `(min over levels[i..], first index)`.
     suffix_min: Vec<(i128, usize)>,
+    /// Charge lost to the cap up to `times[i]` (n + 1 values).
+    wasted: Vec<i128>,
+    /// Range minimum over `levels[i] + wasted[i]` (the uncapped trajectory).
+    uncapped: MinTree,
+}
+
+/// An iterative segment tree answering "first minimum on `[l, r)`" in O(log n).
+#[derive(Clone, Debug, Default)]
+struct MinTree {
+    n: usize,
+    tree: Vec<(i128, usize)>,
+}
+
+impl MinTree {
+    fn build(values: impl ExactSizeIterator<Item = i128>) -> Self {
+        let n = values.len();
+        let mut tree = vec![(i128::MAX, usize::MAX); 2 * n];
+        for (i, v) in values.enumerate() {
+            tree[n + i] = (v, i);
+        }
+        for i in (1..n).rev() {
+            tree[i] = tree[2 * i].min(tree[2 * i + 1]);
+        }
+        Self { n, tree }
+    }
+
+    /// `(min, first index)` over `[l, r)`; `None` when empty.
+    fn query(&self, l: usize, r: usize) -> Option<(i128, usize)> {
+        let (mut l, mut r) = (l + self.n, r.min(self.n) + self.n);
+        let mut best: Option<(i128, usize)> = None;
+        let mut take = |x: (i128, usize)| {
+            if best.is_none_or(|b| x < b) {
+                best = Some(x);
+            }
+        };
+        while l < r {
+            if l & 1 == 1 {
+                take(self.tree[l]);
+                l += 1;
+            }
+            if r & 1 == 1 {
+                r -= 1;
+                take(self.tree[r]);
+            }
+            l >>= 1;
+            r >>= 1;
+        }
+        best
+    }
 }
 
 /// Level after running at `rate` for `dt` seconds from `level`, capped at `cap`.
@@ -57,6 +106,8 @@ impl RateTimeline {
             levels: Vec::new(),
             prefix_min: Vec::new(),
             suffix_min: Vec::new(),
+            wasted: Vec::new(),
+            uncapped: MinTree::default(),
         };
         tl.rebuild(rate);
         tl
@@ -67,15 +118,22 @@ impl RateTimeline {
         self.times.clear();
         self.rates.clear();
         self.levels.clear();
+        self.wasted.clear();
         let mut level = self.initial;
+        let mut wasted = 0;
         for (lo, hi, r) in rate.segments(rate.start(), rate.end()) {
             self.times.push(lo);
             self.rates.push(r);
             self.levels.push(level);
-            level = advance(level, r, hi - lo, self.cap);
+            self.wasted.push(wasted);
+            let next = advance(level, r, hi - lo, self.cap);
+            wasted += level + i128::from(r) * i128::from(hi - lo) - next;
+            level = next;
         }
         self.times.push(rate.end());
         self.levels.push(level);
+        self.wasted.push(wasted);
+        self.uncapped = MinTree::build(self.levels.iter().zip(&self.wasted).map(|(l, w)| l + w));
         self.prefix_min.clear();
         let mut best = (i128::MAX, 0);
         for (i, &l) in self.levels.iter().enumerate() {
@@ -109,9 +167,17 @@ impl RateTimeline {
 
     /// The level at time `t` (clamped to the domain).
     pub fn level_at(&self, t: i64) -> i128 {
+        self.level_and_waste_at(t).0
+    }
+
+    /// The level at `t` and the charge lost to the cap up to `t`.
+    fn level_and_waste_at(&self, t: i64) -> (i128, i128) {
         let i = self.index(t);
         let t = t.clamp(self.times[0], self.times[self.rates.len()]);
-        advance(self.levels[i], self.rates[i], t - self.times[i], self.cap)
+        let dt = t - self.times[i];
+        let level = advance(self.levels[i], self.rates[i], dt, self.cap);
+        let unc = self.levels[i] + i128::from(self.rates[i]) * i128::from(dt);
+        (level, self.wasted[i] + unc - level)
     }
 
     /// Breakpoints `(t, level)` including every time the level reaches the cap inside
@@ -205,7 +271,39 @@ impl RateTimeline {
             t = next;
         }
 
-        // After the drain: same rates, until the two trajectories meet again.
+        // After the drain the rates are the same, and the deficit only shrinks by the
+        // charge the unchanged trajectory loses to the cap: with W the cumulative
+        // loss, E'(t) = E(t) - max(0, deficit - (W(t) - W(hi))). Before the deficit is
+        // absorbed that is the uncapped trajectory E + W shifted down (a range
+        // minimum); after it, the unchanged levels (a suffix minimum).
+        let (e_hi, w_hi) = self.level_and_waste_at(hi);
+        let deficit = e_hi - level;
+        if deficit >= 0 {
+            let first = self.times.partition_point(|&x| x <= hi);
+            let absorbed = first + self.wasted[first..].partition_point(|&w| w - w_hi < deficit);
+            if let Some((u, idx)) = self.uncapped.query(first, absorbed) {
+                let v = u - w_hi - deficit;
+                if v < min {
+                    (min, min_at) = (v, self.times[idx]);
+                }
+            }
+            if absorbed <= n {
+                let (m, idx) = self.suffix_min[absorbed];
+                if m < min {
+                    (min, min_at) = (m, self.times[idx]);
+                }
+            }
+            if let Some(p) = probe.filter(|&p| p >= hi) {
+                let (e, w) = self.level_and_waste_at(p);
+                at_probe = Some(e - (deficit - (w - w_hi)).max(0));
+            }
+            return LevelCheck {
+                min,
+                min_at,
+                at_probe,
+            };
+        }
+        // A surplus (negative drain): walk until the trajectories meet again.
         let mut i = self.index(hi);
         let mut t = hi;
         loop {
@@ -294,6 +392,44 @@ mod tests {
                     "{drain:?} probe {probe}"
                 );
             }
+        }
+    }
+
+    #[test]
+    fn random_drains_match_per_second() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (m as u64)) as i64
+        };
+        for _ in 0..300 {
+            let mut rate = StepFn::constant(0, 120, next(9) - 3);
+            for _ in 0..next(6) {
+                let a = next(120);
+                rate.add(a, a + next(40), next(21) - 10);
+            }
+            let (cap, initial) = (100 + next(100) as i128, next(100) as i128);
+            let tl = RateTimeline::new(&rate, initial.min(cap), cap);
+            let mut drain = Vec::new();
+            let mut t = next(60);
+            for _ in 0..next(4) {
+                let len = 1 + next(20);
+                drain.push((t, t + len, next(15) - 2));
+                t += len + next(10);
+            }
+            let b = brute(&rate, &drain, initial.min(cap), cap);
+            let min = *b.iter().min().unwrap();
+            let probe = next(121);
+            let c = tl.check(&drain, Some(probe));
+            assert_eq!(c.min, min, "{drain:?}");
+            assert_eq!(b[c.min_at as usize], min, "{drain:?}");
+            assert_eq!(
+                c.at_probe,
+                Some(b[probe as usize]),
+                "{drain:?} probe {probe}"
+            );
         }
     }
 
