@@ -103,22 +103,21 @@ impl State<'_> {
         out.push((Category::StateEffect, eff));
         // data_volume
         let mut data = all();
-        if act.data > 0 {
-            if let Some(cap) = pb.data_cap {
-                data = self.data_valid(act.data, d, cap, lo, hi);
-            }
-            if let (false, Some(ht), Some(max)) =
-                (act.mandatory, pb.handover_time, pb.handover_data)
-            {
-                data = data.intersect(&cumulative_valid(
-                    self.produced,
-                    max,
-                    act.data,
-                    d,
-                    (pb.h0, ht),
-                    (lo, hi),
-                ));
-            }
+        if let (true, Some(cap)) = (act.data > 0, pb.data_cap) {
+            data = self.data_valid(act.data, d, cap, lo, hi);
+        }
+        // The handover limit binds every optional activity, even one producing
+        // nothing, once the placed activities have exceeded it.
+        if let (false, Some(ht), Some(max)) = (act.mandatory, pb.handover_time, pb.handover_data) {
+            let range = (pb.h0, ht);
+            data = data.intersect(&cumulative_valid(
+                self.produced,
+                max,
+                act.data,
+                d,
+                range,
+                (lo, hi),
+            ));
         }
         out.push((Category::DataVolume, data));
         // uhf

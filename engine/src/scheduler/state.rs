@@ -124,11 +124,11 @@ impl<'p> State<'p> {
         }
         self.engines.add(s, e, act.engines);
         for &(st, v) in &act.requires {
-            self.states[st].add_requirement(s, e, v);
+            self.states[st].add_requirement(s, e, v, p.act);
         }
         for &(st, v, at) in &act.effects {
             let t = if at == EffectAt::Start { s } else { e };
-            self.states[st].add_effect(t, step, v);
+            self.states[st].add_effect(t, step, v, p.act);
         }
         if act.data != 0 {
             self.data_rate.add(s, e, -act.data);

@@ -64,10 +64,10 @@ pub fn cumulative_valid(
 #[derive(Clone, Debug, Default)]
 pub struct StateTimeline {
     initial: usize,
-    /// `(time, step, value)`, sorted by `(time, step)`.
-    effects: Vec<(i64, usize, usize)>,
-    /// Placed requirements `(start, end, value)`.
-    requirements: Vec<(i64, i64, usize)>,
+    /// `(time, step, value, owner)`, sorted by `(time, step)`.
+    effects: Vec<(i64, usize, usize, usize)>,
+    /// Placed requirements `(start, end, value, owner)`.
+    requirements: Vec<(i64, i64, usize, usize)>,
 }
 
 impl StateTimeline {
@@ -80,21 +80,21 @@ impl StateTimeline {
         }
     }
 
-    /// Records an effect placed at `step`.
-    pub fn add_effect(&mut self, time: i64, step: usize, value: usize) {
+    /// Records an effect of activity `owner` placed at `step`.
+    pub fn add_effect(&mut self, time: i64, step: usize, value: usize, owner: usize) {
         let at = self.effects.partition_point(|e| (e.0, e.1) <= (time, step));
-        self.effects.insert(at, (time, step, value));
+        self.effects.insert(at, (time, step, value, owner));
     }
 
-    /// Records a placed requirement over `[start, end)`.
-    pub fn add_requirement(&mut self, start: i64, end: i64, value: usize) {
-        self.requirements.push((start, end, value));
+    /// Records a placed requirement of activity `owner` over `[start, end)`.
+    pub fn add_requirement(&mut self, start: i64, end: i64, value: usize, owner: usize) {
+        self.requirements.push((start, end, value, owner));
     }
 
     /// The distinct effect times with the value that wins there (the later step).
     fn effective(&self) -> Vec<(i64, usize)> {
         let mut out: Vec<(i64, usize)> = Vec::with_capacity(self.effects.len());
-        for &(t, _, v) in &self.effects {
+        for &(t, _, v, _) in &self.effects {
             match out.last_mut() {
                 Some(last) if last.0 == t => last.1 = v,
                 _ => out.push((t, v)),
@@ -142,13 +142,20 @@ impl StateTimeline {
 
     /// Starts in `[lo, hi]` where this activity's effects on the state (`own`:
     /// `(offset, value)` sorted by offset, offsets 0 or `d`) change no value seen by
-    /// a placed requirement.
+    /// a placed requirement. A requirement sees the state without its own
+    /// activity's effects.
     pub fn effect_valid(&self, own: &[(i64, usize)], lo: i64, hi: i64) -> IntervalSet {
-        let times: Vec<i64> = self.effective().iter().map(|e| e.0).collect();
         let mut bad = Vec::new();
-        for (k, &(offset, value)) in own.iter().enumerate() {
-            let next_own = own.get(k + 1).map(|e| e.0);
-            for &(rs, re, req) in &self.requirements {
+        for &(rs, re, req, owner) in &self.requirements {
+            let mut times: Vec<i64> = self
+                .effects
+                .iter()
+                .filter(|e| e.3 != owner)
+                .map(|e| e.0)
+                .collect();
+            times.dedup();
+            for (k, &(offset, value)) in own.iter().enumerate() {
+                let next_own = own.get(k + 1).map(|e| e.0);
                 if req == value {
                     continue;
                 }
@@ -240,14 +247,14 @@ mod tests {
     #[test]
     fn state_requirement_and_effects() {
         let mut st = StateTimeline::new(0);
-        st.add_effect(100, 1, 1);
-        st.add_effect(200, 2, 0);
-        st.add_effect(200, 3, 1); // same time, later step wins
+        st.add_effect(100, 1, 1, 7);
+        st.add_effect(200, 2, 0, 8);
+        st.add_effect(200, 3, 1, 9); // same time, later step wins
         assert_eq!(st.value_at(150), 1);
         assert_eq!(st.value_at(250), 1);
         assert_eq!(st.requirement_valid(0, 10, 0, 500), set(&[(0, 90)]));
         assert_eq!(st.requirement_valid(1, 10, 0, 500), set(&[(100, 500)]));
-        st.add_requirement(120, 140, 1);
+        st.add_requirement(120, 140, 1, 5);
         // Setting 0 at s must not hit [120, 140): s >= 140, or s < 100 (the effect at
         // 100 takes over before the requirement).
         assert_eq!(
@@ -259,5 +266,17 @@ mod tests {
             st.effect_valid(&[(0, 0), (10, 1)], 0, 300),
             set(&[(0, 110), (140, 300)])
         );
+    }
+
+    #[test]
+    fn a_requirement_ignores_its_owners_effects() {
+        // Activity 1 requires "b" over [130, 160) and itself sets "a" at 130 (exempt).
+        let mut st = StateTimeline::new(1);
+        st.add_requirement(130, 160, 1, 1);
+        st.add_effect(130, 1, 0, 1);
+        // Setting "a" at 30 would hold until the next effect of another activity
+        // (none): it reaches activity 1's requirement, so it is refused.
+        assert!(!st.effect_valid(&[(30, 0)], 0, 0).contains(0));
+        assert!(st.effect_valid(&[(0, 0), (10, 1)], 0, 0).contains(0));
     }
 }
