@@ -1,6 +1,6 @@
 //! `solscope`: explainable scheduling workstation for rover activity plans.
 //!
-//! Command line: `solscope schedule|check PLAN`. Invalid input prints a
+//! Command line: `solscope schedule|explain|check PLAN`. Invalid input prints a
 //! path-named message on standard error, nothing on standard output, and exits
 //! with status 2.
 
@@ -27,6 +27,18 @@ enum Command {
     Schedule {
         /// The plan file (solscope.plan/1 JSON).
         plan: PathBuf,
+    },
+    /// Explain why activities failed (all failed or skipped ones, or the one named)
+    /// and print the explanation JSON (solscope.explain/1).
+    Explain {
+        /// The plan file (solscope.plan/1 JSON).
+        plan: PathBuf,
+        /// Explain this activity (by id), whatever its outcome.
+        #[arg(long)]
+        activity: Option<String>,
+        /// Print planner-facing text instead of JSON.
+        #[arg(long)]
+        text: bool,
     },
     /// Validate a plan and print its warnings.
     Check {
@@ -68,6 +80,29 @@ fn run(command: Command) -> Result<String, solscope_engine::Error> {
             let schedule = solscope_engine::schedule(&loaded.plan)?;
             let doc = solscope_engine::schedule_document(&loaded, &schedule, &default_name(&plan));
             Ok(format!("{}\n", to_json(&doc)))
+        }
+        Command::Explain {
+            plan,
+            activity,
+            text,
+        } => {
+            let loaded = solscope_engine::load_plan_file(&plan)?;
+            let schedule = solscope_engine::schedule(&loaded.plan)?;
+            let opts = solscope_engine::ExplainOptions {
+                activity,
+                no_suggestions: false,
+            };
+            let explanations = solscope_engine::explain(&loaded.plan, &schedule, &opts)?;
+            if text {
+                Ok(solscope_engine::explain_text(
+                    &loaded.plan,
+                    &schedule,
+                    &explanations,
+                ))
+            } else {
+                let doc = solscope_engine::explain_document(&loaded.plan, &schedule, &explanations);
+                Ok(format!("{}\n", to_json(&doc)))
+            }
         }
         Command::Check { plan } => {
             let loaded = solscope_engine::load_plan_file(&plan)?;

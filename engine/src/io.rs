@@ -1,11 +1,13 @@
 //! Reading plans and writing schedule documents.
 
 use serde::Serialize;
+use serde_json::{Value, json};
 
 use crate::error::{Error, Warning};
+use crate::explain::{Explanation, ReasonRange, explanation_notes};
 use crate::model::Plan;
 use crate::scheduler::{
-    BIT_PER_MBIT, Generated, GeneratedKind, MJ_PER_WH, MW_PER_W, Outcome, Schedule,
+    BIT_PER_MBIT, Generated, GeneratedKind, MJ_PER_WH, MW_PER_W, Outcome, Phase2Reason, Schedule,
 };
 use crate::validate::{check_json_shape, validate};
 
@@ -215,4 +217,137 @@ pub fn schedule_document(
             data_volume,
         },
     }
+}
+
+/// `solscope.explain/1` document; see the spec and docs/semantics.md for additions.
+#[derive(Clone, Debug, Serialize)]
+pub struct ExplainDoc {
+    /// Always `solscope.explain/1`.
+    pub format: &'static str,
+    /// One entry per explained activity, in step order.
+    pub explanations: Vec<Value>,
+}
+
+fn reason_value(pb: &crate::scheduler::Problem, r: &ReasonRange) -> Value {
+    let mut v =
+        json!({ "kind": r.reason.kind(), "start": r.first, "end": r.last, "duration": r.duration });
+    let extra = match &r.reason {
+        Phase2Reason::MinSoc { at, soc_mj } => {
+            json!({ "at": at, "soc": *soc_mj as f64 / MJ_PER_WH })
+        }
+        Phase2Reason::HandoverSoc { soc_mj } => json!({ "soc": *soc_mj as f64 / MJ_PER_WH }),
+        Phase2Reason::MaxPeakPower { at, peak_mw } => {
+            json!({ "at": at, "peak": *peak_mw as f64 / MW_PER_W })
+        }
+        Phase2Reason::PreheatOutsidePlan {
+            zone,
+            preheat_start,
+        }
+        | Phase2Reason::PreheatOperability {
+            zone,
+            preheat_start,
+        } => {
+            json!({ "zone": pb.zone_names[*zone], "preheat_start": preheat_start })
+        }
+        Phase2Reason::ForcedSleep { .. }
+        | Phase2Reason::MinSleep { .. }
+        | Phase2Reason::MinAwake { .. } => json!({}),
+    };
+    if let (Some(o), Some(e)) = (v.as_object_mut(), extra.as_object()) {
+        o.extend(e.clone());
+    }
+    v
+}
+
+/// Builds the explanation document.
+pub fn explain_document(
+    plan: &Plan,
+    schedule: &Schedule,
+    explanations: &[Explanation],
+) -> ExplainDoc {
+    let pb = &schedule.problem;
+    let id = |a: usize| plan.activities[a].id.clone();
+    let entries = explanations
+        .iter()
+        .map(|ex| {
+            let status = match ex.outcome {
+                Outcome::Scheduled { .. } => "scheduled",
+                Outcome::Failed(_) => "failed",
+                Outcome::Skipped { .. } => "skipped",
+            };
+            let intervals: serde_json::Map<String, Value> = ex
+                .categories
+                .iter()
+                .map(|c| {
+                    let v: Vec<[i64; 2]> = c.valid.intervals().iter().map(|i| [i.lo, i.hi]).collect();
+                    (c.category.name().to_string(), json!(v))
+                })
+                .collect();
+            let intersection: Vec<[i64; 2]> = ex.intersection.intervals().iter().map(|i| [i.lo, i.hi]).collect();
+            json!({
+                "activity": id(ex.activity),
+                "status": status,
+                "step": ex.step,
+                "failure_step": ex.failure_step,
+                "phase": ex.phase.map(|p| p.name()),
+                "conflicts": ex.conflicts.iter().map(|c| c.iter().map(|x| x.name()).collect::<Vec<_>>()).collect::<Vec<_>>(),
+                "reasons": ex.reasons.iter().map(|r| reason_value(pb, r)).collect::<Vec<_>>(),
+                "culprits": ex.culprits.iter().map(|c| json!({ "activity": id(c.activity), "category": c.category, "step": c.step })).collect::<Vec<_>>(),
+                "notes": explanation_notes(plan, pb, ex),
+                "suggestions": ex.suggestions.iter().map(|s| json!({
+                    "description": s.description,
+                    "edit": { "target": s.target, "set": s.set },
+                    "side_effects": s.side_effects.iter().map(|&a| id(a)).collect::<Vec<_>>(),
+                })).collect::<Vec<_>>(),
+                "duration": ex.duration,
+                "valid_intervals": intervals,
+                "intersection": intersection,
+                "relaxations": ex.relaxations.iter().map(|r| json!({
+                    "categories": r.categories.iter().map(|c| c.name()).collect::<Vec<_>>(),
+                    "witness": r.witness,
+                })).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    ExplainDoc {
+        format: "solscope.explain/1",
+        explanations: entries,
+    }
+}
+
+/// Planner-facing text for a set of explanations.
+pub fn explain_text(plan: &Plan, schedule: &Schedule, explanations: &[Explanation]) -> String {
+    let pb = &schedule.problem;
+    let mut out = String::new();
+    for ex in explanations {
+        let a = &plan.activities[ex.activity];
+        out.push_str(&format!(
+            "== {} ({}), step {}\n",
+            a.display_name(),
+            a.id,
+            ex.step
+        ));
+        for n in explanation_notes(plan, pb, ex) {
+            out.push_str(&format!("  {n}\n"));
+        }
+        for (i, s) in ex.suggestions.iter().enumerate() {
+            let side = if s.side_effects.is_empty() {
+                String::new()
+            } else {
+                let ids: Vec<&str> = s
+                    .side_effects
+                    .iter()
+                    .map(|&x| plan.activities[x].id.as_str())
+                    .collect();
+                format!(" (then fails: {})", ids.join(", "))
+            };
+            out.push_str(&format!(
+                "  suggestion {}: {}{side}\n",
+                i + 1,
+                s.description
+            ));
+        }
+        out.push('\n');
+    }
+    out
 }

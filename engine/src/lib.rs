@@ -8,6 +8,7 @@
 #![deny(missing_docs)]
 
 mod error;
+mod explain;
 mod io;
 mod model;
 mod scheduler;
@@ -15,7 +16,11 @@ mod timeline;
 mod validate;
 
 pub use error::{Error, Warning};
-pub use io::{LoadedPlan, ScheduleDoc, load_plan, load_plan_file, schedule_document};
+pub use explain::*;
+pub use io::{
+    ActivityEntry, ExplainDoc, GeneratedEntry, LoadedPlan, Profiles, ScheduleDoc, explain_document,
+    explain_text, load_plan, load_plan_file, schedule_document,
+};
 pub use model::*;
 pub use scheduler::*;
 pub use timeline::{Interval, IntervalSet};

@@ -18,6 +18,16 @@ use crate::error::Error;
 use crate::model::{AwakeMode, Plan};
 use crate::timeline::IntervalSet;
 
+/// Which of an activity's dependencies and requirements a probe leaves out (the
+/// explainer's inclusion rule for failure steps). The scheduler itself includes all.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Scope {
+    /// Indices into the activity's `after` to ignore.
+    pub skip_deps: Vec<usize>,
+    /// Indices into the activity's `requires` to ignore.
+    pub skip_reqs: Vec<usize>,
+}
+
 /// The result of a scheduling run: the compiled problem and the full step trace.
 #[derive(Clone, Debug)]
 pub struct Schedule {
@@ -79,7 +89,7 @@ pub fn schedule(plan: &Plan) -> Result<Schedule, Error> {
         let mut state = State::new(&problem);
         for (k, &a) in problem.order.iter().enumerate() {
             let step_no = k + 1;
-            let mut step = run_step(&state, a, step_no);
+            let mut step = run_step(&state, a, step_no, &Scope::default());
             if let Some(placement) = step.1.take() {
                 // Record generated activities.
                 let act = &problem.acts[a];
@@ -155,7 +165,12 @@ pub fn schedule(plan: &Plan) -> Result<Schedule, Error> {
 }
 
 /// Runs one step against `state`; returns the record and the placement to apply.
-fn run_step(state: &State<'_>, a: usize, step_no: usize) -> (Step, Option<Placement>) {
+pub(crate) fn run_step(
+    state: &State<'_>,
+    a: usize,
+    step_no: usize,
+    scope: &Scope,
+) -> (Step, Option<Placement>) {
     let pb = state.pb;
     let act = &pb.acts[a];
     let mut step = Step {
@@ -173,13 +188,18 @@ fn run_step(state: &State<'_>, a: usize, step_no: usize) -> (Step, Option<Placem
         step.outcome = Outcome::Skipped { by };
         return (step, None);
     }
-    if let Some(dep) = act.after.iter().find(|d| state.placed[d.target].is_none()) {
+    let included = |k: &usize| !scope.skip_deps.contains(k);
+    if let Some(dep) = (0..act.after.len())
+        .filter(included)
+        .map(|k| &act.after[k])
+        .find(|d| state.placed[d.target].is_none())
+    {
         step.outcome = Outcome::Failed(FailurePhase::Dependency { on: dep.target });
         return (step, None);
     }
     let mut any_candidate = false;
     let mut attempt = |d: i64, step: &mut Step, record: bool| {
-        let tried = try_duration(state, a, d);
+        let tried = try_duration(state, a, d, scope);
         any_candidate |= !tried.union.is_empty();
         step.tries.extend(tried.tries);
         if record || tried.found.is_some() {
@@ -208,7 +228,7 @@ fn run_step(state: &State<'_>, a: usize, step_no: usize) -> (Step, Option<Placem
         if let Some(ev) = &best {
             // Record the chosen duration's intervals last.
             let d = ev.placement.duration;
-            let tried = try_duration(state, a, d);
+            let tried = try_duration(state, a, d, scope);
             step.duration = d;
             step.categories = tried.categories;
             step.intersection = tried.union;
@@ -218,7 +238,7 @@ fn run_step(state: &State<'_>, a: usize, step_no: usize) -> (Step, Option<Placem
         // End effects (or a backward min_awake extension) can make a shorter
         // duration fail where a longer one fits: scan down from the longest duration
         // the monotone categories allow.
-        let top = longest_monotone(state, a);
+        let top = longest_monotone(state, a, scope);
         let mut found = None;
         for d in (act.dur_min..=top).rev() {
             if let Some(ev) = attempt(d, &mut step, d == act.dur_min) {
@@ -256,10 +276,10 @@ struct Tried {
 }
 
 /// Phase 1 and the window-by-window phase-2 search for one duration.
-fn try_duration(state: &State<'_>, a: usize, d: i64) -> Tried {
+fn try_duration(state: &State<'_>, a: usize, d: i64, scope: &Scope) -> Tried {
     let pb = state.pb;
     let act = &pb.acts[a];
-    let categories = state.phase1(a, d);
+    let categories = state.phase1(a, d, scope);
     let (wake, shut) = if act.awake == AwakeMode::Required {
         (pb.wake, pb.shut)
     } else {
@@ -316,7 +336,7 @@ fn duration_monotone(pb: &Problem, a: usize) -> bool {
 
 /// The longest duration for which the duration-monotone phase-1 categories (all but
 /// state_effect) leave a start in some window; below `dur_min` if none.
-fn longest_monotone(state: &State<'_>, a: usize) -> i64 {
+fn longest_monotone(state: &State<'_>, a: usize, scope: &Scope) -> i64 {
     let pb = state.pb;
     let act = &pb.acts[a];
     let (wake, shut) = if act.awake == AwakeMode::Required {
@@ -326,7 +346,7 @@ fn longest_monotone(state: &State<'_>, a: usize) -> i64 {
     };
     let fits = |d: i64| {
         let others = state
-            .phase1(a, d)
+            .phase1(a, d, scope)
             .iter()
             .filter(|c| c.category != Category::Execution && c.category != Category::StateEffect)
             .fold(IntervalSet::single(pb.h0, pb.h1), |acc, c| {

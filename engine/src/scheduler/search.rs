@@ -15,6 +15,7 @@
 //! handful of evaluations: its ends, and a binary search for the maximum and the
 //! boundaries of the feasible part.
 
+use super::Scope;
 use super::problem::Problem;
 use super::state::{Placement, State, uncovered};
 use super::trace::{Category, CategoryIntervals, Phase2Reason, Try};
@@ -34,7 +35,7 @@ pub struct Evaluated {
 
 impl State<'_> {
     /// Valid starts of every phase-1 category for activity `a` with duration `d`.
-    pub fn phase1(&self, a: usize, d: i64) -> Vec<CategoryIntervals> {
+    pub fn phase1(&self, a: usize, d: i64, scope: &Scope) -> Vec<CategoryIntervals> {
         let pb = self.pb;
         let act = &pb.acts[a];
         let (lo, hi) = (pb.h0, pb.h1);
@@ -54,7 +55,12 @@ impl State<'_> {
         out.push((Category::Execution, exec));
         // dependency
         let mut dep = all();
-        for x in &act.after {
+        for (_, x) in act
+            .after
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| !scope.skip_deps.contains(k))
+        {
             match self.placed[x.target] {
                 Some((_, end)) => {
                     let lo = end.saturating_add(x.min_delay);
@@ -81,7 +87,12 @@ impl State<'_> {
         out.push((Category::SequenceEngines, eng));
         // state_requirement
         let mut req = all();
-        for &(st, v) in &act.requires {
+        for (_, &(st, v)) in act
+            .requires
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| !scope.skip_reqs.contains(k))
+        {
             req = req.intersect(&self.states[st].requirement_valid(v, d, lo, hi));
         }
         out.push((Category::StateRequirement, req));

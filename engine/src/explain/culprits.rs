@@ -1,0 +1,279 @@
+//! Blame: which placed activities hold what the failed activity needed, and the
+//! energy and peak-power queries the app's plots use.
+
+use serde::Serialize;
+
+use super::{Culprit, Explanation, Phase};
+use crate::scheduler::{Category, GeneratedKind, Outcome, Phase2Reason, Schedule, State};
+
+/// One consumer of energy or peak power.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Consumer {
+    /// The activity (for heating: the activity heated for); `None` for the rover's
+    /// awake draw.
+    pub activity: Option<usize>,
+    /// `activity`, `preheat`, `maintenance` or `awake`.
+    pub kind: &'static str,
+    /// Zone index for heating.
+    pub zone: Option<usize>,
+    /// Energy used in the range (mJ), or peak power at the instant (mW).
+    pub amount: i64,
+}
+
+/// One power draw after some step.
+struct Load {
+    kind: &'static str,
+    activity: Option<usize>,
+    zone: Option<usize>,
+    start: i64,
+    end: i64,
+    energy_mw: i64,
+    peak_mw: i64,
+}
+
+/// Everything drawing power after step `k` (activities, awake periods, heating).
+fn loads(sched: &Schedule, k: usize) -> Vec<Load> {
+    let pb = &sched.problem;
+    let mut out = Vec::new();
+    for st in sched.steps.iter().take(k) {
+        if let Outcome::Scheduled { start, end } = st.outcome {
+            let act = &pb.acts[st.activity];
+            out.push(Load {
+                kind: "activity",
+                activity: Some(st.activity),
+                zone: None,
+                start,
+                end,
+                energy_mw: act.energy,
+                peak_mw: act.peak,
+            });
+        }
+    }
+    for g in sched.generated_after(k) {
+        let (kind, activity, zone) = match g.kind {
+            GeneratedKind::Awake => ("awake", None, None),
+            GeneratedKind::Preheat { zone, activity } => ("preheat", Some(activity), Some(zone)),
+            GeneratedKind::Maintenance { zone, activity } => {
+                ("maintenance", Some(activity), Some(zone))
+            }
+        };
+        out.push(Load {
+            kind,
+            activity,
+            zone,
+            start: g.start,
+            end: g.end,
+            energy_mw: g.power_mw,
+            peak_mw: g.power_mw,
+        });
+    }
+    out
+}
+
+/// Energy used on `[from, t)` after step `k`, ranked (largest first; ties by
+/// activity). With `since_full`, `from` is the last time at or before `t` that the
+/// battery was full (else the plan start). Heating is listed per demand (a zone
+/// heater draws the largest demand, so overlapping demands of one zone are counted
+/// once each here, as upper bounds).
+pub fn energy_consumers(
+    sched: &Schedule,
+    k: usize,
+    t: i64,
+    since_full: bool,
+) -> (i64, Vec<Consumer>) {
+    let pb = &sched.problem;
+    let from = if since_full {
+        let state = sched.state_after(k);
+        last_full_before(&state, t).unwrap_or(pb.h0)
+    } else {
+        pb.h0
+    };
+    let mut out: Vec<Consumer> = loads(sched, k)
+        .into_iter()
+        .filter_map(|l| {
+            let overlap = (l.end.min(t) - l.start.max(from)).max(0);
+            let amount = l.energy_mw.saturating_mul(overlap);
+            (amount > 0).then_some(Consumer {
+                activity: l.activity,
+                kind: l.kind,
+                zone: l.zone,
+                amount,
+            })
+        })
+        .collect();
+    out.sort_by(|a, b| {
+        b.amount
+            .cmp(&a.amount)
+            .then(a.activity.cmp(&b.activity))
+            .then(a.kind.cmp(b.kind))
+    });
+    (from, out)
+}
+
+/// Peak-power users at instant `t` after step `k`, ranked by their peak.
+pub fn peak_users(sched: &Schedule, k: usize, t: i64) -> Vec<Consumer> {
+    let mut out: Vec<Consumer> = loads(sched, k)
+        .into_iter()
+        .filter(|l| l.start <= t && t < l.end && l.peak_mw > 0)
+        .map(|l| Consumer {
+            activity: l.activity,
+            kind: l.kind,
+            zone: l.zone,
+            amount: l.peak_mw,
+        })
+        .collect();
+    out.sort_by(|a, b| {
+        b.amount
+            .cmp(&a.amount)
+            .then(a.activity.cmp(&b.activity))
+            .then(a.kind.cmp(b.kind))
+    });
+    out
+}
+
+/// The last time at or before `t` that the state of charge was at capacity.
+fn last_full_before(state: &State<'_>, t: i64) -> Option<i64> {
+    let cap = state.soc.cap();
+    state
+        .soc
+        .profile()
+        .into_iter()
+        .rev()
+        .find(|&(x, l)| x <= t && l >= cap)
+        .map(|(x, _)| x)
+}
+
+/// The culprits of an explained failure, from the state at its failure step.
+pub fn culprits(state: &State<'_>, ex: &Explanation, step_of: &[usize]) -> Vec<Culprit> {
+    let pb = state.pb;
+    let a = ex.activity;
+    let act = &pb.acts[a];
+    let mut out: Vec<Culprit> = Vec::new();
+    let mut push = |x: usize, category: &'static str| {
+        if x != a
+            && !out
+                .iter()
+                .any(|c| c.activity == x && c.category == category)
+        {
+            out.push(Culprit {
+                activity: x,
+                step: step_of[x],
+                category,
+            });
+        }
+    };
+    match ex.phase {
+        Some(Phase::Dependency) | Some(Phase::Group) => {
+            if let Some(x) = ex.blocked_by {
+                push(
+                    x,
+                    if ex.phase == Some(Phase::Group) {
+                        "group"
+                    } else {
+                        "dependency"
+                    },
+                );
+            }
+        }
+        Some(Phase::ValidIntervals) => {
+            let d = ex.duration;
+            // The span the activity could occupy: its windows, widened by its duration.
+            let span_lo = act.windows.iter().map(|w| w.start).min().unwrap_or(pb.h0);
+            let span_hi = act.windows.iter().map(|w| w.end + d).max().unwrap_or(pb.h1);
+            let overlaps = |(s, e): (i64, i64)| s < span_hi && span_lo < e;
+            let blamed: Vec<Category> = {
+                let mut v: Vec<Category> = ex.conflicts.iter().flatten().copied().collect();
+                v.sort();
+                v.dedup();
+                v
+            };
+            for cat in blamed {
+                let name = cat.name();
+                for (x, placed) in state.placed.iter().enumerate() {
+                    let Some(iv) = *placed else { continue };
+                    let other = &pb.acts[x];
+                    let hit = match cat {
+                        Category::Execution => false,
+                        Category::Dependency => act.after.iter().any(|dep| dep.target == x),
+                        Category::UnitResource => {
+                            overlaps(iv)
+                                && other.resources.iter().any(|r| act.resources.contains(r))
+                        }
+                        Category::SequenceEngines => overlaps(iv) && other.engines > 0,
+                        Category::StateRequirement => {
+                            overlaps(iv)
+                                && other
+                                    .effects
+                                    .iter()
+                                    .any(|e| act.requires.iter().any(|r| r.0 == e.0 && r.1 != e.1))
+                        }
+                        Category::StateEffect => {
+                            other
+                                .requires
+                                .iter()
+                                .any(|r| act.effects.iter().any(|e| e.0 == r.0 && e.1 != r.1))
+                                && iv.1 > span_lo
+                        }
+                        Category::DataVolume => other.data > 0 && iv.0 < span_hi,
+                        Category::Uhf => {
+                            overlaps(iv)
+                                && (other.comm.is_some_and(|k| !act.allows(k))
+                                    || act.comm.is_some_and(|k| !other.allows(k)))
+                        }
+                    };
+                    if hit {
+                        push(x, name);
+                    }
+                }
+            }
+        }
+        Some(Phase::Placement) => {
+            for r in &ex.reasons {
+                let kind = r.reason.kind();
+                match r.reason {
+                    Phase2Reason::ForcedSleep { sleep: Some(x) }
+                    | Phase2Reason::MinSleep { sleep: x }
+                    | Phase2Reason::MinAwake { sleep: Some(x) } => push(x, kind),
+                    Phase2Reason::MaxPeakPower { at, .. } => {
+                        for (x, placed) in state.placed.iter().enumerate() {
+                            if let Some((s, e)) = *placed {
+                                if s <= at && at < e && pb.acts[x].peak > 0 {
+                                    push(x, kind);
+                                }
+                            }
+                        }
+                    }
+                    Phase2Reason::MinSoc { .. } | Phase2Reason::HandoverSoc { .. } => {
+                        let t = match r.reason {
+                            Phase2Reason::MinSoc { at, .. } => at,
+                            _ => pb.handover_time.unwrap_or(pb.h1),
+                        };
+                        let from = last_full_before(state, t).unwrap_or(pb.h0);
+                        let mut users: Vec<(i64, usize)> = state
+                            .placed
+                            .iter()
+                            .enumerate()
+                            .filter_map(|(x, p)| p.map(|(s, e)| (x, s, e)))
+                            .map(|(x, s, e)| {
+                                (
+                                    pb.acts[x]
+                                        .energy
+                                        .saturating_mul((e.min(t) - s.max(from)).max(0)),
+                                    x,
+                                )
+                            })
+                            .filter(|u| u.0 > 0)
+                            .collect();
+                        users.sort_by(|p, q| q.0.cmp(&p.0).then(p.1.cmp(&q.1)));
+                        for (_, x) in users {
+                            push(x, kind);
+                        }
+                    }
+                    _ => {}
+                }
+            }
+        }
+        None => {}
+    }
+    out
+}

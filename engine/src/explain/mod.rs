@@ -1,0 +1,356 @@
+//! The explainer: why an activity failed and what to change.
+//!
+//! Everything here returns structured values; `text` turns them into sentences.
+//!
+//! **Failure steps in one pass.** The scheduler is greedy and never moves a placed
+//! activity, so the partial schedule after step k is exactly the prefix of the full
+//! run. The explainer replays the run once, and after each step k probes every
+//! failed activity whose failure step is still unknown against that state (with the
+//! spec's inclusion rule for dependencies and requirements). The first k at which a
+//! probe fails is the failure step — exact, with no monotonicity assumption, and
+//! every failed activity is explained in the same replay. Cost: one replay (O(N)
+//! placements) plus, per failed activity f with failure step k_f, k_f + 1 probes;
+//! probes that succeed stop at the first passing start, so the expensive
+//! (exhaustive) probes are one per failed activity.
+
+mod conflicts;
+mod culprits;
+mod suggest;
+mod text;
+
+use serde::Serialize;
+
+pub use conflicts::{Relaxation, minimal_conflicts};
+pub use culprits::{Consumer, energy_consumers, peak_users};
+pub use text::{explanation_notes, format_local};
+
+use crate::error::Error;
+use crate::model::Plan;
+use crate::scheduler::{
+    Category, CategoryIntervals, FailurePhase, Outcome, Phase2Reason, Schedule, Scope, State, Step,
+    run_step, schedule,
+};
+use crate::timeline::IntervalSet;
+
+/// The phase in which an activity failed, as the spec names it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Phase {
+    /// No start satisfies the phase-1 categories together.
+    ValidIntervals,
+    /// Valid intervals exist but phase 2 failed everywhere.
+    Placement,
+    /// A dependency failed or was skipped.
+    Dependency,
+    /// Skipped: another member of its group was scheduled.
+    Group,
+}
+
+impl Phase {
+    /// The spec's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Phase::ValidIntervals => "valid_intervals",
+            Phase::Placement => "placement",
+            Phase::Dependency => "dependency",
+            Phase::Group => "group",
+        }
+    }
+}
+
+/// A range of starts tried in phase 2 that failed for one reason.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct ReasonRange {
+    /// First start of the range.
+    pub first: i64,
+    /// Last start of the range.
+    pub last: i64,
+    /// Duration tried.
+    pub duration: i64,
+    /// The reason, with its numbers (evaluated at `probe`).
+    pub reason: Phase2Reason,
+    /// The start at which the numbers were evaluated.
+    pub probe: i64,
+}
+
+/// An already placed activity that contributes to a failure.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Culprit {
+    /// Activity index.
+    pub activity: usize,
+    /// The step that placed it.
+    pub step: usize,
+    /// The constraint category or phase-2 reason kind it is blamed for.
+    pub category: &'static str,
+}
+
+/// A suggested edit in the spec's edit format, verified by rescheduling.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Suggestion {
+    /// Plain-language description.
+    pub description: String,
+    /// `"plan"` or `"activity:ID"`.
+    pub target: String,
+    /// Replacement top-level fields of the target.
+    pub set: serde_json::Map<String, serde_json::Value>,
+    /// Activities (indices) that were scheduled before the edit and fail after it.
+    pub side_effects: Vec<usize>,
+}
+
+/// Why one activity ended as it did, and what would change it.
+#[derive(Clone, Debug, Serialize)]
+pub struct Explanation {
+    /// Activity index.
+    pub activity: usize,
+    /// Its step in the run.
+    pub step: usize,
+    /// The run's outcome.
+    pub outcome: Outcome,
+    /// Earliest step k (0 <= k < step) at which it fails when placed after steps
+    /// 1..k; `None` for a scheduled activity.
+    pub failure_step: Option<usize>,
+    /// The failure phase at the failure step.
+    pub phase: Option<Phase>,
+    /// The dependency target or group member responsible (phase dependency/group).
+    pub blocked_by: Option<usize>,
+    /// Duration the intervals are for.
+    pub duration: i64,
+    /// Valid starts per category at the failure step (or at its step when
+    /// scheduled).
+    pub categories: Vec<CategoryIntervals>,
+    /// Their intersection within the windows.
+    pub intersection: IntervalSet,
+    /// Every minimal set of categories whose valid intervals do not intersect.
+    pub conflicts: Vec<Vec<Category>>,
+    /// Every minimal set of categories whose removal leaves a start, with a witness.
+    pub relaxations: Vec<Relaxation>,
+    /// Phase-2 failures, grouped into ranges of starts, in the order tried.
+    pub reasons: Vec<ReasonRange>,
+    /// Placed activities to blame.
+    pub culprits: Vec<Culprit>,
+    /// Verified suggestions, least disruptive first.
+    pub suggestions: Vec<Suggestion>,
+}
+
+/// Options for [`explain`].
+#[derive(Clone, Debug, Default)]
+pub struct ExplainOptions {
+    /// Explain only this activity (by id), whatever its outcome.
+    pub activity: Option<String>,
+    /// Skip the (rescheduling) verification of suggestions and list none.
+    pub no_suggestions: bool,
+}
+
+/// Explains every failed or skipped activity of a run (or the one named).
+pub fn explain(
+    plan: &Plan,
+    sched: &Schedule,
+    opts: &ExplainOptions,
+) -> Result<Vec<Explanation>, Error> {
+    let pb = &sched.problem;
+    let targets: Vec<usize> = match &opts.activity {
+        Some(id) => {
+            let a = plan
+                .activities
+                .iter()
+                .position(|x| &x.id == id)
+                .ok_or_else(|| Error::UnknownActivity(id.clone()))?;
+            vec![a]
+        }
+        None => sched
+            .steps
+            .iter()
+            .filter(|s| !matches!(s.outcome, Outcome::Scheduled { .. }))
+            .map(|s| s.activity)
+            .collect(),
+    };
+    let step_of: Vec<usize> = {
+        let mut v = vec![0; pb.acts.len()];
+        for s in &sched.steps {
+            v[s.activity] = s.step;
+        }
+        v
+    };
+    let probes = failure_probes(sched, &targets, &step_of);
+    let mut out = Vec::with_capacity(targets.len());
+    for (a, probe) in targets.iter().copied().zip(probes) {
+        let step = &sched.steps[step_of[a] - 1];
+        let mut ex = match probe {
+            Some((k, record)) => from_probe(sched, a, step, k, record),
+            None => from_step(a, step),
+        };
+        let state = sched.state_after(ex.failure_step.unwrap_or(step.step - 1));
+        ex.culprits = culprits::culprits(&state, &ex, &step_of);
+        if !opts.no_suggestions && ex.failure_step.is_some() {
+            ex.suggestions = suggest::suggestions(plan, sched, &ex, &step_of);
+        }
+        out.push(ex);
+    }
+    Ok(out)
+}
+
+/// The explanation skeleton of a scheduled activity (its own step's record).
+fn from_step(a: usize, step: &Step) -> Explanation {
+    Explanation {
+        activity: a,
+        step: step.step,
+        outcome: step.outcome.clone(),
+        failure_step: None,
+        phase: None,
+        blocked_by: None,
+        duration: step.duration,
+        categories: step.categories.clone(),
+        intersection: step.intersection.clone(),
+        conflicts: Vec::new(),
+        relaxations: Vec::new(),
+        reasons: Vec::new(),
+        culprits: Vec::new(),
+        suggestions: Vec::new(),
+    }
+}
+
+/// The explanation of a failure observed by the probe at step `k`.
+fn from_probe(sched: &Schedule, a: usize, step: &Step, k: usize, record: Step) -> Explanation {
+    let (phase, blocked_by) = match record.outcome {
+        Outcome::Skipped { by } => (Phase::Group, Some(by)),
+        Outcome::Failed(FailurePhase::Dependency { on }) => (Phase::Dependency, Some(on)),
+        Outcome::Failed(FailurePhase::ValidIntervals) => (Phase::ValidIntervals, None),
+        Outcome::Failed(FailurePhase::Placement) | Outcome::Scheduled { .. } => {
+            (Phase::Placement, None)
+        }
+    };
+    let (conflicts, relaxations) = if phase == Phase::ValidIntervals {
+        let pb = &sched.problem;
+        let preferred = pb.acts[a].windows.first().map_or(pb.h0, |w| w.preferred);
+        minimal_conflicts(&record.categories, pb.h0, pb.h1, preferred)
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    let reasons = record
+        .tries
+        .iter()
+        .filter_map(|t| {
+            t.reason.clone().map(|reason| ReasonRange {
+                first: t.starts.lo,
+                last: t.starts.hi,
+                duration: t.duration,
+                reason,
+                probe: t.probe,
+            })
+        })
+        .collect();
+    Explanation {
+        activity: a,
+        step: step.step,
+        outcome: step.outcome.clone(),
+        failure_step: Some(k),
+        phase: Some(phase),
+        blocked_by,
+        duration: record.duration,
+        categories: record.categories,
+        intersection: record.intersection,
+        conflicts,
+        relaxations,
+        reasons,
+        culprits: Vec::new(),
+        suggestions: Vec::new(),
+    }
+}
+
+/// The inclusion rule: at step k, a dependency or requirement of `a` counts only
+/// when every activity that could satisfy it and comes before `a` is among steps
+/// 1..k.
+pub fn inclusion_scope(
+    pb: &crate::scheduler::Problem,
+    a: usize,
+    k: usize,
+    step_of: &[usize],
+) -> Scope {
+    let act = &pb.acts[a];
+    let mine = step_of[a];
+    let pending = |x: usize| x != a && step_of[x] < mine && step_of[x] > k;
+    let skip_deps = act
+        .after
+        .iter()
+        .enumerate()
+        .filter(|(_, d)| pending(d.target))
+        .map(|(i, _)| i)
+        .collect();
+    let skip_reqs = act
+        .requires
+        .iter()
+        .enumerate()
+        .filter(|(_, (st, v))| {
+            pb.acts.iter().enumerate().any(|(x, other)| {
+                pending(x) && other.effects.iter().any(|e| e.0 == *st && e.1 == *v)
+            })
+        })
+        .map(|(i, _)| i)
+        .collect();
+    Scope {
+        skip_deps,
+        skip_reqs,
+    }
+}
+
+/// For each target: `Some((k, record))` with its failure step and the probe's step
+/// record there, or `None` when it schedules at its own step (a scheduled activity).
+fn failure_probes(
+    sched: &Schedule,
+    targets: &[usize],
+    step_of: &[usize],
+) -> Vec<Option<(usize, Step)>> {
+    let pb = &sched.problem;
+    let mut found: Vec<Option<(usize, Step)>> = vec![None; targets.len()];
+    let mut open: Vec<bool> = targets
+        .iter()
+        .map(|&a| {
+            !matches!(
+                sched.steps[step_of[a] - 1].outcome,
+                Outcome::Scheduled { .. }
+            )
+        })
+        .collect();
+    let mut state = State::new(pb);
+    for k in 0..sched.steps.len() {
+        for (i, &a) in targets.iter().enumerate() {
+            if !open[i] || step_of[a] <= k {
+                continue;
+            }
+            let scope = inclusion_scope(pb, a, k, step_of);
+            let (record, placement) = run_step(&state, a, step_of[a], &scope);
+            if placement.is_none() {
+                found[i] = Some((k, record));
+                open[i] = false;
+            }
+        }
+        if !open.iter().any(|o| *o) {
+            break;
+        }
+        let step = &sched.steps[k];
+        if let Outcome::Scheduled { start, end } = step.outcome {
+            if let Ok(ev) = state.evaluate(step.activity, start, end - start) {
+                state.apply(step.step, &ev.placement);
+            }
+        }
+    }
+    found
+}
+
+/// Reschedules `plan` and reports whether activity `a` is scheduled, with the
+/// activities scheduled in `before` that are not any more.
+pub fn reschedule_outcome(plan: &Plan, a: usize, before: &Schedule) -> Option<Vec<usize>> {
+    let after = schedule(plan).ok()?;
+    after.placement(a)?;
+    Some(
+        before
+            .steps
+            .iter()
+            .filter(|s| {
+                matches!(s.outcome, Outcome::Scheduled { .. })
+                    && after.placement(s.activity).is_none()
+            })
+            .map(|s| s.activity)
+            .collect(),
+    )
+}

@@ -1,0 +1,355 @@
+//! Suggestions: concrete edits in the spec's edit format, each verified by
+//! rescheduling the edited plan, ranked by least disruption.
+
+use serde_json::{Map, Value, json};
+
+use super::{Explanation, Phase, Suggestion, reschedule_outcome};
+use crate::model::Plan;
+use crate::scheduler::{Category, MJ_PER_WH, MW_PER_W, Phase2Reason, Schedule};
+use crate::validate::validate;
+
+/// A candidate edit before verification.
+struct Candidate {
+    description: String,
+    target: String,
+    set: Map<String, Value>,
+}
+
+fn set1(key: &str, value: Value) -> Map<String, Value> {
+    let mut m = Map::new();
+    m.insert(key.to_string(), value);
+    m
+}
+
+/// Applies an edit to a plan (replacing top-level fields of the target object).
+pub fn apply_edit(plan: &Plan, target: &str, set: &Map<String, Value>) -> Option<Plan> {
+    let mut v = serde_json::to_value(plan).ok()?;
+    let obj = if target == "plan" {
+        v.as_object_mut()?
+    } else {
+        let id = target.strip_prefix("activity:")?;
+        v.get_mut("activities")?
+            .as_array_mut()?
+            .iter_mut()
+            .find(|a| a.get("id").and_then(Value::as_str) == Some(id))?
+            .as_object_mut()?
+    };
+    for (k, x) in set {
+        if x.is_null() {
+            obj.remove(k);
+        } else {
+            obj.insert(k.clone(), x.clone());
+        }
+    }
+    let plan: Plan = serde_json::from_value(v).ok()?;
+    validate(&plan).ok()?;
+    Some(plan)
+}
+
+/// Verified suggestions for one explanation.
+pub fn suggestions(
+    plan: &Plan,
+    sched: &Schedule,
+    ex: &Explanation,
+    step_of: &[usize],
+) -> Vec<Suggestion> {
+    let a = ex.activity;
+    let activity = &plan.activities[a];
+    let id = &activity.id;
+    let me = format!("activity:{id}");
+    let pb = &sched.problem;
+    let mut cands: Vec<Candidate> = Vec::new();
+
+    match ex.phase {
+        Some(Phase::Group) => {
+            cands.push(Candidate {
+                description: format!(
+                    "Take {id} out of its group so it no longer excludes or is excluded"
+                ),
+                target: me.clone(),
+                set: set1("group", Value::Null),
+            });
+        }
+        Some(Phase::Dependency) => {
+            if let Some(t) = ex.blocked_by {
+                let other = &plan.activities[t].id;
+                let after: Vec<Value> = activity
+                    .after
+                    .iter()
+                    .filter(|d| &d.activity != other)
+                    .filter_map(|d| serde_json::to_value(d).ok())
+                    .collect();
+                cands.push(Candidate {
+                    description: format!(
+                        "Drop the dependency of {id} on {other} (which did not schedule)"
+                    ),
+                    target: me.clone(),
+                    set: set1("after", Value::Array(after)),
+                });
+            }
+        }
+        Some(Phase::ValidIntervals) => {
+            for r in &ex.relaxations {
+                let w = r.witness;
+                if r.categories == [Category::Execution] {
+                    if let Some(c) = widen_window(activity, pb.h0, pb.h1, w, ex.duration) {
+                        cands.push(c);
+                    }
+                }
+                if r.categories == [Category::Dependency] {
+                    for (j, dep) in activity.after.iter().enumerate() {
+                        let mut after: Vec<Value> = activity
+                            .after
+                            .iter()
+                            .filter_map(|d| serde_json::to_value(d).ok())
+                            .collect();
+                        after.remove(j);
+                        cands.push(Candidate {
+                            description: format!("Drop the dependency of {id} on {}", dep.activity),
+                            target: me.clone(),
+                            set: set1("after", Value::Array(after)),
+                        });
+                    }
+                }
+                if r.categories == [Category::SequenceEngines] {
+                    let n = plan.sequence_engines.unwrap_or(0) + 1;
+                    cands.push(Candidate {
+                        description: format!("Raise the number of sequence engines to {n}"),
+                        target: "plan".into(),
+                        set: set1("sequence_engines", json!(n)),
+                    });
+                }
+                if r.categories == [Category::StateRequirement] {
+                    for req in &activity.requires {
+                        if let Some(def) = plan.states.get(&req.state) {
+                            if def.initial != req.value {
+                                let mut states =
+                                    serde_json::to_value(&plan.states).unwrap_or(Value::Null);
+                                states[&req.state]["initial"] = json!(req.value);
+                                cands.push(Candidate {
+                                    description: format!(
+                                        "Start the plan with {} = {} (instead of {})",
+                                        req.state, req.value, def.initial
+                                    ),
+                                    target: "plan".into(),
+                                    set: set1("states", states),
+                                });
+                            }
+                        }
+                    }
+                }
+                if r.categories == [Category::DataVolume] {
+                    if let Some(cap) = plan.data.capacity {
+                        let extra = activity.data_rate.max(0.0) * ex.duration as f64;
+                        let mut data = serde_json::to_value(plan.data).unwrap_or(Value::Null);
+                        data["capacity"] = json!(round3(cap + extra));
+                        cands.push(Candidate {
+                            description: format!(
+                                "Raise the data capacity to {} Mbit",
+                                round3(cap + extra)
+                            ),
+                            target: "plan".into(),
+                            set: set1("data", data),
+                        });
+                    }
+                }
+            }
+        }
+        Some(Phase::Placement) => {
+            let mut best_soc: Option<i64> = None;
+            let mut best_handover: Option<i64> = None;
+            let mut best_peak: Option<i64> = None;
+            let mut operability: Option<(usize, i64)> = None;
+            for r in &ex.reasons {
+                match r.reason {
+                    Phase2Reason::MinSoc { soc_mj, .. } => best_soc = best_soc.max(Some(soc_mj)),
+                    Phase2Reason::HandoverSoc { soc_mj } => {
+                        best_handover = best_handover.max(Some(soc_mj))
+                    }
+                    Phase2Reason::MaxPeakPower { peak_mw, .. } => {
+                        best_peak = Some(best_peak.map_or(peak_mw, |p| p.min(peak_mw)))
+                    }
+                    Phase2Reason::PreheatOperability {
+                        zone,
+                        preheat_start,
+                    } => {
+                        operability.get_or_insert((zone, preheat_start));
+                    }
+                    _ => {}
+                }
+            }
+            if let Some(mj) = best_soc {
+                let wh = floor3(mj as f64 / MJ_PER_WH);
+                let mut battery = serde_json::to_value(plan.battery).unwrap_or(Value::Null);
+                battery["min_soc"] = json!(wh.max(0.0));
+                cands.push(Candidate {
+                    description: format!("Lower the minimum state of charge to {wh} Wh"),
+                    target: "plan".into(),
+                    set: set1("battery", battery),
+                });
+            }
+            if let (Some(mj), Some(h)) = (best_handover, plan.handover) {
+                let wh = floor3(mj as f64 / MJ_PER_WH);
+                let mut handover = serde_json::to_value(h).unwrap_or(Value::Null);
+                handover["min_soc"] = json!(wh.max(0.0));
+                cands.push(Candidate {
+                    description: format!("Lower the handover state of charge to {wh} Wh"),
+                    target: "plan".into(),
+                    set: set1("handover", handover),
+                });
+                cands.push(Candidate {
+                    description: format!(
+                        "Make {id} mandatory (handover limits bind only optional activities)"
+                    ),
+                    target: me.clone(),
+                    set: set1("mandatory", json!(true)),
+                });
+            }
+            if let Some(mw) = best_peak {
+                let w = (mw as f64 / MW_PER_W).ceil();
+                let mut power = serde_json::to_value(plan.power).unwrap_or(Value::Null);
+                power["max_peak"] = json!(w);
+                cands.push(Candidate {
+                    description: format!("Raise the peak power limit to {w} W"),
+                    target: "plan".into(),
+                    set: set1("power", power),
+                });
+            }
+            if let Some((z, ps)) = operability {
+                let name = &pb.zone_names[z];
+                if let Some(zone) = plan.thermal_zones.get(name) {
+                    let tod = pb.tod(ps);
+                    let mut zones =
+                        serde_json::to_value(&plan.thermal_zones).unwrap_or(Value::Null);
+                    let mut periods: Vec<Value> = zone
+                        .operable
+                        .iter()
+                        .flatten()
+                        .filter_map(|p| serde_json::to_value(p).ok())
+                        .collect();
+                    // Extend the period starting nearest after the preheat back to it.
+                    let next = zone
+                        .operable
+                        .iter()
+                        .flatten()
+                        .enumerate()
+                        .min_by_key(|(_, p)| (p.from - tod).rem_euclid(pb.sol));
+                    if let Some((i, p)) = next {
+                        periods[i] = json!({ "from": tod, "to": p.to });
+                        zones[name]["operable"] = Value::Array(periods);
+                        cands.push(Candidate {
+                            description: format!(
+                                "Allow {name} heating from {} local time",
+                                super::format_local(pb, ps)
+                            ),
+                            target: "plan".into(),
+                            set: set1("thermal_zones", zones),
+                        });
+                    }
+                }
+            }
+        }
+        None => {}
+    }
+    // Re-prioritise ahead of each blocking activity (once per distinct priority).
+    let mut blockers: Vec<(i64, usize)> = ex
+        .culprits
+        .iter()
+        .filter(|c| c.step < step_of[a])
+        .map(|c| (plan.activities[c.activity].priority, c.activity))
+        .collect();
+    blockers.sort_unstable();
+    if let Some(&(p, x)) = blockers.first() {
+        cands.push(Candidate {
+            description: format!(
+                "Schedule {id} before {} by giving it priority {}",
+                plan.activities[x].id,
+                p.saturating_sub(1)
+            ),
+            target: me.clone(),
+            set: set1("priority", json!(p.saturating_sub(1))),
+        });
+    }
+
+    let mut out: Vec<Suggestion> = Vec::new();
+    for c in cands {
+        if out.iter().any(|s| s.target == c.target && s.set == c.set) {
+            continue;
+        }
+        let Some(edited) = apply_edit(plan, &c.target, &c.set) else {
+            continue;
+        };
+        if let Some(side_effects) = reschedule_outcome(&edited, a, sched) {
+            out.push(Suggestion {
+                description: c.description,
+                target: c.target,
+                set: c.set,
+                side_effects,
+            });
+        }
+    }
+    out.sort_by_key(|s| s.side_effects.len());
+    out
+}
+
+/// Widens the window nearest `w` so that `w` is a start it allows.
+fn widen_window(
+    activity: &crate::model::Activity,
+    h0: i64,
+    h1: i64,
+    w: i64,
+    d: i64,
+) -> Option<Candidate> {
+    let mut windows: Vec<crate::model::Window> = activity.windows.clone().unwrap_or_else(|| {
+        vec![crate::model::Window {
+            start: h0,
+            end: h1,
+            preferred: None,
+            cutoff: None,
+        }]
+    });
+    let (i, _) = windows.iter().enumerate().min_by_key(|(_, x)| {
+        if w < x.start {
+            x.start - w
+        } else {
+            (w - x.end).max(0)
+        }
+    })?;
+    let win = &mut windows[i];
+    let what = if w < win.start {
+        win.start = w;
+        format!("start at {w}")
+    } else if w > win.end {
+        win.end = w;
+        format!("end at {w}")
+    } else {
+        String::new()
+    };
+    let mut what = what;
+    if let Some(c) = win.cutoff {
+        if w + d > c {
+            win.cutoff = Some(w + d);
+            what = if what.is_empty() {
+                format!("cutoff at {}", w + d)
+            } else {
+                format!("{what}, cutoff at {}", w + d)
+            };
+        }
+    }
+    if what.is_empty() {
+        return None;
+    }
+    Some(Candidate {
+        description: format!("Widen window {} of {} to {what}", i + 1, activity.id),
+        target: format!("activity:{}", activity.id),
+        set: set1("windows", serde_json::to_value(&windows).ok()?),
+    })
+}
+
+fn round3(x: f64) -> f64 {
+    (x * 1000.0).round() / 1000.0
+}
+
+fn floor3(x: f64) -> f64 {
+    (x * 1000.0).floor() / 1000.0
+}

@@ -1,0 +1,213 @@
+//! Planner-facing sentences for explanations. Pure formatting: no decisions here.
+
+use super::{Explanation, Phase};
+use crate::model::Plan;
+use crate::scheduler::{Category, MJ_PER_WH, MW_PER_W, Phase2Reason, Problem};
+use crate::timeline::IntervalSet;
+
+/// Local time of day of plan time `t` as `hh:mm:ss`.
+pub fn format_local(pb: &Problem, t: i64) -> String {
+    let tod = pb.tod(t);
+    format!("{:02}:{:02}:{:02}", tod / 3600, (tod / 60) % 60, tod % 60)
+}
+
+fn at(pb: &Problem, t: i64) -> String {
+    format!("{t} ({})", format_local(pb, t))
+}
+
+fn wh(mj: i64) -> String {
+    format!("{:.1} Wh", mj as f64 / MJ_PER_WH)
+}
+
+fn watts(mw: i64) -> String {
+    format!("{:.1} W", mw as f64 / MW_PER_W)
+}
+
+fn describe_set(pb: &Problem, set: &IntervalSet) -> String {
+    let ivs = set.intervals();
+    if ivs.is_empty() {
+        return "no start at all".into();
+    }
+    let shown: Vec<String> = ivs
+        .iter()
+        .take(3)
+        .map(|iv| {
+            if iv.lo == iv.hi {
+                at(pb, iv.lo)
+            } else if iv.lo <= pb.h0 && iv.hi >= pb.h1 {
+                "any start".into()
+            } else if iv.lo <= pb.h0 {
+                format!("starts up to {}", at(pb, iv.hi))
+            } else if iv.hi >= pb.h1 {
+                format!("starts from {}", at(pb, iv.lo))
+            } else {
+                format!("starts {}–{}", at(pb, iv.lo), at(pb, iv.hi))
+            }
+        })
+        .collect();
+    let more = if ivs.len() > 3 {
+        format!(" and {} more ranges", ivs.len() - 3)
+    } else {
+        String::new()
+    };
+    format!("{}{more}", shown.join(", "))
+}
+
+fn category_phrase(c: Category) -> &'static str {
+    match c {
+        Category::Execution => "its windows and the plan bounds",
+        Category::Dependency => "its dependencies",
+        Category::UnitResource => "its unit resources (used by other activities)",
+        Category::SequenceEngines => "the free sequence engines",
+        Category::StateRequirement => "its required states",
+        Category::StateEffect => "what its state changes would break",
+        Category::DataVolume => "the data storage limits",
+        Category::Uhf => "the UHF/comm passes it may not overlap",
+    }
+}
+
+/// The plain-language notes of an explanation.
+pub fn explanation_notes(plan: &Plan, pb: &Problem, ex: &Explanation) -> Vec<String> {
+    let name = |a: usize| plan.activities[a].display_name().to_string();
+    let me = name(ex.activity);
+    let mut notes = Vec::new();
+    let Some(phase) = ex.phase else {
+        notes.push(format!("{me} is scheduled (step {}).", ex.step));
+        return notes;
+    };
+    let when = match ex.failure_step {
+        Some(0) => "It cannot be scheduled even in an empty plan.".to_string(),
+        Some(k) => format!("It first fails once the activities of steps 1–{k} are placed."),
+        None => String::new(),
+    };
+    match phase {
+        Phase::Group => {
+            let by = ex.blocked_by.map(name).unwrap_or_default();
+            notes.push(format!(
+                "{me} was skipped: {by}, from the same group, was already scheduled (only one of a group is kept)."
+            ));
+        }
+        Phase::Dependency => {
+            let by = ex.blocked_by.map(name).unwrap_or_default();
+            notes.push(format!(
+                "{me} must come after {by}, which did not get scheduled, so {me} cannot be either."
+            ));
+        }
+        Phase::ValidIntervals => {
+            notes.push(format!(
+                "No start time of {me} satisfies all its constraints at once. {when}"
+            ));
+            for conflict in &ex.conflicts {
+                let parts: Vec<String> = conflict
+                    .iter()
+                    .filter_map(|c| ex.categories.iter().find(|x| x.category == *c))
+                    .map(|c| {
+                        format!(
+                            "{} allow {}",
+                            category_phrase(c.category),
+                            describe_set(pb, &c.valid)
+                        )
+                    })
+                    .collect();
+                notes.push(format!("These cannot hold together: {}.", parts.join("; ")));
+            }
+            for r in ex.relaxations.iter().take(4) {
+                let cats: Vec<&str> = r.categories.iter().map(|c| category_phrase(*c)).collect();
+                notes.push(format!(
+                    "Without {} it could start at {}.",
+                    cats.join(" and "),
+                    at(pb, r.witness)
+                ));
+            }
+        }
+        Phase::Placement => {
+            notes.push(format!(
+                "Some start times pass every constraint on timing and resources, but each fails on power, sleep or heating. {when}"
+            ));
+            for r in ex.reasons.iter().take(8) {
+                let range = if r.first == r.last {
+                    format!("At {}", at(pb, r.first))
+                } else {
+                    format!("For starts {}–{}", at(pb, r.first), at(pb, r.last))
+                };
+                let why = match &r.reason {
+                    Phase2Reason::MinSoc { at: t, soc_mj } => format!(
+                        "the battery would fall to {} at {}, below the {} minimum",
+                        wh(*soc_mj),
+                        at(pb, *t),
+                        wh(i64::try_from(pb.min_soc).unwrap_or(i64::MAX))
+                    ),
+                    Phase2Reason::HandoverSoc { soc_mj } => format!(
+                        "the battery at handover would be {}, below the {} handover minimum",
+                        wh(*soc_mj),
+                        wh(pb
+                            .handover_soc
+                            .and_then(|x| i64::try_from(x).ok())
+                            .unwrap_or(0))
+                    ),
+                    Phase2Reason::MaxPeakPower { at: t, peak_mw } => format!(
+                        "peak power would reach {} at {}, above the {} limit",
+                        watts(*peak_mw),
+                        at(pb, *t),
+                        watts(pb.max_peak.unwrap_or(0))
+                    ),
+                    Phase2Reason::ForcedSleep { sleep } => match sleep {
+                        Some(x) => format!(
+                            "the rover would have to be awake during the manual sleep {}",
+                            name(*x)
+                        ),
+                        None => {
+                            "the rover is awake then, but this activity is a manual sleep".into()
+                        }
+                    },
+                    Phase2Reason::MinSleep { sleep } => format!(
+                        "the sleep between awake periods would be too short, and merging them would run through the manual sleep {}",
+                        name(*sleep)
+                    ),
+                    Phase2Reason::MinAwake { sleep } => match sleep {
+                        Some(x) => format!(
+                            "the awake period cannot be made long enough without running into the manual sleep {}",
+                            name(*x)
+                        ),
+                        None => {
+                            "the awake period cannot be made long enough inside the plan".into()
+                        }
+                    },
+                    Phase2Reason::PreheatOutsidePlan {
+                        zone,
+                        preheat_start,
+                    } => format!(
+                        "the {} preheat would have to start at {}, before the plan begins",
+                        pb.zone_names[*zone],
+                        at(pb, *preheat_start)
+                    ),
+                    Phase2Reason::PreheatOperability {
+                        zone,
+                        preheat_start,
+                    } => format!(
+                        "the {} preheat would start at {}, outside the times that zone may be heated",
+                        pb.zone_names[*zone],
+                        at(pb, *preheat_start)
+                    ),
+                };
+                notes.push(format!("{range}, {why}."));
+            }
+            if ex.reasons.len() > 8 {
+                notes.push(format!(
+                    "({} more ranges of starts were tried.)",
+                    ex.reasons.len() - 8
+                ));
+            }
+        }
+    }
+    if !ex.culprits.is_empty() {
+        let names: Vec<String> = ex
+            .culprits
+            .iter()
+            .take(6)
+            .map(|c| format!("{} (step {}, {})", name(c.activity), c.step, c.category))
+            .collect();
+        notes.push(format!("Involved: {}.", names.join(", ")));
+    }
+    notes
+}
