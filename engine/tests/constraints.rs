@@ -1,3 +1,5 @@
+#![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
+
 //! One hand-worked scenario per constraint category and per phase-2 rule: the
 //! expected starts, failures and generated activities are derived by hand in the
 //! comments, so each test fails if its constraint is ignored or misapplied.
@@ -53,7 +55,7 @@ fn failed(doc: &Value, id: &str) {
     assert_eq!(outcome(doc, id).0, "failed", "{id} should fail");
 }
 
-fn step_of<'a>(s: &'a Schedule, idx: usize) -> &'a solscope_engine::Step {
+fn step_of(s: &Schedule, idx: usize) -> &solscope_engine::Step {
     s.step_of(idx).expect("step")
 }
 

@@ -120,6 +120,10 @@ mod tests {
         }
     }
 
+    fn subset(a: usize, b: usize) -> bool {
+        a & b == a
+    }
+
     /// Brute force over subsets: a subset conflicts when no start in [lo, hi] is
     /// valid for all its categories.
     fn brute(cs: &[CategoryIntervals], lo: i64, hi: i64) -> Vec<Vec<Category>> {
@@ -131,7 +135,7 @@ mod tests {
         let mut subsets: Vec<usize> = (1..1usize << n).collect();
         subsets.sort_by_key(|s| s.count_ones());
         for s in subsets {
-            if conflict(s) && !out.iter().any(|&o| o & s == o) {
+            if conflict(s) && !out.iter().any(|o| subset(*o, s)) {
                 out.push(s);
             }
         }
