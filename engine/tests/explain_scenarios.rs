@@ -1,0 +1,292 @@
+#![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
+//! One scenario per failure kind of the published Crosscheck figures, with the
+//! phase, failure step, conflicts and culprits worked out by hand in comments.
+
+use serde_json::{Value, json};
+use solscope_engine::{
+    Category, ExplainOptions, Explanation, Phase, Phase2Reason, Plan, Schedule, energy_consumers,
+    explain, load_plan, partial_schedule, peak_users, schedule, valid_intervals_at,
+};
+
+fn plan(extra: Value, activities: Value) -> Plan {
+    let mut p = json!({
+        "format": "solscope.plan/1",
+        "horizon": { "start": 0, "end": 10000 },
+        "battery": { "capacity": 1000.0, "initial": 1000.0, "min_soc": 0.0 },
+        "power": { "rtg": 0.0, "asleep": 0.0, "awake": 0.0 },
+        "activities": activities
+    });
+    for (k, v) in extra.as_object().expect("object") {
+        p[k] = v.clone();
+    }
+    load_plan(&p.to_string()).expect("valid").plan
+}
+
+fn explain_one(plan: &Plan, id: &str) -> (Schedule, Explanation) {
+    let s = schedule(plan).expect("schedules");
+    let opts = ExplainOptions {
+        activity: Some(id.into()),
+        no_suggestions: false,
+    };
+    let mut ex = explain(plan, &s, &opts).expect("explains");
+    (s, ex.remove(0))
+}
+
+fn culprits(plan: &Plan, ex: &Explanation) -> Vec<(String, usize, &'static str)> {
+    ex.culprits
+        .iter()
+        .map(|c| (plan.activities[c.activity].id.clone(), c.step, c.category))
+        .collect()
+}
+
+fn c(id: &str, step: usize, cat: &'static str) -> (String, usize, &'static str) {
+    (id.to_string(), step, cat)
+}
+
+#[test]
+fn uhf_pass_against_the_window() {
+    let p = plan(
+        json!({}),
+        json!([
+            { "id": "uhf_pass", "priority": 1, "duration": 600, "awake": "any", "comm_kind": "uhf",
+              "windows": [ { "start": 1000, "end": 1000 } ] },
+            // Execution allows [1100, 1400]; the pass [1000, 1600) forbids starts in
+            // (700, 1600). Alone (k = 0) it fits, after step 1 it does not.
+            { "id": "obs", "priority": 2, "duration": 300, "awake": "any", "uhf_interactions": [],
+              "windows": [ { "start": 1100, "end": 1400 } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "obs");
+    assert_eq!(ex.phase, Some(Phase::ValidIntervals));
+    assert_eq!(ex.failure_step, Some(1));
+    assert_eq!(ex.conflicts, vec![vec![Category::Execution, Category::Uhf]]);
+    assert_eq!(culprits(&p, &ex), vec![c("uhf_pass", 1, "uhf")]);
+    // Relaxing the window: 700 is the allowed start nearest the preferred 1100.
+    let witness = |cats: &[Category]| {
+        ex.relaxations
+            .iter()
+            .find(|r| r.categories == cats)
+            .map(|r| r.witness)
+    };
+    assert_eq!(witness(&[Category::Execution]), Some(700));
+    assert_eq!(witness(&[Category::Uhf]), Some(1100));
+    // A verified suggestion widens the window to 700.
+    assert!(
+        ex.suggestions
+            .iter()
+            .any(|s| s.description.contains("start at 700")),
+        "{:?}",
+        ex.suggestions
+    );
+}
+
+#[test]
+fn dependency_window_and_unit_resource_conflict_together() {
+    let p = plan(
+        json!({}),
+        json!([
+            { "id": "drive", "priority": 1, "duration": 2000, "awake": "any", "resources": ["mobility"],
+              "windows": [ { "start": 0, "end": 0 } ] },
+            { "id": "arm_task", "priority": 2, "duration": 600, "awake": "any", "resources": ["arm"],
+              "windows": [ { "start": 2000, "end": 2000 } ] },
+            // Execution [1500, 2400]; after drive: >= 2000; arm busy [2000, 2600):
+            // starts (1800, 2600) forbidden. Every pair intersects, all three do not.
+            // k = 0: drive pending (excluded), arm free -> fits. k = 1: [2000, 2400]
+            // fits. k = 2: fails.
+            { "id": "img", "priority": 3, "duration": 200, "awake": "any", "resources": ["arm"],
+              "windows": [ { "start": 1500, "end": 2400 } ], "after": [ { "activity": "drive" } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "img");
+    assert_eq!(ex.phase, Some(Phase::ValidIntervals));
+    assert_eq!(ex.failure_step, Some(2));
+    assert_eq!(
+        ex.conflicts,
+        vec![vec![
+            Category::Execution,
+            Category::Dependency,
+            Category::UnitResource
+        ]]
+    );
+    let mut blamed = culprits(&p, &ex);
+    blamed.sort();
+    assert_eq!(
+        blamed,
+        vec![
+            c("arm_task", 2, "unit_resource"),
+            c("drive", 1, "dependency")
+        ]
+    );
+    let witness = |cats: &[Category]| {
+        ex.relaxations
+            .iter()
+            .find(|r| r.categories == cats)
+            .map(|r| r.witness)
+    };
+    assert_eq!(witness(&[Category::Execution]), Some(2600));
+    assert_eq!(witness(&[Category::Dependency]), Some(1500));
+    assert_eq!(witness(&[Category::UnitResource]), Some(2000));
+}
+
+#[test]
+fn unsatisfied_state_requirement() {
+    let p = plan(
+        json!({ "states": { "arm": { "values": ["stowed", "unstowed"], "initial": "stowed" } } }),
+        json!([
+            { "id": "unstow", "priority": 1, "duration": 500, "awake": "any",
+              "windows": [ { "start": 1000, "end": 1000 } ],
+              "effects": [ { "state": "arm", "value": "unstowed" } ] },
+            { "id": "stow", "priority": 2, "duration": 500, "awake": "any",
+              "windows": [ { "start": 3000, "end": 3000 } ],
+              "effects": [ { "state": "arm", "value": "stowed" } ] },
+            // Unstowed on [1500, 3500): a 1600 s task fits only at starts 1500..1900,
+            // but its window starts at 2000. k = 0: the requirement is excluded
+            // (unstow pending); k = 1: unstowed from 1500 on, fits; k = 2: fails.
+            { "id": "task", "priority": 3, "duration": 1600, "awake": "any",
+              "windows": [ { "start": 2000, "end": 4000 } ],
+              "requires": [ { "state": "arm", "value": "unstowed" } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "task");
+    assert_eq!(ex.phase, Some(Phase::ValidIntervals));
+    assert_eq!(ex.failure_step, Some(2));
+    assert_eq!(
+        ex.conflicts,
+        vec![vec![Category::Execution, Category::StateRequirement]]
+    );
+    assert_eq!(culprits(&p, &ex), vec![c("stow", 2, "state_requirement")]);
+}
+
+#[test]
+fn state_of_charge() {
+    // 144 W for 100 s = 4 Wh; 72 W for 100 s = 2 Wh. Battery 10 -> 6 after big; x
+    // would take it to 4 < 5.
+    let p = plan(
+        json!({ "battery": { "capacity": 10.0, "initial": 10.0, "min_soc": 5.0 } }),
+        json!([
+            { "id": "big", "priority": 1, "duration": 100, "awake": "any", "energy_rate": 144.0,
+              "windows": [ { "start": 0, "end": 0 } ] },
+            { "id": "x", "priority": 2, "duration": 100, "awake": "any", "energy_rate": 72.0,
+              "windows": [ { "start": 500, "end": 900 } ] }
+        ]),
+    );
+    let (s, ex) = explain_one(&p, "x");
+    assert_eq!(ex.phase, Some(Phase::Placement));
+    assert_eq!(ex.failure_step, Some(1));
+    assert!(!ex.reasons.is_empty());
+    for r in &ex.reasons {
+        // Lowest charge 4 Wh = 14_400_000 mJ, reached at the end of x.
+        assert_eq!(
+            r.reason,
+            Phase2Reason::MinSoc {
+                at: r.probe + 100,
+                soc_mj: 14_400_000
+            }
+        );
+    }
+    assert_eq!(culprits(&p, &ex), vec![c("big", 1, "min_soc")]);
+    assert!(
+        ex.suggestions
+            .iter()
+            .any(|s| s.description == "Lower the minimum state of charge to 4 Wh")
+    );
+    // The plot query: energy used up to 1000 after step 1 (the full run has x failed).
+    let (from, users) = energy_consumers(&s, 1, 1000, false);
+    assert_eq!(from, 0);
+    assert_eq!(users.len(), 1);
+    assert_eq!(users[0].amount, 144_000 * 100);
+}
+
+#[test]
+fn peak_power() {
+    let p = plan(
+        json!({ "power": { "rtg": 0.0, "asleep": 10.0, "awake": 10.0, "max_peak": 100.0 } }),
+        json!([
+            { "id": "heater", "priority": 1, "duration": 1000, "awake": "any", "peak_power": 60.0,
+              "windows": [ { "start": 0, "end": 0 } ] },
+            // 10 + 60 + 40 = 110 W > 100 W at every start in [0, 500].
+            { "id": "y", "priority": 2, "duration": 100, "awake": "any", "peak_power": 40.0,
+              "windows": [ { "start": 0, "end": 500 } ] }
+        ]),
+    );
+    let (s, ex) = explain_one(&p, "y");
+    assert_eq!(ex.phase, Some(Phase::Placement));
+    assert_eq!(ex.failure_step, Some(1));
+    assert!(ex.reasons.iter().all(|r| matches!(
+        r.reason,
+        Phase2Reason::MaxPeakPower {
+            peak_mw: 110_000,
+            ..
+        }
+    )));
+    assert_eq!(culprits(&p, &ex), vec![c("heater", 1, "max_peak_power")]);
+    assert!(
+        ex.suggestions
+            .iter()
+            .any(|s| s.description == "Raise the peak power limit to 110 W")
+    );
+    let users = peak_users(&s, 2, 50);
+    assert_eq!(users.len(), 1);
+    assert_eq!(users[0].amount, 60_000);
+}
+
+#[test]
+fn preheat_operability() {
+    let p = plan(
+        json!({ "local_time": { "sol_length": 10000, "offset": 0 },
+                "thermal_zones": { "arm": { "preheat": [ { "from": 0, "duration": 800 } ],
+                    "preheat_power": 40.0, "maintenance_power": 10.0,
+                    "operable": [ { "from": 1000, "to": 5000 } ] } } }),
+        json!([
+            // Preheat would start at s - 800 in [400, 900]: before the operable 1000.
+            { "id": "z", "priority": 1, "duration": 100, "awake": "any", "thermal_zones": ["arm"],
+              "windows": [ { "start": 1200, "end": 1700 } ] }
+        ]),
+    );
+    let (s, ex) = explain_one(&p, "z");
+    assert_eq!(ex.phase, Some(Phase::Placement));
+    assert_eq!(ex.failure_step, Some(0));
+    assert!(ex.culprits.is_empty());
+    assert!(ex
+        .reasons
+        .iter()
+        .all(|r| matches!(r.reason, Phase2Reason::PreheatOperability { zone: 0, preheat_start } if preheat_start == r.probe - 800)));
+    assert!(
+        ex.suggestions
+            .iter()
+            .any(|s| s.description.starts_with("Allow arm heating from")),
+        "{:?}",
+        ex.suggestions
+    );
+    // The inspector queries.
+    let v = valid_intervals_at(&s, 0, 0, None);
+    assert_eq!(v.len(), Category::ALL.len());
+    let partial = partial_schedule(&s, 0);
+    assert_eq!(partial.pending, vec![0]);
+}
+
+#[test]
+fn dependency_and_group_phases() {
+    let p = plan(
+        json!({}),
+        json!([
+            { "id": "a", "priority": 1, "duration": 100, "awake": "any", "windows": [ { "start": 9950, "end": 9950 } ] },
+            { "id": "b", "priority": 2, "duration": 100, "awake": "any", "after": [ { "activity": "a" } ] },
+            { "id": "g1", "priority": 3, "duration": 100, "awake": "any", "group": "g" },
+            { "id": "g2", "priority": 4, "duration": 100, "awake": "any", "group": "g" }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "b");
+    assert_eq!(ex.phase, Some(Phase::Dependency));
+    assert_eq!(ex.failure_step, Some(1));
+    assert_eq!(culprits(&p, &ex), vec![c("a", 1, "dependency")]);
+    let (_, ex) = explain_one(&p, "g2");
+    assert_eq!(ex.phase, Some(Phase::Group));
+    assert_eq!(ex.failure_step, Some(3));
+    assert_eq!(culprits(&p, &ex), vec![c("g1", 3, "group")]);
+    assert!(
+        ex.suggestions
+            .iter()
+            .any(|s| s.set.get("group") == Some(&Value::Null))
+    );
+}
