@@ -5,6 +5,7 @@ use serde::Serialize;
 
 use super::{Culprit, Explanation, Phase};
 use crate::scheduler::{Category, GeneratedKind, Outcome, Phase2Reason, Schedule, State};
+use crate::timeline::IntervalSet;
 
 /// One consumer of energy or peak power.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
@@ -177,17 +178,26 @@ pub fn culprits(state: &State<'_>, ex: &Explanation, step_of: &[usize]) -> Vec<C
         }
         Some(Phase::ValidIntervals) => {
             let d = ex.duration;
-            // The span the activity could occupy: its windows, widened by its duration.
-            let span_lo = act.windows.iter().map(|w| w.start).min().unwrap_or(pb.h0);
-            let span_hi = act.windows.iter().map(|w| w.end + d).max().unwrap_or(pb.h1);
-            let overlaps = |(s, e): (i64, i64)| s < span_hi && span_lo < e;
-            let blamed: Vec<Category> = {
-                let mut v: Vec<Category> = ex.conflicts.iter().flatten().copied().collect();
-                v.sort();
-                v.dedup();
-                v
-            };
-            for cat in blamed {
+            // For category X of a minimal conflict C, the starts the other members of
+            // C allow are non-empty (minimality) and X blocks all of them: blame what
+            // X's timeline holds over that span.
+            let mut blamed: Vec<(Category, i64, i64)> = Vec::new();
+            for conflict in &ex.conflicts {
+                for &cat in conflict {
+                    let others = ex
+                        .categories
+                        .iter()
+                        .filter(|c| c.category != cat && conflict.contains(&c.category))
+                        .fold(IntervalSet::single(pb.h0, pb.h1), |acc, c| {
+                            acc.intersect(&c.valid)
+                        });
+                    if let (Some(lo), Some(hi)) = (others.first(), others.intervals().last()) {
+                        blamed.push((cat, lo, hi.hi.saturating_add(d)));
+                    }
+                }
+            }
+            for (cat, span_lo, span_hi) in blamed {
+                let overlaps = |(s, e): (i64, i64)| s < span_hi && span_lo < e;
                 let name = cat.name();
                 for (x, placed) in state.placed.iter().enumerate() {
                     let Some(iv) = *placed else { continue };
@@ -200,13 +210,18 @@ pub fn culprits(state: &State<'_>, ex: &Explanation, step_of: &[usize]) -> Vec<C
                                 && other.resources.iter().any(|r| act.resources.contains(r))
                         }
                         Category::SequenceEngines => overlaps(iv) && other.engines > 0,
-                        Category::StateRequirement => {
-                            overlaps(iv)
-                                && other
-                                    .effects
-                                    .iter()
-                                    .any(|e| act.requires.iter().any(|r| r.0 == e.0 && r.1 != e.1))
-                        }
+                        Category::StateRequirement => act.requires.iter().any(|&(st, v)| {
+                            // Effects setting another value inside the span, or the one
+                            // in force when the span begins.
+                            let effects = state.states[st].effects();
+                            let last_before = effects.iter().rev().find(|e| e.0 <= span_lo);
+                            effects.iter().any(|e| {
+                                e.3 == x
+                                    && e.2 != v
+                                    && ((span_lo < e.0 && e.0 < span_hi)
+                                        || last_before.is_some_and(|l| l.3 == x && l.0 == e.0))
+                            })
+                        }),
                         Category::StateEffect => {
                             other
                                 .requires

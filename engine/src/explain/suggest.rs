@@ -139,18 +139,34 @@ pub fn suggestions(
                     }
                 }
                 if r.categories == [Category::DataVolume] {
+                    let extra = activity.data_rate.max(0.0) * ex.duration as f64;
                     if let Some(cap) = plan.data.capacity {
-                        let extra = activity.data_rate.max(0.0) * ex.duration as f64;
-                        let mut data = serde_json::to_value(plan.data).unwrap_or(Value::Null);
-                        data["capacity"] = json!(round3(cap + extra));
-                        cands.push(Candidate {
-                            description: format!(
-                                "Raise the data capacity to {} Mbit",
-                                round3(cap + extra)
-                            ),
-                            target: "plan".into(),
-                            set: set1("data", data),
-                        });
+                        let make = |mbit: f64| {
+                            let mut data = serde_json::to_value(plan.data).unwrap_or(Value::Null);
+                            data["capacity"] = json!(mbit);
+                            Candidate {
+                                description: format!("Raise the data capacity to {mbit} Mbit"),
+                                target: "plan".into(),
+                                set: set1("data", data),
+                            }
+                        };
+                        cands.extend(tune_limit(plan, a, &make, round3(cap + extra), 1e12));
+                    }
+                    if let (false, Some(h)) = (activity.mandatory, plan.handover) {
+                        if let Some(max) = h.max_data_volume {
+                            let make = |mbit: f64| {
+                                let mut handover = serde_json::to_value(h).unwrap_or(Value::Null);
+                                handover["max_data_volume"] = json!(mbit);
+                                Candidate {
+                                    description: format!(
+                                        "Raise the data allowed before handover to {mbit} Mbit"
+                                    ),
+                                    target: "plan".into(),
+                                    set: set1("handover", handover),
+                                }
+                            };
+                            cands.extend(tune_limit(plan, a, &make, round3(max + extra), 1e12));
+                        }
                     }
                 }
             }
@@ -179,24 +195,30 @@ pub fn suggestions(
                 }
             }
             if let Some(mj) = best_soc {
-                let wh = floor3(mj as f64 / MJ_PER_WH);
-                let mut battery = serde_json::to_value(plan.battery).unwrap_or(Value::Null);
-                battery["min_soc"] = json!(wh.max(0.0));
-                cands.push(Candidate {
-                    description: format!("Lower the minimum state of charge to {wh} Wh"),
-                    target: "plan".into(),
-                    set: set1("battery", battery),
-                });
+                let make = |wh: f64| {
+                    let mut battery = serde_json::to_value(plan.battery).unwrap_or(Value::Null);
+                    battery["min_soc"] = json!(wh);
+                    Candidate {
+                        description: format!("Lower the minimum state of charge to {wh} Wh"),
+                        target: "plan".into(),
+                        set: set1("battery", battery),
+                    }
+                };
+                let needed = floor3(mj as f64 / MJ_PER_WH).max(0.0);
+                cands.extend(tune_limit(plan, a, &make, needed, 0.0));
             }
             if let (Some(mj), Some(h)) = (best_handover, plan.handover) {
-                let wh = floor3(mj as f64 / MJ_PER_WH);
-                let mut handover = serde_json::to_value(h).unwrap_or(Value::Null);
-                handover["min_soc"] = json!(wh.max(0.0));
-                cands.push(Candidate {
-                    description: format!("Lower the handover state of charge to {wh} Wh"),
-                    target: "plan".into(),
-                    set: set1("handover", handover),
-                });
+                let make = |wh: f64| {
+                    let mut handover = serde_json::to_value(h).unwrap_or(Value::Null);
+                    handover["min_soc"] = json!(wh);
+                    Candidate {
+                        description: format!("Lower the handover state of charge to {wh} Wh"),
+                        target: "plan".into(),
+                        set: set1("handover", handover),
+                    }
+                };
+                let needed = floor3(mj as f64 / MJ_PER_WH).max(0.0);
+                cands.extend(tune_limit(plan, a, &make, needed, 0.0));
                 cands.push(Candidate {
                     description: format!(
                         "Make {id} mandatory (handover limits bind only optional activities)"
@@ -206,14 +228,17 @@ pub fn suggestions(
                 });
             }
             if let Some(mw) = best_peak {
-                let w = (mw as f64 / MW_PER_W).ceil();
-                let mut power = serde_json::to_value(plan.power).unwrap_or(Value::Null);
-                power["max_peak"] = json!(w);
-                cands.push(Candidate {
-                    description: format!("Raise the peak power limit to {w} W"),
-                    target: "plan".into(),
-                    set: set1("power", power),
-                });
+                let make = |w: f64| {
+                    let mut power = serde_json::to_value(plan.power).unwrap_or(Value::Null);
+                    power["max_peak"] = json!(w);
+                    Candidate {
+                        description: format!("Raise the peak power limit to {w} W"),
+                        target: "plan".into(),
+                        set: set1("power", power),
+                    }
+                };
+                let needed = (mw as f64 / MW_PER_W).ceil();
+                cands.extend(tune_limit(plan, a, &make, needed, 1e6));
             }
             if let Some((z, ps)) = operability {
                 let name = &pb.zone_names[z];
@@ -259,6 +284,20 @@ pub fn suggestions(
         .map(|c| (plan.activities[c.activity].priority, c.activity))
         .collect();
     blockers.sort_unstable();
+    blockers.dedup();
+    // Or move a blocker after this activity.
+    let mine = activity.priority;
+    for &(_, x) in blockers.iter().take(3) {
+        cands.push(Candidate {
+            description: format!(
+                "Schedule {} after {id} by giving it priority {}",
+                plan.activities[x].id,
+                mine.saturating_add(1)
+            ),
+            target: format!("activity:{}", plan.activities[x].id),
+            set: set1("priority", json!(mine.saturating_add(1))),
+        });
+    }
     if let Some(&(p, x)) = blockers.first() {
         cands.push(Candidate {
             description: format!(
@@ -290,6 +329,44 @@ pub fn suggestions(
     }
     out.sort_by_key(|s| s.side_effects.len());
     out
+}
+
+/// The least relaxation of a numeric plan limit that makes activity `a` schedule:
+/// `needed` (what the failure's numbers call for) when that is enough, otherwise a
+/// binary search between it and `loosest` (knock-on effects on earlier steps can
+/// ask for more), to a resolution of 0.001.
+fn tune_limit(
+    plan: &Plan,
+    a: usize,
+    make: &dyn Fn(f64) -> Candidate,
+    needed: f64,
+    loosest: f64,
+) -> Option<Candidate> {
+    let works = |v: f64| {
+        let c = make(v);
+        apply_edit(plan, &c.target, &c.set)
+            .and_then(|p| crate::scheduler::schedule(&p).ok())
+            .is_some_and(|s| s.placement(a).is_some())
+    };
+    if works(needed) {
+        return Some(make(needed));
+    }
+    if !works(loosest) {
+        return None;
+    }
+    let (mut bad, mut good) = (needed, loosest);
+    for _ in 0..48 {
+        let mid = round3((bad + good) / 2.0);
+        if (good - bad).abs() <= 0.001 || mid == bad || mid == good {
+            break;
+        }
+        if works(mid) {
+            good = mid;
+        } else {
+            bad = mid;
+        }
+    }
+    Some(make(good))
 }
 
 /// Widens the window nearest `w` so that `w` is a start it allows.

@@ -91,6 +91,11 @@ impl StateTimeline {
         self.requirements.push((start, end, value, owner));
     }
 
+    /// The placed effects `(time, step, value, owner)`, sorted by `(time, step)`.
+    pub fn effects(&self) -> &[(i64, usize, usize, usize)] {
+        &self.effects
+    }
+
     /// The distinct effect times with the value that wins there (the later step).
     fn effective(&self) -> Vec<(i64, usize)> {
         let mut out: Vec<(i64, usize)> = Vec::with_capacity(self.effects.len());
