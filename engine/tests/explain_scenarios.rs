@@ -290,3 +290,33 @@ fn dependency_and_group_phases() {
             .any(|s| s.set.get("group") == Some(&Value::Null))
     );
 }
+
+#[test]
+fn a_dependency_is_loosened_before_it_is_dropped() {
+    let p = plan(
+        json!({}),
+        json!([
+            { "id": "drive", "priority": 1, "duration": 1000, "awake": "any", "windows": [ { "start": 0, "end": 0 } ] },
+            { "id": "arm", "priority": 2, "duration": 500, "awake": "any", "resources": ["arm"],
+              "windows": [ { "start": 1000, "end": 1000 } ] },
+            // Within 200 s of the drive's end (1000..1200) the arm is busy until 1500.
+            { "id": "img", "priority": 3, "duration": 100, "awake": "any", "resources": ["arm"],
+              "after": [ { "activity": "drive", "max_delay": 200 } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "img");
+    assert_eq!(
+        ex.conflicts,
+        vec![vec![Category::Dependency, Category::UnitResource]]
+    );
+    let first = &ex.suggestions[0];
+    assert_eq!(
+        first.description,
+        "Loosen the dependency of img on drive to a delay of 0..500 s after it ends"
+    );
+    assert_eq!(
+        first.set["after"],
+        json!([{ "activity": "drive", "max_delay": 500 }])
+    );
+    assert!(first.side_effects.is_empty());
+}

@@ -103,6 +103,59 @@ pub fn suggestions(
                             .iter()
                             .filter_map(|d| serde_json::to_value(d).ok())
                             .collect();
+                        // Loosen it first: allow a delay that reaches the witness.
+                        let target_end = plan
+                            .activities
+                            .iter()
+                            .position(|o| o.id == dep.activity)
+                            .and_then(|t| sched.placement(t))
+                            .map(|p| p.1);
+                        // The start the other categories allow nearest the current
+                        // bounds, at or after the target's end.
+                        let others = ex
+                            .categories
+                            .iter()
+                            .filter(|c| c.category != Category::Dependency)
+                            .fold(
+                                crate::timeline::IntervalSet::single(pb.h0, pb.h1),
+                                |acc, c| acc.intersect(&c.valid),
+                            );
+                        let reach = target_end.and_then(|e| {
+                            let wanted = e.saturating_add(dep.min_delay.unwrap_or(0));
+                            others.clip(e, pb.h1).nearest(wanted).map(|s| s - e)
+                        });
+                        if let Some(delay) = reach {
+                            let min = if dep.meets {
+                                0
+                            } else {
+                                dep.min_delay.unwrap_or(0).min(delay)
+                            };
+                            let max = if dep.meets {
+                                Some(delay)
+                            } else {
+                                dep.max_delay.map(|m| m.max(delay))
+                            };
+                            let loosened = crate::model::Dependency {
+                                activity: dep.activity.clone(),
+                                meets: false,
+                                min_delay: (min > 0).then_some(min),
+                                max_delay: max,
+                            };
+                            let mut after2 = after.clone();
+                            after2[j] = serde_json::to_value(&loosened).unwrap_or(Value::Null);
+                            let bound = match max {
+                                Some(m) => format!("{min}..{m} s"),
+                                None => format!("at least {min} s"),
+                            };
+                            cands.push(Candidate {
+                                description: format!(
+                                    "Loosen the dependency of {id} on {} to a delay of {bound} after it ends",
+                                    dep.activity
+                                ),
+                                target: me.clone(),
+                                set: set1("after", Value::Array(after2)),
+                            });
+                        }
                         after.remove(j);
                         cands.push(Candidate {
                             description: format!("Drop the dependency of {id} on {}", dep.activity),
