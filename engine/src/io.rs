@@ -225,7 +225,80 @@ pub struct ExplainDoc {
     /// Always `solscope.explain/1`.
     pub format: &'static str,
     /// One entry per explained activity, in step order.
-    pub explanations: Vec<Value>,
+    pub explanations: Vec<ExplanationEntry>,
+}
+
+/// One explanation in the document (fields in the spec's order, then additions).
+#[derive(Clone, Debug, Serialize)]
+pub struct ExplanationEntry {
+    /// Activity id.
+    pub activity: String,
+    /// `scheduled`, `failed` or `skipped`.
+    pub status: &'static str,
+    /// Its step.
+    pub step: usize,
+    /// Earliest failing step (null when scheduled).
+    pub failure_step: Option<usize>,
+    /// Failure phase (null when scheduled).
+    pub phase: Option<&'static str>,
+    /// Minimal conflicting category sets.
+    pub conflicts: Vec<Vec<&'static str>>,
+    /// Phase-2 failures by range of starts.
+    pub reasons: Vec<Value>,
+    /// Placed activities to blame.
+    pub culprits: Vec<CulpritEntry>,
+    /// Plain-language notes.
+    pub notes: Vec<String>,
+    /// Verified suggestions.
+    pub suggestions: Vec<SuggestionEntry>,
+    /// Duration the intervals are for.
+    pub duration: i64,
+    /// Valid starts per category (`[lo, hi]`, inclusive).
+    pub valid_intervals: serde_json::Map<String, Value>,
+    /// Their intersection within the windows.
+    pub intersection: Vec<[i64; 2]>,
+    /// Minimal relaxations with a witness start.
+    pub relaxations: Vec<RelaxationEntry>,
+}
+
+/// A culprit in the document.
+#[derive(Clone, Debug, Serialize)]
+pub struct CulpritEntry {
+    /// Activity id.
+    pub activity: String,
+    /// Category or reason kind.
+    pub category: &'static str,
+    /// The step that placed it.
+    pub step: usize,
+}
+
+/// A suggestion in the document.
+#[derive(Clone, Debug, Serialize)]
+pub struct SuggestionEntry {
+    /// Plain-language description.
+    pub description: String,
+    /// The edit.
+    pub edit: EditEntry,
+    /// Ids of activities that newly fail with the edit.
+    pub side_effects: Vec<String>,
+}
+
+/// An edit: replace top-level fields of the target object.
+#[derive(Clone, Debug, Serialize)]
+pub struct EditEntry {
+    /// `plan` or `activity:ID`.
+    pub target: String,
+    /// The replacement fields (`null` removes a field).
+    pub set: serde_json::Map<String, Value>,
+}
+
+/// A relaxation in the document.
+#[derive(Clone, Debug, Serialize)]
+pub struct RelaxationEntry {
+    /// Categories to relax.
+    pub categories: Vec<&'static str>,
+    /// A start that only they block.
+    pub witness: i64,
 }
 
 fn reason_value(pb: &crate::scheduler::Problem, r: &ReasonRange) -> Value {
@@ -269,44 +342,68 @@ pub fn explain_document(
     let id = |a: usize| plan.activities[a].id.clone();
     let entries = explanations
         .iter()
-        .map(|ex| {
-            let status = match ex.outcome {
+        .map(|ex| ExplanationEntry {
+            activity: id(ex.activity),
+            status: match ex.outcome {
                 Outcome::Scheduled { .. } => "scheduled",
                 Outcome::Failed(_) => "failed",
                 Outcome::Skipped { .. } => "skipped",
-            };
-            let intervals: serde_json::Map<String, Value> = ex
+            },
+            step: ex.step,
+            failure_step: ex.failure_step,
+            phase: ex.phase.map(|p| p.name()),
+            conflicts: ex
+                .conflicts
+                .iter()
+                .map(|c| c.iter().map(|x| x.name()).collect())
+                .collect(),
+            reasons: ex.reasons.iter().map(|r| reason_value(pb, r)).collect(),
+            culprits: ex
+                .culprits
+                .iter()
+                .map(|c| CulpritEntry {
+                    activity: id(c.activity),
+                    category: c.category,
+                    step: c.step,
+                })
+                .collect(),
+            notes: explanation_notes(plan, pb, ex),
+            suggestions: ex
+                .suggestions
+                .iter()
+                .map(|s| SuggestionEntry {
+                    description: s.description.clone(),
+                    edit: EditEntry {
+                        target: s.target.clone(),
+                        set: s.set.clone(),
+                    },
+                    side_effects: s.side_effects.iter().map(|&a| id(a)).collect(),
+                })
+                .collect(),
+            duration: ex.duration,
+            valid_intervals: ex
                 .categories
                 .iter()
                 .map(|c| {
-                    let v: Vec<[i64; 2]> = c.valid.intervals().iter().map(|i| [i.lo, i.hi]).collect();
+                    let v: Vec<[i64; 2]> =
+                        c.valid.intervals().iter().map(|i| [i.lo, i.hi]).collect();
                     (c.category.name().to_string(), json!(v))
                 })
-                .collect();
-            let intersection: Vec<[i64; 2]> = ex.intersection.intervals().iter().map(|i| [i.lo, i.hi]).collect();
-            json!({
-                "activity": id(ex.activity),
-                "status": status,
-                "step": ex.step,
-                "failure_step": ex.failure_step,
-                "phase": ex.phase.map(|p| p.name()),
-                "conflicts": ex.conflicts.iter().map(|c| c.iter().map(|x| x.name()).collect::<Vec<_>>()).collect::<Vec<_>>(),
-                "reasons": ex.reasons.iter().map(|r| reason_value(pb, r)).collect::<Vec<_>>(),
-                "culprits": ex.culprits.iter().map(|c| json!({ "activity": id(c.activity), "category": c.category, "step": c.step })).collect::<Vec<_>>(),
-                "notes": explanation_notes(plan, pb, ex),
-                "suggestions": ex.suggestions.iter().map(|s| json!({
-                    "description": s.description,
-                    "edit": { "target": s.target, "set": s.set },
-                    "side_effects": s.side_effects.iter().map(|&a| id(a)).collect::<Vec<_>>(),
-                })).collect::<Vec<_>>(),
-                "duration": ex.duration,
-                "valid_intervals": intervals,
-                "intersection": intersection,
-                "relaxations": ex.relaxations.iter().map(|r| json!({
-                    "categories": r.categories.iter().map(|c| c.name()).collect::<Vec<_>>(),
-                    "witness": r.witness,
-                })).collect::<Vec<_>>(),
-            })
+                .collect(),
+            intersection: ex
+                .intersection
+                .intervals()
+                .iter()
+                .map(|i| [i.lo, i.hi])
+                .collect(),
+            relaxations: ex
+                .relaxations
+                .iter()
+                .map(|r| RelaxationEntry {
+                    categories: r.categories.iter().map(|c| c.name()).collect(),
+                    witness: r.witness,
+                })
+                .collect(),
         })
         .collect();
     ExplainDoc {

@@ -203,7 +203,7 @@ pub fn suggestions(
                                 set: set1("data", data),
                             }
                         };
-                        cands.extend(tune_limit(plan, a, &make, round3(cap + extra), 1e12));
+                        cands.extend(tune_limit(plan, a, &make, cap, round3(cap + extra), 1e12));
                     }
                     if let (false, Some(h)) = (activity.mandatory, plan.handover) {
                         if let Some(max) = h.max_data_volume {
@@ -218,7 +218,14 @@ pub fn suggestions(
                                     set: set1("handover", handover),
                                 }
                             };
-                            cands.extend(tune_limit(plan, a, &make, round3(max + extra), 1e12));
+                            cands.extend(tune_limit(
+                                plan,
+                                a,
+                                &make,
+                                max,
+                                round3(max + extra),
+                                1e12,
+                            ));
                         }
                     }
                 }
@@ -258,7 +265,14 @@ pub fn suggestions(
                     }
                 };
                 let needed = floor3(mj as f64 / MJ_PER_WH).max(0.0);
-                cands.extend(tune_limit(plan, a, &make, needed, 0.0));
+                cands.extend(tune_limit(
+                    plan,
+                    a,
+                    &make,
+                    plan.battery.min_soc,
+                    needed,
+                    0.0,
+                ));
             }
             if let (Some(mj), Some(h)) = (best_handover, plan.handover) {
                 let make = |wh: f64| {
@@ -271,7 +285,8 @@ pub fn suggestions(
                     }
                 };
                 let needed = floor3(mj as f64 / MJ_PER_WH).max(0.0);
-                cands.extend(tune_limit(plan, a, &make, needed, 0.0));
+                let current = h.min_soc.unwrap_or(0.0);
+                cands.extend(tune_limit(plan, a, &make, current, needed, 0.0));
                 cands.push(Candidate {
                     description: format!(
                         "Make {id} mandatory (handover limits bind only optional activities)"
@@ -291,7 +306,8 @@ pub fn suggestions(
                     }
                 };
                 let needed = (mw as f64 / MW_PER_W).ceil();
-                cands.extend(tune_limit(plan, a, &make, needed, 1e6));
+                let current = plan.power.max_peak.unwrap_or(needed);
+                cands.extend(tune_limit(plan, a, &make, current, needed, 1e6));
             }
             if let Some((z, ps)) = operability {
                 let name = &pb.zone_names[z];
@@ -384,14 +400,16 @@ pub fn suggestions(
     out
 }
 
-/// The least relaxation of a numeric plan limit that makes activity `a` schedule:
-/// `needed` (what the failure's numbers call for) when that is enough, otherwise a
-/// binary search between it and `loosest` (knock-on effects on earlier steps can
-/// ask for more), to a resolution of 0.001.
+/// The least relaxation of a numeric plan limit (from `current`, which fails) that
+/// makes activity `a` schedule. `needed` is what the failure's numbers call for;
+/// knock-on effects on earlier steps can ask for less or more, so the value is
+/// binary-searched between `current` and `needed` when `needed` works, else between
+/// `needed` and `loosest`, to a resolution of 0.001.
 fn tune_limit(
     plan: &Plan,
     a: usize,
     make: &dyn Fn(f64) -> Candidate,
+    current: f64,
     needed: f64,
     loosest: f64,
 ) -> Option<Candidate> {
@@ -401,13 +419,13 @@ fn tune_limit(
             .and_then(|p| crate::scheduler::schedule(&p).ok())
             .is_some_and(|s| s.placement(a).is_some())
     };
-    if works(needed) {
-        return Some(make(needed));
-    }
-    if !works(loosest) {
+    let (mut bad, mut good) = if works(needed) {
+        (current, needed)
+    } else if works(loosest) {
+        (needed, loosest)
+    } else {
         return None;
-    }
-    let (mut bad, mut good) = (needed, loosest);
+    };
     for _ in 0..48 {
         let mid = round3((bad + good) / 2.0);
         if (good - bad).abs() <= 0.001 || mid == bad || mid == good {
