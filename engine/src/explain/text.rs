@@ -33,7 +33,7 @@ fn describe_set(pb: &Problem, set: &IntervalSet) -> String {
         .take(3)
         .map(|iv| {
             if iv.lo == iv.hi {
-                at(pb, iv.lo)
+                format!("only {}", at(pb, iv.lo))
             } else if iv.lo <= pb.h0 && iv.hi >= pb.h1 {
                 "any start".into()
             } else if iv.lo <= pb.h0 {
@@ -77,6 +77,7 @@ pub fn explanation_notes(plan: &Plan, pb: &Problem, ex: &Explanation) -> Vec<Str
     };
     let when = match ex.failure_step {
         Some(0) => "It cannot be scheduled even in an empty plan.".to_string(),
+        Some(1) => "It first fails once the activity of step 1 is placed.".to_string(),
         Some(k) => format!("It first fails once the activities of steps 1–{k} are placed."),
         None => String::new(),
     };
