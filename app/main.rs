@@ -1,8 +1,10 @@
 //! `solscope`: explainable scheduling workstation for rover activity plans.
 //!
-//! Command line: `solscope schedule|explain|check PLAN`. Invalid input prints a
-//! path-named message on standard error, nothing on standard output, and exits
-//! with status 2.
+//! `solscope [PLAN]` opens the desktop app (on the bundled default plan without an
+//! argument). Command line: `solscope schedule|explain|check PLAN`, and
+//! `solscope screenshot PLAN --out FILE.png` for headless rendering. Invalid input
+//! prints a path-named message on standard error, nothing on standard output, and
+//! exits with status 2.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -14,11 +16,14 @@ use clap::{Parser, Subcommand};
 #[command(
     name = "solscope",
     version,
-    about = "Explainable scheduling for rover activity plans"
+    about = "Explainable scheduling for rover activity plans",
+    args_conflicts_with_subcommands = true
 )]
 struct Cli {
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
+    /// Plan to open in the app (default: the bundled plan).
+    plan: Option<PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -45,6 +50,26 @@ enum Command {
         /// The plan file (solscope.plan/1 JSON).
         plan: PathBuf,
     },
+    /// Render the app's view of a plan to a PNG, offscreen (software rendering).
+    Screenshot {
+        /// The plan file (solscope.plan/1 JSON).
+        plan: PathBuf,
+        /// Output PNG file.
+        #[arg(long)]
+        out: PathBuf,
+        /// Step to show (default: the last).
+        #[arg(long)]
+        step: Option<usize>,
+        /// Activity id to select.
+        #[arg(long)]
+        select: Option<String>,
+        /// Plot probe time (plan seconds): lists the consumers then.
+        #[arg(long)]
+        probe: Option<i64>,
+        /// Window size in points, WxH.
+        #[arg(long, default_value = "1600x1000")]
+        size: String,
+    },
 }
 
 /// Exit status for invalid input.
@@ -52,7 +77,21 @@ const EXIT_INVALID: u8 = 2;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match run(cli.command) {
+    let Some(command) = cli.command else {
+        return run_app(cli.plan.as_deref());
+    };
+    if let Command::Screenshot {
+        plan,
+        out,
+        step,
+        select,
+        probe,
+        size,
+    } = command
+    {
+        return screenshot(&plan, &out, step, select, probe, &size);
+    }
+    match run(command) {
         Ok(text) => {
             let mut out = std::io::stdout().lock();
             if out
@@ -67,6 +106,69 @@ fn main() -> ExitCode {
         Err(err) => {
             eprintln!("error: {err}");
             ExitCode::from(EXIT_INVALID)
+        }
+    }
+}
+
+/// Opens the desktop app.
+fn run_app(plan: Option<&std::path::Path>) -> ExitCode {
+    let app = match solscope::gui::SolscopeApp::open_or_default(plan) {
+        Ok(app) => app,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(EXIT_INVALID);
+        }
+    };
+    match solscope::gui::run(app) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: the window could not be opened: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// `solscope screenshot`.
+fn screenshot(
+    plan: &std::path::Path,
+    out: &std::path::Path,
+    step: Option<usize>,
+    select: Option<String>,
+    probe: Option<i64>,
+    size: &str,
+) -> ExitCode {
+    let parsed = size
+        .split_once('x')
+        .and_then(|(w, h)| Some((w.trim().parse::<f32>().ok()?, h.trim().parse::<f32>().ok()?)))
+        .filter(|(w, h)| (100.0..=8000.0).contains(w) && (100.0..=8000.0).contains(h));
+    let Some((w, h)) = parsed else {
+        eprintln!("error: --size: expected WxH between 100 and 8000 (got {size})");
+        return ExitCode::from(EXIT_INVALID);
+    };
+    let text = match std::fs::read_to_string(plan) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("error: {}: {e}", plan.display());
+            return ExitCode::from(EXIT_INVALID);
+        }
+    };
+    let app = match solscope::gui::SolscopeApp::from_text(&text, Some(plan.to_path_buf())) {
+        Ok(app) => app,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(EXIT_INVALID);
+        }
+    };
+    let view = solscope::screenshot::View {
+        step,
+        select,
+        probe,
+    };
+    match solscope::screenshot::render_png(app, eframe::egui::vec2(w, h), &view, out) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
         }
     }
 }
@@ -104,6 +206,7 @@ fn run(command: Command) -> Result<String, solscope_engine::Error> {
                 Ok(format!("{}\n", to_json(&doc)))
             }
         }
+        Command::Screenshot { .. } => Ok(String::new()),
         Command::Check { plan } => {
             let loaded = solscope_engine::load_plan_file(&plan)?;
             let mut out = String::new();

@@ -18,8 +18,8 @@ mod validate;
 pub use error::{Error, Warning};
 pub use explain::*;
 pub use io::{
-    ActivityEntry, ExplainDoc, GeneratedEntry, LoadedPlan, Profiles, ScheduleDoc, explain_document,
-    explain_text, load_plan, load_plan_file, schedule_document,
+    ActivityEntry, ExplainDoc, GeneratedEntry, LoadedPlan, Profiles, ScheduleDoc, apply_edit,
+    explain_document, explain_text, load_plan, load_plan_file, schedule_document,
 };
 pub use model::*;
 pub use scheduler::*;

@@ -4,9 +4,9 @@
 use serde_json::{Map, Value, json};
 
 use super::{Explanation, Phase, Suggestion, reschedule_outcome};
+use crate::io::apply_edit;
 use crate::model::Plan;
 use crate::scheduler::{Category, MJ_PER_WH, MW_PER_W, Phase2Reason, Schedule};
-use crate::validate::validate;
 
 /// A candidate edit before verification.
 struct Candidate {
@@ -19,31 +19,6 @@ fn set1(key: &str, value: Value) -> Map<String, Value> {
     let mut m = Map::new();
     m.insert(key.to_string(), value);
     m
-}
-
-/// Applies an edit to a plan (replacing top-level fields of the target object).
-pub fn apply_edit(plan: &Plan, target: &str, set: &Map<String, Value>) -> Option<Plan> {
-    let mut v = serde_json::to_value(plan).ok()?;
-    let obj = if target == "plan" {
-        v.as_object_mut()?
-    } else {
-        let id = target.strip_prefix("activity:")?;
-        v.get_mut("activities")?
-            .as_array_mut()?
-            .iter_mut()
-            .find(|a| a.get("id").and_then(Value::as_str) == Some(id))?
-            .as_object_mut()?
-    };
-    for (k, x) in set {
-        if x.is_null() {
-            obj.remove(k);
-        } else {
-            obj.insert(k.clone(), x.clone());
-        }
-    }
-    let plan: Plan = serde_json::from_value(v).ok()?;
-    validate(&plan).ok()?;
-    Some(plan)
 }
 
 /// Verified suggestions for one explanation.
@@ -384,7 +359,7 @@ pub fn suggestions(
         if out.iter().any(|s| s.target == c.target && s.set == c.set) {
             continue;
         }
-        let Some(edited) = apply_edit(plan, &c.target, &c.set) else {
+        let Ok(edited) = apply_edit(plan, &c.target, &c.set) else {
             continue;
         };
         if let Some(side_effects) = reschedule_outcome(&edited, a, sched) {
@@ -416,6 +391,7 @@ fn tune_limit(
     let works = |v: f64| {
         let c = make(v);
         apply_edit(plan, &c.target, &c.set)
+            .ok()
             .and_then(|p| crate::scheduler::schedule(&p).ok())
             .is_some_and(|s| s.placement(a).is_some())
     };

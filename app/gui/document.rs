@@ -1,0 +1,222 @@
+//! The open plan with its undo history, and the analysis derived from it.
+//!
+//! `Document` is the model the user edits; `Analysis` is recomputed from it after
+//! every accepted change (schedule + explanations), never edited directly.
+
+use std::path::PathBuf;
+
+use solscope_engine::{
+    Error, ExplainOptions, Explanation, Outcome, Plan, Schedule, Warning, explain, load_plan,
+    schedule,
+};
+
+/// The open plan.
+#[derive(Clone, Debug)]
+pub struct Document {
+    /// The plan as edited.
+    pub plan: Plan,
+    /// Where it was loaded from / saved to.
+    pub path: Option<PathBuf>,
+    /// Unsaved changes?
+    pub dirty: bool,
+    /// Loader warnings of the current plan.
+    pub warnings: Vec<Warning>,
+    undo: Vec<Plan>,
+    redo: Vec<Plan>,
+}
+
+impl Document {
+    /// Loads a plan from JSON text. A bad plan is an error naming the JSON path.
+    pub fn from_text(text: &str, path: Option<PathBuf>) -> Result<Self, Error> {
+        let loaded = load_plan(text)?;
+        Ok(Self {
+            plan: loaded.plan,
+            path,
+            dirty: false,
+            warnings: loaded.warnings,
+            undo: Vec::new(),
+            redo: Vec::new(),
+        })
+    }
+
+    /// The display title: plan name, else file name.
+    pub fn title(&self) -> String {
+        self.plan.name.clone().unwrap_or_else(|| {
+            self.path
+                .as_ref()
+                .and_then(|p| p.file_name())
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "untitled plan".into())
+        })
+    }
+
+    /// Replaces the plan with an edited one (already validated), recording undo.
+    pub fn replace(&mut self, plan: Plan) {
+        let old = std::mem::replace(&mut self.plan, plan);
+        self.undo.push(old);
+        self.redo.clear();
+        self.dirty = true;
+        self.refresh_warnings();
+    }
+
+    /// Steps back one edit; false when there is none.
+    pub fn undo(&mut self) -> bool {
+        match self.undo.pop() {
+            Some(prev) => {
+                let cur = std::mem::replace(&mut self.plan, prev);
+                self.redo.push(cur);
+                self.dirty = true;
+                self.refresh_warnings();
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Re-applies an undone edit; false when there is none.
+    pub fn redo(&mut self) -> bool {
+        match self.redo.pop() {
+            Some(next) => {
+                let cur = std::mem::replace(&mut self.plan, next);
+                self.undo.push(cur);
+                self.dirty = true;
+                self.refresh_warnings();
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Whether undo / redo are possible.
+    pub fn can_undo(&self) -> bool {
+        !self.undo.is_empty()
+    }
+
+    /// Whether redo is possible.
+    pub fn can_redo(&self) -> bool {
+        !self.redo.is_empty()
+    }
+
+    /// The plan as pretty JSON (what Save writes).
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(&self.plan).unwrap_or_default() + "\n"
+    }
+
+    fn refresh_warnings(&mut self) {
+        self.warnings = solscope_engine::validate(&self.plan).unwrap_or_default();
+    }
+}
+
+/// Everything derived from a plan: the run with its trace and the explanations of
+/// its failures (suggestions are computed on demand, they reschedule).
+#[derive(Clone, Debug)]
+pub struct Analysis {
+    /// The run.
+    pub schedule: Schedule,
+    /// One explanation per failed or skipped activity, in step order.
+    pub explanations: Vec<Explanation>,
+}
+
+impl Analysis {
+    /// Schedules and explains a plan.
+    pub fn of(plan: &Plan) -> Result<Self, Error> {
+        let schedule = schedule(plan)?;
+        let opts = ExplainOptions {
+            activity: None,
+            no_suggestions: true,
+        };
+        let explanations = explain(plan, &schedule, &opts)?;
+        Ok(Self {
+            schedule,
+            explanations,
+        })
+    }
+
+    /// The explanation of activity `a`, if it failed.
+    pub fn explanation(&self, a: usize) -> Option<&Explanation> {
+        self.explanations.iter().find(|e| e.activity == a)
+    }
+
+    /// `(start, end)` of activity `a` if scheduled.
+    pub fn placement(&self, a: usize) -> Option<(i64, i64)> {
+        self.schedule.placement(a)
+    }
+
+    /// Number of steps.
+    pub fn steps(&self) -> usize {
+        self.schedule.steps.len()
+    }
+}
+
+/// What an edit changed in the outcome, by activity id.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct OutcomeDiff {
+    /// What the edit was.
+    pub description: String,
+    /// Failed before, scheduled now.
+    pub newly_scheduled: Vec<String>,
+    /// Scheduled before, not now.
+    pub newly_failed: Vec<String>,
+    /// Scheduled both times at different starts: `(id, old start, new start)`.
+    pub moved: Vec<(String, i64, i64)>,
+}
+
+impl OutcomeDiff {
+    /// Compares two runs by activity id.
+    pub fn between(
+        description: &str,
+        before: (&Plan, &Analysis),
+        after: (&Plan, &Analysis),
+    ) -> Self {
+        let mut diff = OutcomeDiff {
+            description: description.to_string(),
+            ..Default::default()
+        };
+        for st in &after.1.schedule.steps {
+            let id = &after.0.activities[st.activity].id;
+            let old = before
+                .0
+                .activities
+                .iter()
+                .position(|a| &a.id == id)
+                .and_then(|i| before.1.placement(i));
+            let new = match st.outcome {
+                Outcome::Scheduled { start, end } => Some((start, end)),
+                _ => None,
+            };
+            match (old, new) {
+                (None, Some(_)) => diff.newly_scheduled.push(id.clone()),
+                (Some(_), None) => diff.newly_failed.push(id.clone()),
+                (Some(o), Some(n)) if o.0 != n.0 => diff.moved.push((id.clone(), o.0, n.0)),
+                _ => {}
+            }
+        }
+        diff
+    }
+
+    /// One line for the banner.
+    pub fn summary(&self) -> String {
+        let list = |v: &[String]| {
+            if v.is_empty() {
+                "none".to_string()
+            } else {
+                v.join(", ")
+            }
+        };
+        format!(
+            "{}: newly scheduled: {}; newly failed: {}; moved: {}",
+            self.description,
+            list(&self.newly_scheduled),
+            list(&self.newly_failed),
+            if self.moved.is_empty() {
+                "none".into()
+            } else {
+                self.moved
+                    .iter()
+                    .map(|m| format!("{} ({} → {})", m.0, m.1, m.2))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            }
+        )
+    }
+}

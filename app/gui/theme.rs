@@ -1,0 +1,111 @@
+//! Colours and spacing, in one place, for the dark and light themes.
+
+use eframe::egui::{Color32, Visuals};
+
+/// The palette the views draw with.
+#[derive(Clone, Copy, Debug)]
+pub struct Theme {
+    /// Dark or light.
+    pub dark: bool,
+    /// Scheduled activity bars.
+    pub scheduled: Color32,
+    /// The activity of the current step.
+    pub current: Color32,
+    /// Failed activities.
+    pub failed: Color32,
+    /// Skipped activities.
+    pub skipped: Color32,
+    /// Pending activities' windows.
+    pub pending: Color32,
+    /// Awake periods.
+    pub awake: Color32,
+    /// Preheats.
+    pub preheat: Color32,
+    /// Maintenance heating.
+    pub maintenance: Color32,
+    /// Comm passes.
+    pub comm: Color32,
+    /// Selection outline.
+    pub selection: Color32,
+    /// Bar labels.
+    pub label: Color32,
+    /// Row labels and axes.
+    pub muted: Color32,
+    /// Limit lines on plots.
+    pub limit: Color32,
+    /// Valid intervals in the inspector.
+    pub valid: Color32,
+    /// The banner after an edit.
+    pub banner: Color32,
+    /// Error text.
+    pub error: Color32,
+}
+
+/// Height of one Gantt lane (points).
+pub const LANE_HEIGHT: f32 = 16.0;
+/// Gap between lanes.
+pub const LANE_GAP: f32 = 2.0;
+/// Width of the row-label column.
+pub const LABEL_WIDTH: f32 = 110.0;
+/// Height of each plot.
+pub const PLOT_HEIGHT: f32 = 120.0;
+/// Width of the inspector side panel.
+pub const INSPECTOR_WIDTH: f32 = 380.0;
+/// Minimum bar width (points) for drawing a label inside it.
+pub const LABEL_MIN_WIDTH: f32 = 40.0;
+
+impl Theme {
+    /// The palette for dark or light mode.
+    pub fn new(dark: bool) -> Self {
+        if dark {
+            Self {
+                dark,
+                scheduled: Color32::from_rgb(70, 130, 200),
+                current: Color32::from_rgb(255, 190, 60),
+                failed: Color32::from_rgb(220, 80, 70),
+                skipped: Color32::from_rgb(150, 110, 170),
+                pending: Color32::from_rgba_unmultiplied(160, 160, 160, 60),
+                awake: Color32::from_rgb(90, 170, 110),
+                preheat: Color32::from_rgb(230, 120, 50),
+                maintenance: Color32::from_rgb(190, 100, 60),
+                comm: Color32::from_rgb(60, 190, 200),
+                selection: Color32::WHITE,
+                label: Color32::WHITE,
+                muted: Color32::from_gray(160),
+                limit: Color32::from_rgb(220, 80, 70),
+                valid: Color32::from_rgb(90, 170, 110),
+                banner: Color32::from_rgb(40, 60, 90),
+                error: Color32::from_rgb(255, 110, 100),
+            }
+        } else {
+            Self {
+                dark,
+                scheduled: Color32::from_rgb(60, 110, 190),
+                current: Color32::from_rgb(230, 150, 0),
+                failed: Color32::from_rgb(200, 50, 40),
+                skipped: Color32::from_rgb(130, 90, 160),
+                pending: Color32::from_rgba_unmultiplied(90, 90, 90, 50),
+                awake: Color32::from_rgb(60, 150, 80),
+                preheat: Color32::from_rgb(220, 100, 30),
+                maintenance: Color32::from_rgb(170, 80, 40),
+                comm: Color32::from_rgb(20, 150, 170),
+                selection: Color32::BLACK,
+                label: Color32::WHITE,
+                muted: Color32::from_gray(90),
+                limit: Color32::from_rgb(200, 50, 40),
+                valid: Color32::from_rgb(60, 150, 80),
+                banner: Color32::from_rgb(220, 230, 245),
+                error: Color32::from_rgb(190, 30, 20),
+            }
+        }
+    }
+
+    /// egui's visuals for this theme.
+    pub fn visuals(&self) -> Visuals {
+        if self.dark {
+            Visuals::dark()
+        } else {
+            Visuals::light()
+        }
+    }
+}

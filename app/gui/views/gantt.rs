@@ -1,0 +1,310 @@
+//! Gantt rows as of the current step: generated awake and heating rows, comm
+//! passes, scheduled activities packed into lanes, failed ones, and pending ones
+//! drawn as their allowed windows. Bars narrower than a pixel are merged, bars
+//! outside the view culled, so 10k activities stay fluid.
+
+use eframe::egui::{self, Align2, Color32, FontId, Pos2, Rect, Sense, Stroke, StrokeKind};
+use solscope_engine::GeneratedKind;
+
+use super::{Model, Status};
+use crate::gui::theme::{LABEL_MIN_WIDTH, LABEL_WIDTH, LANE_GAP, LANE_HEIGHT};
+use crate::gui::{Command, UiState};
+
+/// One bar.
+#[derive(Clone, Debug)]
+struct Bar {
+    start: f64,
+    end: f64,
+    color: Color32,
+    activity: Option<usize>,
+    label: String,
+}
+
+/// One row: a label and its bars.
+struct Row {
+    label: String,
+    bars: Vec<Bar>,
+}
+
+/// Packs bars into as few lanes as possible (by start; first lane that is free).
+fn pack(mut bars: Vec<Bar>, label: &str, max_lanes: usize) -> Vec<Row> {
+    bars.sort_by(|a, b| a.start.total_cmp(&b.start).then(a.end.total_cmp(&b.end)));
+    let mut lanes: Vec<(f64, Vec<Bar>)> = Vec::new();
+    for bar in bars {
+        let n = lanes.len();
+        let free = lanes.iter().position(|l| l.0 <= bar.start);
+        match free {
+            Some(i) => {
+                lanes[i].0 = bar.end;
+                lanes[i].1.push(bar);
+            }
+            None if n < max_lanes => lanes.push((bar.end, vec![bar])),
+            None => {
+                if let Some(last) = lanes.last_mut() {
+                    last.0 = last.0.max(bar.end);
+                    last.1.push(bar);
+                }
+            }
+        }
+    }
+    if lanes.is_empty() {
+        lanes.push((0.0, Vec::new()));
+    }
+    lanes
+        .into_iter()
+        .enumerate()
+        .map(|(i, (_, bars))| Row {
+            label: if i == 0 {
+                label.to_string()
+            } else {
+                String::new()
+            },
+            bars,
+        })
+        .collect()
+}
+
+fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
+    let plan = &m.doc.plan;
+    let pb = &m.analysis.schedule.problem;
+    let t = &m.theme;
+    let mut rows = Vec::new();
+    // Generated activities alive after step k.
+    let mut awake = Vec::new();
+    let mut heat: Vec<Vec<Bar>> = vec![Vec::new(); pb.zone_names.len()];
+    for g in m.analysis.schedule.generated_after(k) {
+        match g.kind {
+            GeneratedKind::Awake => awake.push(Bar {
+                start: g.start as f64,
+                end: g.end as f64,
+                color: t.awake,
+                activity: None,
+                label: "awake".into(),
+            }),
+            GeneratedKind::Preheat { zone, activity } => heat[zone].push(Bar {
+                start: g.start as f64,
+                end: g.end as f64,
+                color: t.preheat,
+                activity: Some(activity),
+                label: format!("preheat {}", plan.activities[activity].id),
+            }),
+            GeneratedKind::Maintenance { zone, activity } => heat[zone].push(Bar {
+                start: g.start as f64,
+                end: g.end as f64,
+                color: t.maintenance,
+                activity: Some(activity),
+                label: format!("maint. {}", plan.activities[activity].id),
+            }),
+        }
+    }
+    rows.extend(pack(awake, "Awake", 1));
+    for (z, bars) in heat.into_iter().enumerate() {
+        rows.extend(pack(bars, &format!("Heat: {}", pb.zone_names[z]), 3));
+    }
+    let (mut comm, mut scheduled, mut failed, mut pending) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for (a, act) in plan.activities.iter().enumerate() {
+        let label = act.id.clone();
+        match m.status(a, k) {
+            Status::Scheduled(s, e) => {
+                let bar = Bar {
+                    start: s as f64,
+                    end: e as f64,
+                    color: if act.comm_kind.is_some() {
+                        t.comm
+                    } else {
+                        t.scheduled
+                    },
+                    activity: Some(a),
+                    label,
+                };
+                if act.comm_kind.is_some() {
+                    comm.push(bar);
+                } else {
+                    scheduled.push(bar);
+                }
+            }
+            status => {
+                let color = match status {
+                    Status::Failed => t.failed,
+                    Status::Skipped => t.skipped,
+                    _ => t.pending,
+                };
+                let windows = act.windows.clone().unwrap_or_default();
+                let (lo, hi) = match windows.first() {
+                    Some(w) => (
+                        w.start,
+                        w.end
+                            .saturating_add(act.duration.max())
+                            .min(plan.horizon.end),
+                    ),
+                    None => (plan.horizon.start, plan.horizon.end),
+                };
+                let bar = Bar {
+                    start: lo as f64,
+                    end: hi as f64,
+                    color,
+                    activity: Some(a),
+                    label,
+                };
+                if status == Status::Pending {
+                    pending.push(bar);
+                } else {
+                    failed.push(bar);
+                }
+            }
+        }
+    }
+    rows.extend(pack(comm, "Comm passes", 2));
+    rows.extend(pack(scheduled, "Scheduled", 64));
+    rows.extend(pack(failed, "Failed / skipped", 8));
+    rows.extend(pack(pending, "Pending (windows)", 8));
+    rows
+}
+
+/// The Gantt chart.
+pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
+    let k = st.step;
+    let rows = rows(m, k);
+    let height = rows.len() as f32 * (LANE_HEIGHT + LANE_GAP) + 4.0;
+    let (rect, response) = ui.allocate_exact_size(
+        egui::vec2(ui.available_width(), height),
+        Sense::click_and_drag(),
+    );
+    let response =
+        response.on_hover_text("Click a bar to inspect it; drag to pan; Ctrl+wheel to zoom");
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, "Gantt chart"));
+    // Share the plots' data area (last frame) so one time is one x everywhere.
+    let (left, right) = st
+        .plot_x
+        .filter(|(l, r)| *l > rect.left() && *r <= rect.right() + 1.0 && r > l)
+        .unwrap_or((rect.left() + LABEL_WIDTH, rect.right()));
+    let timeline = Rect::from_min_max(Pos2::new(left, rect.top()), Pos2::new(right, rect.bottom()));
+    let painter = ui.painter_at(rect);
+    let axis = st.axis;
+    let bounds = (
+        m.doc.plan.horizon.start as f64,
+        m.doc.plan.horizon.end as f64,
+    );
+    let current = m.activity_of_step(k);
+    let font = FontId::proportional(11.0);
+    let mut hovered: Option<(usize, String)> = None;
+    let pointer = response.hover_pos();
+    for (i, row) in rows.iter().enumerate() {
+        let y = rect.top() + i as f32 * (LANE_HEIGHT + LANE_GAP);
+        if !row.label.is_empty() {
+            painter.text(
+                Pos2::new(rect.left() + 2.0, y + LANE_HEIGHT / 2.0),
+                Align2::LEFT_CENTER,
+                &row.label,
+                font.clone(),
+                m.theme.muted,
+            );
+        }
+        // Cull and merge: consecutive bars that fall in the same pixel column merge.
+        let mut merged: Option<(f64, f64, Color32)> = None;
+        let flush = |span: Option<(f64, f64, Color32)>| {
+            if let Some((x0, x1, c)) = span {
+                let r = Rect::from_min_max(
+                    Pos2::new(x0 as f32, y),
+                    Pos2::new((x1 as f32).max(x0 as f32 + 1.0), y + LANE_HEIGHT),
+                );
+                painter.rect_filled(r, 2.0, c);
+            }
+        };
+        for bar in &row.bars {
+            if bar.end < axis.start || bar.start > axis.end {
+                continue;
+            }
+            let x0 = axis.x(bar.start, timeline).max(f64::from(timeline.left()));
+            let x1 = axis.x(bar.end, timeline).min(f64::from(timeline.right()));
+            if x1 - x0 < 1.0 {
+                merged = match merged {
+                    Some((a, b, c)) if x0 <= b + 1.0 => Some((a, b.max(x1), c)),
+                    other => {
+                        flush(other);
+                        Some((x0, x1, bar.color))
+                    }
+                };
+                continue;
+            }
+            flush(merged.take());
+            let r = Rect::from_min_max(
+                Pos2::new(x0 as f32, y),
+                Pos2::new(x1 as f32, y + LANE_HEIGHT),
+            );
+            painter.rect_filled(r, 2.0, bar.color);
+            let is_current = bar.activity.is_some() && bar.activity == current;
+            let is_selected = bar.activity.is_some() && bar.activity == st.selected;
+            if is_current {
+                painter.rect_stroke(
+                    r,
+                    2.0,
+                    Stroke::new(2.0, m.theme.current),
+                    StrokeKind::Outside,
+                );
+            }
+            if is_selected {
+                painter.rect_stroke(
+                    r,
+                    2.0,
+                    Stroke::new(1.5, m.theme.selection),
+                    StrokeKind::Outside,
+                );
+            }
+            if r.width() >= LABEL_MIN_WIDTH {
+                let text = painter.layout_no_wrap(bar.label.clone(), font.clone(), m.theme.label);
+                if text.size().x + 4.0 <= r.width() {
+                    painter.galley(
+                        Pos2::new(r.left() + 2.0, r.center().y - text.size().y / 2.0),
+                        text,
+                        m.theme.label,
+                    );
+                }
+            }
+            if let (Some(p), Some(a)) = (pointer, bar.activity) {
+                if r.contains(p) {
+                    hovered = Some((
+                        a,
+                        format!(
+                            "{} {}–{}",
+                            bar.label,
+                            m.time(bar.start as i64),
+                            m.time(bar.end as i64)
+                        ),
+                    ));
+                }
+            }
+        }
+        flush(merged);
+    }
+    // The current time probe.
+    if let Some(t) = st.probe {
+        let x = axis.x(t as f64, timeline) as f32;
+        painter.vline(x, timeline.y_range(), Stroke::new(1.0, m.theme.current));
+    }
+    if let Some((a, text)) = &hovered {
+        response.clone().on_hover_text_at_pointer(text.clone());
+        if response.clicked() {
+            cmds.push(Command::Select(Some(*a)));
+        }
+    }
+    // Pan by dragging, zoom with Ctrl+wheel (or pinch) about the pointer.
+    if response.dragged() {
+        let dt = -f64::from(response.drag_delta().x)
+            * axis.seconds_per_pixel(f64::from(timeline.width()));
+        let mut a = axis;
+        a.pan(dt, bounds);
+        cmds.push(Command::SetAxis(a));
+    }
+    if response.hovered() {
+        let zoom = ui.input(|i| i.zoom_delta());
+        if (zoom - 1.0).abs() > f32::EPSILON {
+            if let Some(p) = pointer {
+                let mut a = axis;
+                a.zoom_about(axis.t(f64::from(p.x), timeline), f64::from(zoom), bounds);
+                cmds.push(Command::SetAxis(a));
+            }
+        }
+    }
+}

@@ -1,0 +1,352 @@
+//! The inspector (selected activity: outcome, valid intervals per category on the
+//! time axis, explanation, suggestions) and the constraint editor.
+
+use eframe::egui::{self, Pos2, Rect, RichText, Sense, Stroke};
+use serde_json::{Map, Value};
+use solscope_engine::{CategoryIntervals, Phase, Phase2Reason, explanation_notes};
+
+use super::{Model, Status};
+use crate::gui::theme::LABEL_WIDTH;
+use crate::gui::{Command, UiState};
+
+/// The right-hand panel.
+pub fn inspector_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
+    ui.heading("Inspector");
+    match st.selected {
+        None => {
+            ui.label("Select an activity in the list or on the Gantt chart.");
+        }
+        Some(a) => activity_ui(ui, m, st, a, cmds),
+    }
+    ui.separator();
+    egui::CollapsingHeader::new("Plan limits")
+        .default_open(false)
+        .show(ui, |ui| {
+            plan_editor_ui(ui, m, st, cmds);
+        });
+}
+
+fn activity_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    st: &mut UiState,
+    a: usize,
+    cmds: &mut Vec<Command>,
+) {
+    let act = &m.doc.plan.activities[a];
+    let step = m.analysis.schedule.step_of(a);
+    ui.label(RichText::new(m.label(a)).strong());
+    let own_step = step.map_or(0, |s| s.step);
+    let status = match m.status(a, st.step) {
+        Status::Scheduled(s, e) => format!("scheduled {} – {}", m.time(s), m.time(e)),
+        Status::Failed => "failed".into(),
+        Status::Skipped => "skipped".into(),
+        Status::Pending => format!("pending (its step is {own_step})"),
+    };
+    ui.label(format!(
+        "Step {own_step}, priority {}, {}: {status}",
+        act.priority,
+        if act.mandatory {
+            "mandatory"
+        } else {
+            "optional"
+        }
+    ));
+    if ui.button("Show its step").clicked() {
+        cmds.push(Command::SetStep(own_step));
+    }
+
+    // Valid intervals per category, drawn on the shared time axis.
+    let (cats, seen_at) = match m.analysis.explanation(a) {
+        Some(ex) => (ex.categories.clone(), ex.failure_step.unwrap_or(0)),
+        None => (
+            step.map(|s| s.categories.clone()).unwrap_or_default(),
+            own_step.saturating_sub(1),
+        ),
+    };
+    if !cats.is_empty() {
+        ui.label(
+            RichText::new(format!(
+                "Valid starts per constraint (as seen after step {seen_at})"
+            ))
+            .strong(),
+        );
+        intervals_ui(ui, m, st, &cats);
+    }
+
+    if let Some(ex) = m.analysis.explanation(a) {
+        ui.separator();
+        ui.label(RichText::new("Why it did not schedule").strong());
+        if let Some(k) = ex.failure_step {
+            if ui.button(format!("Go to failure step {k}")).clicked() {
+                cmds.push(Command::GoToFailureStep(a));
+            }
+        }
+        if ex.phase == Some(Phase::ValidIntervals) {
+            for c in &ex.conflicts {
+                let names: Vec<&str> = c.iter().map(|x| x.name()).collect();
+                ui.label(format!("Conflict: {}", names.join(" + ")));
+            }
+        }
+        for r in ex.reasons.iter().take(4) {
+            let detail = match &r.reason {
+                Phase2Reason::MinSoc { at, soc_mj } => {
+                    format!(
+                        "SOC {:.1} Wh at {}",
+                        *soc_mj as f64 / solscope_engine::MJ_PER_WH,
+                        m.time(*at)
+                    )
+                }
+                Phase2Reason::MaxPeakPower { at, peak_mw } => {
+                    format!(
+                        "peak {:.1} W at {}",
+                        *peak_mw as f64 / solscope_engine::MW_PER_W,
+                        m.time(*at)
+                    )
+                }
+                other => other.kind().to_string(),
+            };
+            ui.label(format!(
+                "{} for starts {}–{}: {detail}",
+                r.reason.kind(),
+                r.first,
+                r.last
+            ));
+        }
+        for note in explanation_notes(&m.doc.plan, &m.analysis.schedule.problem, ex) {
+            ui.label(note);
+        }
+        if !ex.culprits.is_empty() {
+            ui.label(RichText::new("Involved (click to select and jump to its step)").strong());
+            for c in ex.culprits.iter().take(10) {
+                let text = format!(
+                    "{} (step {}, {})",
+                    m.doc.plan.activities[c.activity].id, c.step, c.category
+                );
+                if ui.link(text).clicked() {
+                    cmds.push(Command::Select(Some(c.activity)));
+                    cmds.push(Command::SetStep(c.step));
+                }
+            }
+        }
+        ui.label(RichText::new("Suggestions (verified by rescheduling)").strong());
+        match m.suggestions {
+            None => {
+                ui.label("computing…");
+            }
+            Some([]) => {
+                ui.label("No single edit found that makes it schedule.");
+            }
+            Some(list) => {
+                for s in list {
+                    ui.horizontal_wrapped(|ui| {
+                        let side = if s.side_effects.is_empty() {
+                            String::new()
+                        } else {
+                            let ids: Vec<&str> = s
+                                .side_effects
+                                .iter()
+                                .map(|&x| m.doc.plan.activities[x].id.as_str())
+                                .collect();
+                            format!(" (then fails: {})", ids.join(", "))
+                        };
+                        ui.label(format!("{}{side}", s.description));
+                        if ui.button(format!("Apply: {}", s.description)).clicked() {
+                            cmds.push(Command::Edit {
+                                target: s.target.clone(),
+                                set: s.set.clone(),
+                                description: s.description.clone(),
+                            });
+                        }
+                    });
+                }
+            }
+        }
+    }
+    ui.separator();
+    egui::CollapsingHeader::new("Edit activity")
+        .default_open(true)
+        .show(ui, |ui| {
+            activity_editor_ui(ui, m, st, a, cmds);
+        });
+}
+
+/// One row per category with its valid starts, then their intersection.
+fn intervals_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &UiState, cats: &[CategoryIntervals]) {
+    let row_h = 10.0;
+    let n = cats.len() + 1;
+    let (rect, _) = ui.allocate_exact_size(
+        egui::vec2(ui.available_width(), n as f32 * (row_h + 3.0)),
+        Sense::hover(),
+    );
+    let painter = ui.painter_at(rect);
+    let label_w = LABEL_WIDTH.min(rect.width() / 3.0);
+    let track = Rect::from_min_max(Pos2::new(rect.left() + label_w, rect.top()), rect.max);
+    let axis = st.axis;
+    let font = egui::FontId::proportional(9.0);
+    let mut inter =
+        solscope_engine::IntervalSet::single(m.doc.plan.horizon.start, m.doc.plan.horizon.end);
+    let draw = |i: usize, name: &str, set: &solscope_engine::IntervalSet, color: egui::Color32| {
+        let y = rect.top() + i as f32 * (row_h + 3.0);
+        painter.text(
+            Pos2::new(rect.left(), y + row_h / 2.0),
+            egui::Align2::LEFT_CENTER,
+            name,
+            font.clone(),
+            m.theme.muted,
+        );
+        painter.line_segment(
+            [
+                Pos2::new(track.left(), y + row_h / 2.0),
+                Pos2::new(track.right(), y + row_h / 2.0),
+            ],
+            Stroke::new(0.5, m.theme.muted),
+        );
+        for iv in set.intervals() {
+            let x0 = axis.x(iv.lo as f64, track).max(f64::from(track.left())) as f32;
+            let x1 = axis
+                .x(iv.hi as f64 + 1.0, track)
+                .min(f64::from(track.right())) as f32;
+            if x1 >= x0 {
+                painter.rect_filled(
+                    Rect::from_min_max(Pos2::new(x0, y), Pos2::new(x1.max(x0 + 1.0), y + row_h)),
+                    1.0,
+                    color,
+                );
+            }
+        }
+    };
+    for (i, c) in cats.iter().enumerate() {
+        inter = inter.intersect(&c.valid);
+        draw(i, c.category.name(), &c.valid, m.theme.valid);
+    }
+    draw(cats.len(), "all together", &inter, m.theme.current);
+}
+
+/// Text field for one JSON value; validated before it is sent.
+fn json_field_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    st: &mut UiState,
+    target: &str,
+    key: &str,
+    current: Option<&Value>,
+    cmds: &mut Vec<Command>,
+) {
+    let buf_key = format!("{target}/{key}");
+    let shown = current.map_or(String::new(), |v| v.to_string());
+    let entry = st
+        .editor
+        .entry(buf_key)
+        .or_insert_with(|| (shown.clone(), None));
+    let lbl = ui.label(key);
+    let resp = ui
+        .add(egui::TextEdit::singleline(&mut entry.0).desired_width(200.0))
+        .labelled_by(lbl.id);
+    let resp = resp.on_hover_text(format!("{key} as JSON; Enter applies (empty removes it)"));
+    let commit = resp.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+    if commit && entry.0 != shown {
+        let text = entry.0.trim();
+        let parsed = if text.is_empty() {
+            Ok(Value::Null)
+        } else {
+            serde_json::from_str::<Value>(text)
+        };
+        match parsed {
+            Err(e) => entry.1 = Some(format!("not JSON: {e}")),
+            Ok(value) => {
+                let mut set = Map::new();
+                set.insert(key.to_string(), value);
+                // Validate now, so a bad value is shown here and never applied.
+                match solscope_engine::apply_edit(&m.doc.plan, target, &set) {
+                    Err(e) => entry.1 = Some(e.to_string()),
+                    Ok(_) => {
+                        entry.1 = None;
+                        cmds.push(Command::Edit {
+                            target: target.to_string(),
+                            set,
+                            description: format!("Set {key} of {target}"),
+                        });
+                    }
+                }
+            }
+        }
+    }
+    ui.end_row();
+    if let Some(err) = &entry.1 {
+        ui.label("");
+        ui.label(RichText::new(err).color(m.theme.error));
+        ui.end_row();
+    }
+}
+
+const ACTIVITY_FIELDS: [&str; 18] = [
+    "name",
+    "priority",
+    "mandatory",
+    "duration",
+    "windows",
+    "resources",
+    "sequence_engines",
+    "energy_rate",
+    "peak_power",
+    "data_rate",
+    "awake",
+    "thermal_zones",
+    "after",
+    "requires",
+    "effects",
+    "uhf_interactions",
+    "comm_kind",
+    "group",
+];
+
+fn reset_buffers_if_stale(st: &mut UiState, key: (Option<usize>, u64)) {
+    if st.editor_for != Some(key) {
+        st.editor.clear();
+        st.editor_for = Some(key);
+    }
+}
+
+fn activity_editor_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    st: &mut UiState,
+    a: usize,
+    cmds: &mut Vec<Command>,
+) {
+    reset_buffers_if_stale(st, (Some(a), m.revision));
+    let act = &m.doc.plan.activities[a];
+    let value = serde_json::to_value(act).unwrap_or(Value::Null);
+    let target = format!("activity:{}", act.id);
+    egui::Grid::new("activity_editor")
+        .num_columns(2)
+        .show(ui, |ui| {
+            for key in ACTIVITY_FIELDS {
+                json_field_ui(ui, m, st, &target, key, value.get(key), cmds);
+            }
+        });
+}
+
+fn plan_editor_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
+    if st.selected.is_none() {
+        reset_buffers_if_stale(st, (None, m.revision));
+    }
+    let value = serde_json::to_value(&m.doc.plan).unwrap_or(Value::Null);
+    egui::Grid::new("plan_editor")
+        .num_columns(2)
+        .show(ui, |ui| {
+            for key in [
+                "battery",
+                "power",
+                "sleep",
+                "sequence_engines",
+                "data",
+                "handover",
+                "horizon",
+                "local_time",
+            ] {
+                json_field_ui(ui, m, st, "plan", key, value.get(key), cmds);
+            }
+        });
+}

@@ -1,0 +1,166 @@
+//! State of charge, peak power and data volume as of the current step, on the
+//! shared time axis; clicking a plot lists the consumers at that time.
+
+use eframe::egui::{self, RichText};
+use egui_plot::{HLine, Line, Plot, PlotPoints, VLine};
+use solscope_engine::{Consumer, MJ_PER_WH, MW_PER_W, energy_consumers, peak_users};
+
+use super::Model;
+use crate::gui::theme::{LABEL_WIDTH, PLOT_HEIGHT};
+use crate::gui::{Command, UiState};
+
+fn plot_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    st: &mut UiState,
+    id: &str,
+    series: &[[f64; 2]],
+    limits: &[(&str, f64)],
+    cmds: &mut Vec<Command>,
+) {
+    let color = m.theme.scheduled;
+    let limit_color = m.theme.limit;
+    let axis = st.axis;
+    let probe = st.probe;
+    let points: PlotPoints = series.iter().copied().collect();
+    let resp = Plot::new(id)
+        .height(PLOT_HEIGHT)
+        .allow_zoom(false)
+        .allow_drag(false)
+        .allow_scroll(false)
+        .allow_double_click_reset(false)
+        .include_y(0.0)
+        .y_axis_label(id)
+        .y_axis_min_width(LABEL_WIDTH - 30.0)
+        .show(ui, |plot_ui| {
+            plot_ui.set_plot_bounds_x(axis.start..=axis.end);
+            plot_ui.line(Line::new(id, points).color(color));
+            for &(name, y) in limits {
+                plot_ui.hline(HLine::new(name, y).color(limit_color));
+            }
+            if let Some(t) = probe {
+                plot_ui.vline(VLine::new("probe", t as f64));
+            }
+            plot_ui.pointer_coordinate()
+        });
+    let frame = resp.transform.frame();
+    st.plot_x = Some((frame.left(), frame.right()));
+    if resp.response.clicked() {
+        if let Some(p) = resp.inner {
+            cmds.push(Command::ProbePlot(Some(p.x.round() as i64)));
+        }
+    }
+}
+
+/// The three plots and the consumers at the probed time.
+pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
+    let plan = &m.doc.plan;
+    let sv = m.step_view;
+    let mut soc_limits = vec![
+        ("min_soc", plan.battery.min_soc),
+        ("capacity", plan.battery.capacity),
+    ];
+    if let Some(h) = plan.handover.and_then(|h| h.min_soc) {
+        soc_limits.push(("handover min_soc", h));
+    }
+    ui.label(RichText::new(format!("State of charge (Wh) after step {}", sv.step)).strong());
+    plot_ui(
+        ui,
+        m,
+        st,
+        "State of charge (Wh)",
+        &sv.soc,
+        &soc_limits,
+        cmds,
+    );
+    ui.label(RichText::new("Peak power (W)").strong());
+    let peak_limits: Vec<(&str, f64)> = plan
+        .power
+        .max_peak
+        .map(|p| ("max_peak", p))
+        .into_iter()
+        .collect();
+    plot_ui(ui, m, st, "Peak power (W)", &sv.peak, &peak_limits, cmds);
+    ui.label(RichText::new("Data volume (Mbit)").strong());
+    let data_limits: Vec<(&str, f64)> = plan
+        .data
+        .capacity
+        .map(|c| ("capacity", c))
+        .into_iter()
+        .collect();
+    plot_ui(
+        ui,
+        m,
+        st,
+        "Data volume (Mbit)",
+        &sv.data,
+        &data_limits,
+        cmds,
+    );
+
+    let Some(t) = st.probe else {
+        ui.label("Click a plot to list the energy and peak-power users at that time.");
+        return;
+    };
+    ui.horizontal(|ui| {
+        ui.label(RichText::new(format!("At {}", m.time(t))).strong());
+        let mut since = st.since_full;
+        if ui.checkbox(&mut since, "since last full battery").changed() {
+            cmds.push(Command::SetSinceFull(since));
+        }
+        if ui.button("Clear probe").clicked() {
+            cmds.push(Command::ProbePlot(None));
+        }
+    });
+    let (from, energy) = energy_consumers(&m.analysis.schedule, sv.step, t, st.since_full);
+    let peak = peak_users(&m.analysis.schedule, sv.step, t);
+    let energy = merge_by_who(m, &energy);
+    let peak = merge_by_who(m, &peak);
+    ui.columns(2, |cols| {
+        cols[0].label(
+            RichText::new(format!("Energy used {} to {}", m.time(from), m.time(t))).strong(),
+        );
+        egui::Grid::new("energy_users")
+            .num_columns(2)
+            .striped(true)
+            .show(&mut cols[0], |ui| {
+                for (who, amount) in energy.iter().take(12) {
+                    ui.label(format!("{:.1} Wh", *amount as f64 / MJ_PER_WH));
+                    ui.label(who);
+                    ui.end_row();
+                }
+            });
+        if energy.len() > 12 {
+            cols[0].label(format!("and {} more", energy.len() - 12));
+        }
+        cols[1].label(RichText::new("Peak-power users").strong());
+        egui::Grid::new("peak_users")
+            .num_columns(2)
+            .striped(true)
+            .show(&mut cols[1], |ui| {
+                for (who, amount) in peak.iter().take(12) {
+                    ui.label(format!("{:.1} W", *amount as f64 / MW_PER_W));
+                    ui.label(who);
+                    ui.end_row();
+                }
+            });
+    });
+}
+
+/// Sums consumers that read the same (e.g. several awake periods), ranked.
+fn merge_by_who(m: &Model<'_>, list: &[Consumer]) -> Vec<(String, i64)> {
+    let mut out: Vec<(String, i64)> = Vec::new();
+    for c in list {
+        let who = match (c.activity, c.kind) {
+            (Some(a), "activity") => m.doc.plan.activities[a].id.clone(),
+            (Some(a), kind) => format!("{kind} for {}", m.doc.plan.activities[a].id),
+            (None, _) => "rover awake (above asleep draw)".to_string(),
+        };
+        match out.iter_mut().find(|x| x.0 == who) {
+            Some(x) => x.1 = x.1.saturating_add(c.amount),
+            None => out.push((who, c.amount)),
+        }
+    }
+    out.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    out
+}

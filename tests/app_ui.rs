@@ -1,0 +1,217 @@
+//! Interaction tests through the real UI, by accessibility labels (egui_kittest).
+
+#![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
+
+use egui_kittest::kittest::Queryable;
+use solscope::gui::{Command, SolscopeApp};
+use solscope::screenshot::{SNAPSHOT_SIZE, View, harness};
+
+fn tutorial() -> SolscopeApp {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/tutorial-plan.json"
+    ))
+    .unwrap();
+    SolscopeApp::from_text(&text, None).expect("tutorial plan")
+}
+
+fn index(app: &SolscopeApp, id: &str) -> usize {
+    app.doc
+        .plan
+        .activities
+        .iter()
+        .position(|a| a.id == id)
+        .expect("activity")
+}
+
+#[test]
+fn stepping_moves_activities_between_lanes() {
+    let mut h = harness(
+        tutorial(),
+        SNAPSHOT_SIZE.into(),
+        &View {
+            step: Some(0),
+            ..View::default()
+        },
+    )
+    .unwrap();
+    let first = h.state().analysis.schedule.steps[0].activity;
+    let id = h.state().doc.plan.activities[first].id.clone();
+    // Pending before step 1, scheduled after it.
+    assert!(h.query_by_label(&format!(".   1 {id}")).is_some());
+    h.get_by_label("Next >").click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.step, 1);
+    assert!(h.query_by_label(&format!("+   1 {id}")).is_some());
+    // Keyboard: End goes to the last step, Home back to 0.
+    h.key_press(eframe::egui::Key::End);
+    h.run_steps(3);
+    assert_eq!(h.state().ui.step, h.state().analysis.steps());
+    h.key_press(eframe::egui::Key::Home);
+    h.run_steps(3);
+    assert_eq!(h.state().ui.step, 0);
+}
+
+#[test]
+fn clicking_a_failed_activity_shows_its_explanation() {
+    let mut h = harness(tutorial(), SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    let a = index(h.state(), "sky_flats_mast_busy");
+    let step = h.state().analysis.schedule.step_of(a).unwrap().step;
+    h.get_by_label(&format!("x {step:>3} sky_flats_mast_busy"))
+        .click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.selected, Some(a));
+    assert!(h.query_by_label("Why it did not schedule").is_some());
+    assert!(
+        h.query_by_label_contains("Conflict: execution + unit_resource")
+            .is_some()
+    );
+}
+
+#[test]
+fn applying_a_suggestion_makes_it_schedule_and_undo_restores() {
+    let mut h = harness(
+        tutorial(),
+        SNAPSHOT_SIZE.into(),
+        &View {
+            select: Some("sky_flats_mast_busy".into()),
+            ..View::default()
+        },
+    )
+    .unwrap();
+    let a = index(h.state(), "sky_flats_mast_busy");
+    let before = h.state().doc.plan.clone();
+    assert!(h.state().analysis.placement(a).is_none());
+    h.get_by_label_contains("Apply: Widen window 1 of sky_flats_mast_busy")
+        .click();
+    h.run_steps(3);
+    assert!(
+        h.state().analysis.placement(a).is_some(),
+        "the suggestion schedules it"
+    );
+    let banner = h.state().ui.banner.clone().expect("outcome banner");
+    assert!(
+        banner
+            .newly_scheduled
+            .contains(&"sky_flats_mast_busy".to_string())
+    );
+    assert!(
+        h.query_by_label_contains("newly scheduled: sky_flats_mast_busy")
+            .is_some()
+    );
+    // Ctrl+Z restores the plan and the outcome.
+    h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::Z);
+    h.run_steps(3);
+    assert_eq!(h.state().doc.plan, before);
+    assert!(h.state().analysis.placement(a).is_none());
+}
+
+#[test]
+fn editing_a_window_reruns_and_updates_the_banner() {
+    let mut h = harness(
+        tutorial(),
+        SNAPSHOT_SIZE.into(),
+        &View {
+            select: Some("sky_flats_mast_busy".into()),
+            ..View::default()
+        },
+    )
+    .unwrap();
+    let a = index(h.state(), "sky_flats_mast_busy");
+    h.get_by_label("windows").scroll_to_me();
+    h.run_steps(2);
+    h.get_by_label("windows").focus();
+    h.run_steps(2);
+    h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::A);
+    h.get_by_label("windows")
+        .type_text(r#"[{"start": 36000, "end": 38700}]"#);
+    h.run_steps(2);
+    h.key_press(eframe::egui::Key::Enter);
+    h.run_steps(3);
+    assert!(
+        h.state().analysis.placement(a).is_some(),
+        "the widened window fits: editor {:?}, error {:?}",
+        h.state()
+            .ui
+            .editor
+            .get("activity:sky_flats_mast_busy/windows"),
+        h.state().ui.error
+    );
+    assert!(h.state().doc.dirty);
+    assert!(
+        h.query_by_label_contains("Set windows of activity:sky_flats_mast_busy")
+            .is_some()
+    );
+}
+
+#[test]
+fn a_bad_value_is_shown_and_never_applied() {
+    let mut h = harness(
+        tutorial(),
+        SNAPSHOT_SIZE.into(),
+        &View {
+            select: Some("sky_flats_mast_busy".into()),
+            ..View::default()
+        },
+    )
+    .unwrap();
+    let before = h.state().doc.plan.clone();
+    h.get_by_label("priority").scroll_to_me();
+    h.run_steps(2);
+    h.get_by_label("priority").focus();
+    h.run_steps(2);
+    h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::A);
+    h.get_by_label("priority").type_text("\"high\"");
+    h.key_press(eframe::egui::Key::Enter);
+    h.run_steps(3);
+    assert_eq!(h.state().doc.plan, before, "nothing applied");
+    assert!(
+        h.query_by_label_contains("invalid type").is_some(),
+        "the error is shown next to the field"
+    );
+}
+
+#[test]
+fn opening_a_bad_file_keeps_the_plan_and_shows_the_error() {
+    let mut h = harness(tutorial(), SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    let before = h.state().doc.plan.clone();
+    let bad = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/malformed/window-end-before-start.json"
+    );
+    h.state_mut().push(Command::Open(bad.into()));
+    h.run_steps(3);
+    assert_eq!(h.state().doc.plan, before);
+    assert!(h.query_by_label_contains("Could not open").is_some());
+    assert!(
+        h.query_by_label_contains("windows[0].end").is_some(),
+        "the path-named error is shown"
+    );
+}
+
+#[test]
+fn unsaved_edits_are_guarded_on_open() {
+    let mut h = harness(
+        tutorial(),
+        SNAPSHOT_SIZE.into(),
+        &View {
+            select: Some("sky_flats_mast_busy".into()),
+            ..View::default()
+        },
+    )
+    .unwrap();
+    h.get_by_label_contains("Apply: Widen window 1").click();
+    h.run_steps(3);
+    assert!(h.state().doc.dirty);
+    let edited = h.state().doc.plan.clone();
+    let other = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../shared/examples/pitfall.json"
+    );
+    h.state_mut().push(Command::Open(other.into()));
+    h.run_steps(3);
+    assert!(h.query_by_label("Unsaved changes").is_some());
+    h.get_by_label("Keep editing").click();
+    h.run_steps(3);
+    assert_eq!(h.state().doc.plan, edited, "the edits are kept");
+}
