@@ -44,11 +44,27 @@ enum Command {
         /// Print planner-facing text instead of JSON.
         #[arg(long)]
         text: bool,
+        /// Skip suggestions (each is verified by rescheduling the edited plan, which
+        /// dominates the time on large plans).
+        #[arg(long)]
+        no_suggestions: bool,
     },
     /// Validate a plan and print its warnings.
     Check {
         /// The plan file (solscope.plan/1 JSON).
         plan: PathBuf,
+    },
+    /// Write a random but realistic plan (every feature) to standard output.
+    Generate {
+        /// Number of activities.
+        #[arg(long, default_value_t = 300)]
+        activities: usize,
+        /// Number of sols.
+        #[arg(long, default_value_t = 1)]
+        sols: usize,
+        /// Random seed.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
     },
     /// Render the app's view of a plan to a PNG, offscreen (software rendering).
     Screenshot {
@@ -187,12 +203,13 @@ fn run(command: Command) -> Result<String, solscope_engine::Error> {
             plan,
             activity,
             text,
+            no_suggestions,
         } => {
             let loaded = solscope_engine::load_plan_file(&plan)?;
             let schedule = solscope_engine::schedule(&loaded.plan)?;
             let opts = solscope_engine::ExplainOptions {
                 activity,
-                no_suggestions: false,
+                no_suggestions,
             };
             let explanations = solscope_engine::explain(&loaded.plan, &schedule, &opts)?;
             if text {
@@ -207,6 +224,20 @@ fn run(command: Command) -> Result<String, solscope_engine::Error> {
             }
         }
         Command::Screenshot { .. } => Ok(String::new()),
+        Command::Generate {
+            activities,
+            sols,
+            seed,
+        } => {
+            if activities > 1_000_000 || sols > 1000 {
+                return Err(solscope_engine::Error::invalid(
+                    "--activities/--sols",
+                    "at most 1000000 activities and 1000 sols",
+                ));
+            }
+            let plan = solscope_engine::generate_plan(activities, sols, seed);
+            Ok(format!("{}\n", to_json(&plan)))
+        }
         Command::Check { plan } => {
             let loaded = solscope_engine::load_plan_file(&plan)?;
             let mut out = String::new();

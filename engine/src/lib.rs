@@ -9,6 +9,7 @@
 
 mod error;
 mod explain;
+mod generate;
 mod io;
 mod model;
 mod scheduler;
@@ -17,6 +18,7 @@ mod validate;
 
 pub use error::{Error, Warning};
 pub use explain::*;
+pub use generate::generate_plan;
 pub use io::{
     ActivityEntry, ExplainDoc, GeneratedEntry, LoadedPlan, Profiles, ScheduleDoc, apply_edit,
     explain_document, explain_text, load_plan, load_plan_file, schedule_document,

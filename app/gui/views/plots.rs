@@ -23,7 +23,12 @@ fn plot_ui(
     let axis = st.axis;
     let probe = st.probe;
     let points: PlotPoints = series.iter().copied().collect();
+    let local = m.doc.plan.local_time;
     let resp = Plot::new(id)
+        .x_axis_formatter(move |mark, _range| {
+            let t = mark.value.round() as i64;
+            format!("{t} ({})", local.format_hms(t))
+        })
         .height(PLOT_HEIGHT)
         .allow_zoom(false)
         .allow_drag(false)

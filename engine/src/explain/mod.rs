@@ -171,16 +171,28 @@ pub fn explain(
         }
         v
     };
-    let probes = failure_probes(sched, &targets, &step_of);
-    let mut out = Vec::with_capacity(targets.len());
-    for (a, probe) in targets.iter().copied().zip(probes) {
+    // Culprits need the state at the failure step: take it from the replay that
+    // finds the step instead of rebuilding it per activity.
+    let mut found: Vec<Option<Explanation>> = vec![None; targets.len()];
+    failure_probes(sched, &targets, &step_of, |i, k, record, state| {
+        let a = targets[i];
         let step = &sched.steps[step_of[a] - 1];
-        let mut ex = match probe {
-            Some((k, record)) => from_probe(sched, a, step, k, record),
-            None => from_step(a, step),
+        let mut ex = from_probe(sched, a, step, k, record);
+        ex.culprits = culprits::culprits(state, &ex, &step_of);
+        found[i] = Some(ex);
+    });
+    let mut out = Vec::with_capacity(targets.len());
+    for (a, ex) in targets.iter().copied().zip(found) {
+        let mut ex = match ex {
+            Some(ex) => ex,
+            None => {
+                let step = &sched.steps[step_of[a] - 1];
+                let mut ex = from_step(a, step);
+                let state = sched.state_after(step.step - 1);
+                ex.culprits = culprits::culprits(&state, &ex, &step_of);
+                ex
+            }
         };
-        let state = sched.state_after(ex.failure_step.unwrap_or(step.step - 1));
-        ex.culprits = culprits::culprits(&state, &ex, &step_of);
         if !opts.no_suggestions && ex.failure_step.is_some() {
             ex.suggestions = suggest::suggestions(plan, sched, &ex, &step_of);
         }
@@ -325,15 +337,16 @@ pub fn inclusion_scope(
     }
 }
 
-/// For each target: `Some((k, record))` with its failure step and the probe's step
-/// record there, or `None` when it schedules at its own step (a scheduled activity).
+/// Calls `on_failure(i, k, record, state)` for each target `i` that fails, with its
+/// failure step `k`, the probe's step record there and the state after step `k`.
+/// Targets that schedule at their own step (scheduled activities) get no call.
 fn failure_probes(
     sched: &Schedule,
     targets: &[usize],
     step_of: &[usize],
-) -> Vec<Option<(usize, Step)>> {
+    mut on_failure: impl FnMut(usize, usize, Step, &State<'_>),
+) {
     let pb = &sched.problem;
-    let mut found: Vec<Option<(usize, Step)>> = vec![None; targets.len()];
     let mut open: Vec<bool> = targets
         .iter()
         .map(|&a| {
@@ -343,6 +356,9 @@ fn failure_probes(
             )
         })
         .collect();
+    // A placement known to fit each target at the previous step: while it still
+    // fits, the probe succeeds without a search.
+    let mut witness: Vec<Option<(i64, i64)>> = vec![None; targets.len()];
     let mut state = State::new(pb);
     for k in 0..sched.steps.len() {
         for (i, &a) in targets.iter().enumerate() {
@@ -350,10 +366,27 @@ fn failure_probes(
                 continue;
             }
             let scope = inclusion_scope(pb, a, k, step_of);
+            let act = &pb.acts[a];
+            let blocked = act.group.is_some_and(|g| state.group_member[g].is_some())
+                || act.after.iter().enumerate().any(|(j, d)| {
+                    !scope.skip_deps.contains(&j) && state.placed[d.target].is_none()
+                });
+            if !blocked {
+                if let Some((s, d)) = witness[i] {
+                    // The same duration as before: a longer one could have become
+                    // possible, but a probe only asks whether the activity fails.
+                    if state.fits(a, s, d, &scope) {
+                        continue;
+                    }
+                }
+            }
             let (record, placement) = run_step(&state, a, step_of[a], &scope);
-            if placement.is_none() {
-                found[i] = Some((k, record));
-                open[i] = false;
+            match placement {
+                None => {
+                    on_failure(i, k, record, &state);
+                    open[i] = false;
+                }
+                Some(p) => witness[i] = Some((p.start, p.duration)),
             }
         }
         if !open.iter().any(|o| *o) {
@@ -366,7 +399,6 @@ fn failure_probes(
             }
         }
     }
-    found
 }
 
 /// Reschedules `plan` and reports whether activity `a` is scheduled, with the

@@ -36,9 +36,42 @@ pub struct Evaluated {
 impl State<'_> {
     /// Valid starts of every phase-1 category for activity `a` with duration `d`.
     pub fn phase1(&self, a: usize, d: i64, scope: &Scope) -> Vec<CategoryIntervals> {
+        self.phase1_in(a, d, scope, self.pb.h0, self.pb.h1)
+    }
+
+    /// Whether activity `a` fits at start `s` with duration `d` (every phase-1
+    /// category and phase 2), without searching: the explainer's quick re-check
+    /// of a known placement.
+    pub fn fits(&self, a: usize, s: i64, d: i64, scope: &Scope) -> bool {
+        let act = &self.pb.acts[a];
+        let (wake, shut) = if act.awake == AwakeMode::Required {
+            (self.pb.wake, self.pb.shut)
+        } else {
+            (0, 0)
+        };
+        let in_window = act.windows.iter().any(|w| {
+            self.window_range(a, w.start, w.end, w.cutoff, d, wake, shut)
+                .contains(s)
+        });
+        in_window
+            && self
+                .phase1_in(a, d, scope, s, s)
+                .iter()
+                .all(|c| c.valid.contains(s))
+            && self.evaluate(a, s, d).is_ok_and(|ev| ev.margin >= 0)
+    }
+
+    /// Phase 1 restricted to starts in `[lo, hi]`.
+    fn phase1_in(
+        &self,
+        a: usize,
+        d: i64,
+        scope: &Scope,
+        lo: i64,
+        hi: i64,
+    ) -> Vec<CategoryIntervals> {
         let pb = self.pb;
         let act = &pb.acts[a];
-        let (lo, hi) = (pb.h0, pb.h1);
         let all = || IntervalSet::single(lo, hi);
         let mut out = Vec::with_capacity(8);
         // execution
@@ -175,6 +208,13 @@ impl State<'_> {
     /// Starts where adding `rate` bit/s over `[s, s + d)` keeps the volume <= `cap`.
     fn data_valid(&self, rate: i64, d: i64, cap: i128, lo: i64, hi: i64) -> IntervalSet {
         let margin = |s: i64| self.data.check(&[(s, s + d, rate)], None).min + cap;
+        if lo == hi {
+            return if margin(lo) >= 0 {
+                IntervalSet::single(lo, lo)
+            } else {
+                IntervalSet::empty()
+            };
+        }
         let mut points: Vec<i64> = Vec::new();
         for &x in self.data.breakpoints() {
             for o in [0, d] {
@@ -632,7 +672,15 @@ fn concave_feasible(a: i64, b: i64, g: &dyn Fn(i64) -> i128) -> (Option<Interval
     if gb >= 0 {
         return (Some(Interval::new(first_ok(a + 1, b), b)), b);
     }
-    // Both ends fail: find the maximum (first s with g(s + 1) <= g(s)).
+    // Both ends fail. If g does not rise right after a (or does not fall right
+    // before b), concavity puts the maximum at that end: nothing passes.
+    if a == b || g(a + 1) <= ga {
+        return (None, a);
+    }
+    if g(b - 1) <= gb {
+        return (None, b);
+    }
+    // Otherwise find the maximum (first s with g(s + 1) <= g(s)).
     let (mut l, mut r) = (a, b);
     while l < r {
         let mid = l + (r - l) / 2;
