@@ -78,7 +78,7 @@ fn window(start: i64, end: i64, preferred: Option<i64>) -> Option<Vec<Window>> {
 /// A plan of about `activities` activities over `sols` sols (at least one each).
 pub fn generate_plan(activities: usize, sols: usize, seed: u64) -> Plan {
     let sols = sols.max(1);
-    let mut rng = Rng(seed ^ 0x5eed_0f_501);
+    let mut rng = Rng(seed ^ 0x0005_eed0_f501);
     let sol = MARS_SOL;
     let horizon_end = sol * sols as i64;
     let per_sol = activities.div_ceil(sols).max(1);
