@@ -1,0 +1,120 @@
+//! `cargo bench`: scheduling, explaining, rebuilding the state at a step, one app
+//! frame and edit → rerun → repaint, over generated plans of 100, 1,000 and 10,000
+//! activities (1, 3 and 30 sols). Prints a markdown table; results are recorded in
+//! docs/performance.md.
+//!
+//! `cargo bench -- --quick` measures only 100 and 1,000 activities.
+
+#![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
+
+use std::time::{Duration, Instant};
+
+use eframe::egui;
+use serde_json::json;
+use solscope::gui::{Command, SolscopeApp};
+use solscope_engine::{ExplainOptions, Outcome, explain, generate_plan, schedule};
+
+/// Median wall time of `runs` calls (at least one).
+fn median(runs: usize, mut f: impl FnMut()) -> Duration {
+    let mut times: Vec<Duration> = (0..runs.max(1))
+        .map(|_| {
+            let t = Instant::now();
+            f();
+            t.elapsed()
+        })
+        .collect();
+    times.sort();
+    times[times.len() / 2]
+}
+
+fn ms(d: Duration) -> String {
+    format!("{:.1} ms", d.as_secs_f64() * 1000.0)
+}
+
+/// Peak resident memory of this process so far (VmHWM), in MB.
+fn peak_rss_mb() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb / 1024.0)
+}
+
+/// One app frame (layout + painting + tessellation, no GPU) on an egui context.
+fn frame(ctx: &egui::Context, app: &mut SolscopeApp) {
+    let input = egui::RawInput {
+        screen_rect: Some(egui::Rect::from_min_size(
+            egui::Pos2::ZERO,
+            egui::vec2(1600.0, 1000.0),
+        )),
+        ..Default::default()
+    };
+    let out = ctx.run_ui(input, |ui| app.frame_ui(ui));
+    let prims = ctx.tessellate(out.shapes, out.pixels_per_point);
+    std::hint::black_box(prims);
+}
+
+fn main() {
+    let quick = std::env::args().any(|a| a == "--quick");
+    let sizes: &[(usize, usize, usize)] = if quick {
+        &[(100, 1, 5), (1000, 3, 3)]
+    } else {
+        &[(100, 1, 5), (1000, 3, 3), (10_000, 30, 1)]
+    };
+    println!(
+        "| activities | sols | scheduled | schedule | explain all (no suggestions) | state at step N/2 | app frame | edit → rerun → repaint |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for &(n, sols, runs) in sizes {
+        let plan = generate_plan(n, sols, 1);
+        let mut sched = None;
+        let t_schedule = median(runs, || sched = Some(schedule(&plan).expect("schedules")));
+        let sched = sched.expect("ran");
+        let scheduled = sched
+            .steps
+            .iter()
+            .filter(|s| matches!(s.outcome, Outcome::Scheduled { .. }))
+            .count();
+        let opts = ExplainOptions {
+            activity: None,
+            no_suggestions: true,
+        };
+        let t_explain = median(runs, || {
+            std::hint::black_box(explain(&plan, &sched, &opts).expect("explains"));
+        });
+        let t_state = median(runs, || {
+            std::hint::black_box(sched.state_after(n / 2));
+        });
+        // App: one frame at the last step, and an edit (priority of an activity) then
+        // the frame that shows it.
+        let text = serde_json::to_string(&plan).expect("json");
+        let mut app = SolscopeApp::from_text(&text, None).expect("app");
+        let ctx = egui::Context::default();
+        frame(&ctx, &mut app);
+        frame(&ctx, &mut app);
+        let t_frame = median(10, || frame(&ctx, &mut app));
+        let target = format!("activity:{}", plan.activities[n / 2].id);
+        let mut flip = 0;
+        let t_edit = median(runs, || {
+            flip += 1;
+            let mut set = serde_json::Map::new();
+            set.insert("priority".into(), json!(1000 + flip));
+            app.apply(Command::Edit {
+                target: target.clone(),
+                set,
+                description: "bench".into(),
+            });
+            frame(&ctx, &mut app);
+        });
+        println!(
+            "| {n} | {sols} | {scheduled} | {} | {} | {} | {} | {} |",
+            ms(t_schedule),
+            ms(t_explain),
+            ms(t_state),
+            ms(t_frame),
+            ms(t_edit)
+        );
+    }
+    if let Some(mb) = peak_rss_mb() {
+        println!("\npeak resident memory of the whole run: {mb:.0} MB");
+    }
+}
