@@ -222,6 +222,39 @@ const EXPECTED: &[(&str, &str, &str)] = &[
         "activities[4].group",
         "must not be empty",
     ),
+    // hostile numbers and structure
+    (
+        "number-out-of-range.json",
+        "battery.capacity",
+        "number out of range",
+    ),
+    (
+        "power-too-large.json",
+        "power.rtg",
+        "must be at most 1000000 W in magnitude",
+    ),
+    ("integer-overflow.json", "horizon.end", "expected i64"),
+    (
+        "nan-string.json",
+        "battery.initial",
+        "invalid type: string \"NaN\"",
+    ),
+    (
+        "time-too-large.json",
+        "horizon.end",
+        "must be between -10000000000 and 10000000000",
+    ),
+    (
+        "deeply-nested.json",
+        "activities[0].resources[0]",
+        "invalid type: sequence",
+    ),
+    (
+        "trailing-garbage.json",
+        "$",
+        "unexpected text after the plan",
+    ),
+    ("duplicate-key.json", "horizon", "duplicate field `end`"),
 ];
 
 fn corpus_dir() -> PathBuf {
@@ -303,4 +336,35 @@ fn every_corpus_file_is_rejected_with_its_path() {
         }
     }
     assert!(failures.is_empty(), "\n{}", failures.join("\n"));
+}
+
+#[test]
+fn a_million_activities_are_refused_cleanly() {
+    // About 60 MB of activities: refused by size before parsing, so loading stays
+    // bounded in time and memory.
+    let dir = std::env::temp_dir().join(format!("solscope-million-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("million.json");
+    let mut text = String::from(
+        r#"{ "format": "solscope.plan/1", "horizon": { "start": 0, "end": 7200 },
+            "battery": { "capacity": 100.0, "initial": 90.0, "min_soc": 10.0 },
+            "power": { "rtg": 50.0, "asleep": 10.0, "awake": 30.0 }, "activities": ["#,
+    );
+    for i in 0..1_000_000 {
+        if i > 0 {
+            text.push(',');
+        }
+        text.push_str(&format!(r#"{{"id":"a{i}","priority":{i},"duration":60}}"#));
+    }
+    text.push_str("] }");
+    std::fs::write(&path, text).unwrap();
+    for sub in ["check", "schedule"] {
+        let out = run(sub, &path);
+        assert_eq!(out.status.code(), Some(2), "{sub}");
+        assert!(out.stdout.is_empty());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.starts_with("error: $: "), "{err}");
+        assert!(err.contains("plans are limited to"), "{err}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -20,10 +20,27 @@ pub struct LoadedPlan {
     pub warnings: Vec<Warning>,
 }
 
+/// Largest plan accepted (bytes): far above any real plan (a generated
+/// 10,000-activity plan is about 4 MB), and a bound on the memory loading takes.
+pub const MAX_PLAN_BYTES: usize = 32 * 1024 * 1024;
+
 /// Parses and validates a plan from JSON text. Errors name the JSON path.
 pub fn load_plan(text: &str) -> Result<LoadedPlan, Error> {
+    if text.len() > MAX_PLAN_BYTES {
+        return Err(Error::invalid(
+            "$",
+            format!(
+                "the plan is {} bytes; plans are limited to {MAX_PLAN_BYTES} bytes",
+                text.len()
+            ),
+        ));
+    }
     let de = &mut serde_json::Deserializer::from_str(text);
-    let typed: Result<Plan, _> = serde_path_to_error::deserialize(de);
+    let typed: Result<Plan, _> = serde_path_to_error::deserialize(&mut *de);
+    if typed.is_ok() {
+        de.end()
+            .map_err(|e| Error::invalid("$", format!("unexpected text after the plan: {e}")))?;
+    }
     // serde's derived impls also accept arrays for structs (fields by position);
     // the format does not, and the shape error explains a failed parse better.
     if let Ok(doc) = serde_json::from_str::<serde_json::Value>(text) {
@@ -85,6 +102,20 @@ pub fn apply_edit(
 
 /// Reads and loads a plan file.
 pub fn load_plan_file(path: &std::path::Path) -> Result<LoadedPlan, Error> {
+    let io = |source| Error::Io {
+        path: path.display().to_string(),
+        source,
+    };
+    let size = std::fs::metadata(path).map_err(io)?.len();
+    if size > MAX_PLAN_BYTES as u64 {
+        return Err(Error::invalid(
+            "$",
+            format!(
+                "{} is {size} bytes; plans are limited to {MAX_PLAN_BYTES} bytes",
+                path.display()
+            ),
+        ));
+    }
     let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
         path: path.display().to_string(),
         source,
