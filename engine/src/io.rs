@@ -4,7 +4,7 @@ use serde::Serialize;
 use serde_json::{Value, json};
 
 use crate::error::{Error, Warning};
-use crate::explain::{Explanation, ReasonRange, explanation_notes};
+use crate::explain::{Explanation, ReasonRange, explanation_notes, suggestion_line};
 use crate::model::Plan;
 use crate::scheduler::{
     BIT_PER_MBIT, Generated, GeneratedKind, MJ_PER_WH, MW_PER_W, Outcome, Phase2Reason, Schedule,
@@ -494,20 +494,10 @@ pub fn explain_text(plan: &Plan, schedule: &Schedule, explanations: &[Explanatio
             out.push_str(&format!("  {n}\n"));
         }
         for (i, s) in ex.suggestions.iter().enumerate() {
-            let side = if s.side_effects.is_empty() {
-                String::new()
-            } else {
-                let ids: Vec<&str> = s
-                    .side_effects
-                    .iter()
-                    .map(|&x| plan.activities[x].id.as_str())
-                    .collect();
-                format!(" (then fails: {})", ids.join(", "))
-            };
             out.push_str(&format!(
-                "  suggestion {}: {}{side}\n",
+                "  suggestion {}: {}\n",
                 i + 1,
-                s.description
+                suggestion_line(plan, s)
             ));
         }
         out.push('\n');

@@ -3,7 +3,7 @@
 
 use eframe::egui::{self, Pos2, Rect, RichText, Sense, Stroke};
 use serde_json::{Map, Value};
-use solscope_engine::{CategoryIntervals, Phase, Phase2Reason, explanation_notes};
+use solscope_engine::{CategoryIntervals, Phase, Phase2Reason, explanation_notes, suggestion_line};
 
 use super::{Model, Status};
 use crate::gui::theme::LABEL_WIDTH;
@@ -140,17 +140,7 @@ fn activity_ui(
             Some(list) => {
                 for s in list {
                     ui.horizontal_wrapped(|ui| {
-                        let side = if s.side_effects.is_empty() {
-                            String::new()
-                        } else {
-                            let ids: Vec<&str> = s
-                                .side_effects
-                                .iter()
-                                .map(|&x| m.doc.plan.activities[x].id.as_str())
-                                .collect();
-                            format!(" (then fails: {})", ids.join(", "))
-                        };
-                        ui.label(format!("{}{side}", s.description));
+                        ui.label(suggestion_line(&m.doc.plan, s));
                         if ui.button(format!("Apply: {}", s.description)).clicked() {
                             cmds.push(Command::Edit {
                                 target: s.target.clone(),

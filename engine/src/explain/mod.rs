@@ -22,7 +22,7 @@ use serde::Serialize;
 
 pub use conflicts::{Relaxation, minimal_conflicts};
 pub use culprits::{Consumer, energy_consumers, peak_users};
-pub use text::{explanation_notes, format_local};
+pub use text::{explanation_notes, format_local, suggestion_line};
 
 use crate::error::Error;
 use crate::model::Plan;

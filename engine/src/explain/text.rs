@@ -66,6 +66,20 @@ fn category_phrase(c: Category) -> &'static str {
     }
 }
 
+/// A suggestion as one line: its description, and the activities it would make
+/// fail (` (then fails: a, b)`) when there are any.
+pub fn suggestion_line(plan: &Plan, s: &super::Suggestion) -> String {
+    if s.side_effects.is_empty() {
+        return s.description.clone();
+    }
+    let ids: Vec<&str> = s
+        .side_effects
+        .iter()
+        .map(|&x| plan.activities[x].id.as_str())
+        .collect();
+    format!("{} (then fails: {})", s.description, ids.join(", "))
+}
+
 /// The plain-language notes of an explanation.
 pub fn explanation_notes(plan: &Plan, pb: &Problem, ex: &Explanation) -> Vec<String> {
     let name = |a: usize| plan.activities[a].display_name().to_string();
