@@ -238,21 +238,20 @@ fn from_probe(sched: &Schedule, a: usize, step: &Step, k: usize, record: Step) -
     } else {
         (Vec::new(), Vec::new())
     };
-    let reasons = group_reasons(
-        record
-            .tries
-            .iter()
-            .filter_map(|t| {
-                t.reason.clone().map(|reason| ReasonRange {
-                    first: t.starts.lo,
-                    last: t.starts.hi,
-                    duration: t.duration,
-                    reason,
-                    probe: t.probe,
-                })
+    // The trace already holds the tries grouped into ranges (`merge_tries`).
+    let reasons: Vec<ReasonRange> = record
+        .tries
+        .iter()
+        .filter_map(|t| {
+            t.reason.clone().map(|reason| ReasonRange {
+                first: t.starts.lo,
+                last: t.starts.hi,
+                duration: t.duration,
+                reason,
+                probe: t.probe,
             })
-            .collect(),
-    );
+        })
+        .collect();
     Explanation {
         activity: a,
         step: step.step,
@@ -269,36 +268,6 @@ fn from_probe(sched: &Schedule, a: usize, step: &Step, k: usize, record: Step) -
         culprits: Vec::new(),
         suggestions: Vec::new(),
     }
-}
-
-/// Groups phase-2 failures for display: sorted by duration (longest first) and
-/// start, adjacent ranges failing for the same kind of reason merge, keeping the
-/// numbers of the start that came closest to passing.
-fn group_reasons(mut ranges: Vec<ReasonRange>) -> Vec<ReasonRange> {
-    ranges.sort_by_key(|r| (std::cmp::Reverse(r.duration), r.first));
-    let closeness = |r: &Phase2Reason| match *r {
-        Phase2Reason::MinSoc { soc_mj, .. } | Phase2Reason::HandoverSoc { soc_mj } => soc_mj,
-        Phase2Reason::MaxPeakPower { peak_mw, .. } => -peak_mw,
-        _ => 0,
-    };
-    let mut out: Vec<ReasonRange> = Vec::with_capacity(ranges.len());
-    for r in ranges {
-        match out.last_mut() {
-            Some(last)
-                if last.duration == r.duration
-                    && last.reason.kind() == r.reason.kind()
-                    && last.last.saturating_add(1) >= r.first =>
-            {
-                last.last = last.last.max(r.last);
-                if closeness(&r.reason) > closeness(&last.reason) {
-                    last.reason = r.reason;
-                    last.probe = r.probe;
-                }
-            }
-            _ => out.push(r),
-        }
-    }
-    out
 }
 
 /// The inclusion rule: at step k, a dependency or requirement of `a` counts only

@@ -251,6 +251,7 @@ pub(crate) fn run_step(
         }
         found
     };
+    step.tries = merge_tries(std::mem::take(&mut step.tries));
     if let Some(ev) = found {
         let p = ev.placement;
         step.outcome = Outcome::Scheduled {

@@ -145,6 +145,47 @@ pub struct Try {
     pub probe: i64,
 }
 
+impl Phase2Reason {
+    /// How close to passing the start that gave this reason came (higher is
+    /// closer): the state of charge reached, minus the peak reached.
+    fn closeness(&self) -> i64 {
+        match *self {
+            Phase2Reason::MinSoc { soc_mj, .. } | Phase2Reason::HandoverSoc { soc_mj } => soc_mj,
+            Phase2Reason::MaxPeakPower { peak_mw, .. } => peak_mw.saturating_neg(),
+            _ => 0,
+        }
+    }
+}
+
+/// Groups tries into ranges: sorted by duration (longest first) and start,
+/// adjacent ranges with the same outcome (pass, or the same kind of reason) merge,
+/// keeping the numbers of the start that came closest to passing. This keeps the
+/// trace O(ranges of distinct outcome) instead of O(cells).
+pub fn merge_tries(mut tries: Vec<Try>) -> Vec<Try> {
+    tries.sort_by_key(|t| (std::cmp::Reverse(t.duration), t.starts.lo, t.starts.hi));
+    let mut out: Vec<Try> = Vec::with_capacity(tries.len().min(64));
+    for t in tries {
+        match out.last_mut() {
+            Some(last)
+                if last.duration == t.duration
+                    && last.reason.as_ref().map(Phase2Reason::kind)
+                        == t.reason.as_ref().map(Phase2Reason::kind)
+                    && last.starts.hi.saturating_add(1) >= t.starts.lo =>
+            {
+                last.starts.hi = last.starts.hi.max(t.starts.hi);
+                if let (Some(a), Some(b)) = (&last.reason, &t.reason) {
+                    if b.closeness() > a.closeness() {
+                        last.reason = t.reason;
+                        last.probe = t.probe;
+                    }
+                }
+            }
+            _ => out.push(t),
+        }
+    }
+    out
+}
+
 /// Why an activity failed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
