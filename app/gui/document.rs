@@ -107,34 +107,42 @@ impl Document {
     }
 }
 
-/// Everything derived from a plan: the run with its trace and the explanations of
-/// its failures (suggestions are computed on demand, they reschedule).
+/// Everything derived from a plan: the run with its trace. Explanations are
+/// computed on demand for the activity looked at (see `SolscopeApp`), so an edit
+/// costs one reschedule.
 #[derive(Clone, Debug)]
 pub struct Analysis {
     /// The run.
     pub schedule: Schedule,
-    /// One explanation per failed or skipped activity, in step order.
-    pub explanations: Vec<Explanation>,
 }
 
 impl Analysis {
-    /// Schedules and explains a plan.
+    /// Schedules a plan.
     pub fn of(plan: &Plan) -> Result<Self, Error> {
-        let schedule = schedule(plan)?;
-        let opts = ExplainOptions {
-            activity: None,
-            no_suggestions: true,
-        };
-        let explanations = explain(plan, &schedule, &opts)?;
         Ok(Self {
-            schedule,
-            explanations,
+            schedule: schedule(plan)?,
         })
     }
 
-    /// The explanation of activity `a`, if it failed.
-    pub fn explanation(&self, a: usize) -> Option<&Explanation> {
-        self.explanations.iter().find(|e| e.activity == a)
+    /// Explains activity `a` (without suggestions) if it did not schedule.
+    pub fn explain(&self, plan: &Plan, a: usize) -> Option<Explanation> {
+        if self.placement(a).is_some() {
+            return None;
+        }
+        let opts = ExplainOptions {
+            activity: Some(plan.activities.get(a)?.id.clone()),
+            no_suggestions: true,
+        };
+        explain(plan, &self.schedule, &opts).ok()?.pop()
+    }
+
+    /// Number of activities that did not schedule.
+    pub fn failed(&self) -> usize {
+        self.schedule
+            .steps
+            .iter()
+            .filter(|s| !matches!(s.outcome, Outcome::Scheduled { .. }))
+            .count()
     }
 
     /// `(start, end)` of activity `a` if scheduled.

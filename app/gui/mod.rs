@@ -115,6 +115,10 @@ pub struct SolscopeApp {
     pub step_view: StepView,
     /// Verified suggestions of the selected activity, per plan revision.
     suggestions: Option<(usize, u64, Vec<Suggestion>)>,
+    /// Explanation of the selected activity, per plan revision.
+    explanation: Option<(usize, u64, Option<solscope_engine::Explanation>)>,
+    /// Full valid intervals of the selected scheduled activity as it saw them.
+    valid: Option<(usize, u64, Vec<solscope_engine::CategoryIntervals>)>,
     /// Bumped on every accepted change of the plan.
     pub revision: u64,
     commands: Vec<Command>,
@@ -163,6 +167,8 @@ impl SolscopeApp {
             theme: Theme::new(true),
             step_view: StepView::default(),
             suggestions: None,
+            explanation: None,
+            valid: None,
             revision: 0,
             commands: Vec::new(),
         };
@@ -229,7 +235,9 @@ impl SolscopeApp {
         }
         if let Some(a) = self.ui.selected {
             // Derived data, computed before drawing (never mid-draw).
+            self.explanation_for(a);
             self.suggestions_for(a);
+            self.valid_for(a);
         }
         views::layout_ui(ui, self, &mut cmds);
         for cmd in cmds {
@@ -255,7 +263,7 @@ impl SolscopeApp {
             Command::Select(a) => self.ui.selected = a,
             Command::GoToFailureStep(a) => {
                 self.ui.selected = Some(a);
-                if let Some(k) = self.analysis.explanation(a).and_then(|e| e.failure_step) {
+                if let Some(k) = self.explanation_for(a).and_then(|e| e.failure_step) {
                     self.ui.step = k;
                     self.refresh_step_view();
                 }
@@ -383,8 +391,10 @@ impl SolscopeApp {
         if !fresh {
             let list = self
                 .analysis
-                .explanation(a)
-                .and_then(|_| {
+                .placement(a)
+                .is_none()
+                .then_some(())
+                .and_then(|()| {
                     let opts = ExplainOptions {
                         activity: Some(self.doc.plan.activities[a].id.clone()),
                         no_suggestions: false,
@@ -397,6 +407,33 @@ impl SolscopeApp {
             self.suggestions = Some((a, self.revision, list));
         }
         self.suggestions.as_ref().map_or(&[], |s| s.2.as_slice())
+    }
+
+    /// The explanation of activity `a` if it did not schedule (computed once per
+    /// plan revision).
+    pub fn explanation_for(&mut self, a: usize) -> Option<&solscope_engine::Explanation> {
+        let fresh = matches!(&self.explanation, Some((x, r, _)) if *x == a && *r == self.revision);
+        if !fresh {
+            let ex = self.analysis.explain(&self.doc.plan, a);
+            self.explanation = Some((a, self.revision, ex));
+        }
+        self.explanation.as_ref().and_then(|e| e.2.as_ref())
+    }
+
+    /// The valid intervals of activity `a` at its own step (over the whole
+    /// horizon: the trace keeps them only within the window span).
+    fn valid_for(&mut self, a: usize) {
+        let fresh = matches!(&self.valid, Some((x, r, _)) if *x == a && *r == self.revision);
+        if !fresh {
+            let sched = &self.analysis.schedule;
+            let v = sched
+                .step_of(a)
+                .map(|st| {
+                    solscope_engine::valid_intervals_at(sched, a, st.step - 1, Some(st.duration))
+                })
+                .unwrap_or_default();
+            self.valid = Some((a, self.revision, v));
+        }
     }
 
     /// Cached suggestions, if computed for this revision (views read these).

@@ -57,10 +57,10 @@ fn activity_ui(
     }
 
     // Valid intervals per category, drawn on the shared time axis.
-    let (cats, seen_at) = match m.analysis.explanation(a) {
+    let (cats, seen_at) = match m.explanation {
         Some(ex) => (ex.categories.clone(), ex.failure_step.unwrap_or(0)),
         None => (
-            step.map(|s| s.categories.clone()).unwrap_or_default(),
+            m.valid.map(<[_]>::to_vec).unwrap_or_default(),
             own_step.saturating_sub(1),
         ),
     };
@@ -74,7 +74,7 @@ fn activity_ui(
         intervals_ui(ui, m, st, &cats);
     }
 
-    if let Some(ex) = m.analysis.explanation(a) {
+    if let Some(ex) = m.explanation {
         ui.separator();
         ui.label(RichText::new("Why it did not schedule").strong());
         if let Some(k) = ex.failure_step {

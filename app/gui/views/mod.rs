@@ -30,6 +30,10 @@ pub struct Model<'a> {
     pub suggestions: Option<&'a [Suggestion]>,
     /// Bumped on every accepted change of the plan.
     pub revision: u64,
+    /// Explanation of the selected activity, when it did not schedule.
+    pub explanation: Option<&'a solscope_engine::Explanation>,
+    /// Valid intervals of the selected activity at its own step (full horizon).
+    pub valid: Option<&'a [solscope_engine::CategoryIntervals]>,
 }
 
 /// Status of activity `a` as of step `k`.
@@ -148,6 +152,14 @@ pub fn layout_ui(ui: &mut egui::Ui, app: &mut SolscopeApp, cmds: &mut Vec<Comman
         (Some((a, r, list)), Some(sel)) if *a == sel && *r == app.revision => Some(list.as_slice()),
         _ => None,
     };
+    let valid = match (&app.valid, app.ui.selected) {
+        (Some((a, r, v)), Some(sel)) if *a == sel && *r == app.revision => Some(v.as_slice()),
+        _ => None,
+    };
+    let explanation = match (&app.explanation, app.ui.selected) {
+        (Some((a, r, ex)), Some(sel)) if *a == sel && *r == app.revision => ex.as_ref(),
+        _ => None,
+    };
     let m = Model {
         doc: &app.doc,
         analysis: &app.analysis,
@@ -156,6 +168,8 @@ pub fn layout_ui(ui: &mut egui::Ui, app: &mut SolscopeApp, cmds: &mut Vec<Comman
         persisted: &app.persisted,
         suggestions,
         revision: app.revision,
+        explanation,
+        valid,
     };
     let st = &mut app.ui;
     egui::Panel::top("toolbar").show(ui, |ui| {
@@ -246,7 +260,7 @@ fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec
         ui.separator();
         let dirty = if m.doc.dirty { " (unsaved)" } else { "" };
         ui.label(RichText::new(format!("{}{dirty}", m.doc.title())).strong());
-        let failed = m.analysis.explanations.len();
+        let failed = m.analysis.failed();
         let n = m.doc.plan.activities.len();
         ui.label(format!("{} of {n} scheduled, {failed} not", n - failed));
         ui.separator();

@@ -349,7 +349,7 @@ fn failure_probes(
                     }
                 }
             }
-            let (record, placement) = run_step(&state, a, step_of[a], &scope);
+            let (record, placement) = run_step(&state, a, step_of[a], &scope, false);
             match placement {
                 None => {
                     on_failure(i, k, record, &state);

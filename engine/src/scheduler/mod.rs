@@ -89,7 +89,7 @@ pub fn schedule(plan: &Plan) -> Result<Schedule, Error> {
         let mut state = State::new(&problem);
         for (k, &a) in problem.order.iter().enumerate() {
             let step_no = k + 1;
-            let mut step = run_step(&state, a, step_no, &Scope::default());
+            let mut step = run_step(&state, a, step_no, &Scope::default(), true);
             if let Some(placement) = step.1.take() {
                 // Record generated activities.
                 let act = &problem.acts[a];
@@ -165,11 +165,14 @@ pub fn schedule(plan: &Plan) -> Result<Schedule, Error> {
 }
 
 /// Runs one step against `state`; returns the record and the placement to apply.
+/// With `clip`, the recorded category intervals are clipped to the activity's window
+/// span (what the trace keeps); probes ask for the full sets.
 pub(crate) fn run_step(
     state: &State<'_>,
     a: usize,
     step_no: usize,
     scope: &Scope,
+    clip: bool,
 ) -> (Step, Option<Placement>) {
     let pb = state.pb;
     let act = &pb.acts[a];
@@ -204,7 +207,11 @@ pub(crate) fn run_step(
         step.tries.extend(tried.tries);
         if record || tried.found.is_some() {
             step.duration = d;
-            step.categories = tried.categories;
+            step.categories = if clip {
+                clip_to_windows(pb, a, tried.categories)
+            } else {
+                tried.categories
+            };
             step.intersection = tried.union;
         }
         tried.found
@@ -230,7 +237,11 @@ pub(crate) fn run_step(
             let d = ev.placement.duration;
             let tried = try_duration(state, a, d, scope);
             step.duration = d;
-            step.categories = tried.categories;
+            step.categories = if clip {
+                clip_to_windows(pb, a, tried.categories)
+            } else {
+                tried.categories
+            };
             step.intersection = tried.union;
         }
         best
@@ -370,4 +381,25 @@ fn longest_monotone(state: &State<'_>, a: usize, scope: &Scope) -> i64 {
         }
     }
     best
+}
+
+/// The category intervals as the trace keeps them: within the span of the
+/// activity's windows (earliest window start to latest window end), which is what
+/// the inspector draws. Over a long horizon the full sets of every step would make
+/// the trace O(N^2); the explainer computes full sets itself when it probes.
+fn clip_to_windows(
+    pb: &Problem,
+    a: usize,
+    categories: Vec<CategoryIntervals>,
+) -> Vec<CategoryIntervals> {
+    let act = &pb.acts[a];
+    let lo = act.windows.iter().map(|w| w.start).min().unwrap_or(pb.h0);
+    let hi = act.windows.iter().map(|w| w.end).max().unwrap_or(pb.h1);
+    categories
+        .into_iter()
+        .map(|c| CategoryIntervals {
+            category: c.category,
+            valid: c.valid.clip(lo, hi),
+        })
+        .collect()
 }

@@ -242,8 +242,9 @@ pub struct Step {
     /// The duration the recorded intervals are for: the chosen one when scheduled,
     /// else the longest one tried.
     pub duration: i64,
-    /// Valid starts per category for `duration` (empty for skipped and
-    /// dependency-failed steps).
+    /// Valid starts per category for `duration`, within the span of the
+    /// activity's windows (empty for skipped and dependency-failed steps). The
+    /// explainer's probes compute the full sets.
     pub categories: Vec<CategoryIntervals>,
     /// Intersection of all categories for `duration`, restricted per window.
     pub intersection: IntervalSet,
