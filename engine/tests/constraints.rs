@@ -110,8 +110,16 @@ fn dependency_delays_and_meets() {
         e_step.outcome,
         Outcome::Failed(FailurePhase::ValidIntervals)
     );
-    let dep = e_step
+    // The trace keeps intervals within the window span [0, 90], where the
+    // dependency allows nothing; over the horizon it allows starts from 100.
+    let in_trace = e_step
         .categories
+        .iter()
+        .find(|c| c.category == Category::Dependency)
+        .expect("dep");
+    assert!(in_trace.valid.is_empty());
+    let full = solscope_engine::valid_intervals_at(&s, 4, e_step.step - 1, None);
+    let dep = full
         .iter()
         .find(|c| c.category == Category::Dependency)
         .expect("dep");
