@@ -114,14 +114,29 @@ impl Document {
 pub struct Analysis {
     /// The run.
     pub schedule: Schedule,
+    /// Index into `schedule.steps` of each activity's step.
+    step_index: Vec<usize>,
 }
 
 impl Analysis {
     /// Schedules a plan.
     pub fn of(plan: &Plan) -> Result<Self, Error> {
+        let schedule = schedule(plan)?;
+        let mut step_index = vec![0; plan.activities.len()];
+        for (i, st) in schedule.steps.iter().enumerate() {
+            step_index[st.activity] = i;
+        }
         Ok(Self {
-            schedule: schedule(plan)?,
+            schedule,
+            step_index,
         })
+    }
+
+    /// The step record of activity `a` (O(1)).
+    pub fn step(&self, a: usize) -> Option<&solscope_engine::Step> {
+        self.step_index
+            .get(a)
+            .and_then(|&i| self.schedule.steps.get(i))
     }
 
     /// Explains activity `a` (without suggestions) if it did not schedule.
@@ -147,7 +162,10 @@ impl Analysis {
 
     /// `(start, end)` of activity `a` if scheduled.
     pub fn placement(&self, a: usize) -> Option<(i64, i64)> {
-        self.schedule.placement(a)
+        match self.step(a)?.outcome {
+            Outcome::Scheduled { start, end } => Some((start, end)),
+            _ => None,
+        }
     }
 
     /// Number of steps.

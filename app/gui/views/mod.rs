@@ -52,7 +52,7 @@ pub enum Status {
 impl Model<'_> {
     /// Status of activity `a` after step `k`.
     pub fn status(&self, a: usize, k: usize) -> Status {
-        match self.analysis.schedule.step_of(a) {
+        match self.analysis.step(a) {
             Some(st) if st.step <= k => match st.outcome {
                 Outcome::Scheduled { start, end } => Status::Scheduled(start, end),
                 Outcome::Failed(_) => Status::Failed,
@@ -348,18 +348,26 @@ fn banner_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<
 fn activities_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
     ui.heading("Activities");
     let needle = st.filter.to_lowercase();
+    let shown: Vec<&solscope_engine::Step> = m
+        .analysis
+        .schedule
+        .steps
+        .iter()
+        .filter(|step| {
+            let act = &m.doc.plan.activities[step.activity];
+            needle.is_empty()
+                || act.id.to_lowercase().contains(&needle)
+                || act.display_name().to_lowercase().contains(&needle)
+        })
+        .collect();
+    // Only the visible rows are laid out, so 10k activities stay cheap.
+    let row_height = ui.spacing().interact_size.y;
     egui::ScrollArea::vertical()
         .auto_shrink([false; 2])
-        .show(ui, |ui| {
-            for step in &m.analysis.schedule.steps {
+        .show_rows(ui, row_height, shown.len(), |ui, rows| {
+            for step in &shown[rows] {
                 let a = step.activity;
                 let act = &m.doc.plan.activities[a];
-                if !needle.is_empty()
-                    && !act.id.to_lowercase().contains(&needle)
-                    && !act.display_name().to_lowercase().contains(&needle)
-                {
-                    continue;
-                }
                 let (mark, color) = match m.status(a, st.step) {
                     Status::Scheduled(..) => ("+", m.theme.scheduled),
                     Status::Failed => ("x", m.theme.failed),
