@@ -15,6 +15,15 @@ fn tutorial() -> SolscopeApp {
     SolscopeApp::from_text(&text, None).expect("tutorial plan")
 }
 
+/// The tutorial plan with activity `id` selected, in a harness.
+fn tutorial_with_selected(id: &str) -> egui_kittest::Harness<'static, SolscopeApp> {
+    let view = View {
+        select: Some(id.into()),
+        ..View::default()
+    };
+    harness(tutorial(), SNAPSHOT_SIZE.into(), &view).unwrap()
+}
+
 fn index(app: &SolscopeApp, id: &str) -> usize {
     app.doc
         .plan
@@ -70,15 +79,7 @@ fn clicking_a_failed_activity_shows_its_explanation() {
 
 #[test]
 fn applying_a_suggestion_makes_it_schedule_and_undo_restores() {
-    let mut h = harness(
-        tutorial(),
-        SNAPSHOT_SIZE.into(),
-        &View {
-            select: Some("sky_flats_mast_busy".into()),
-            ..View::default()
-        },
-    )
-    .unwrap();
+    let mut h = tutorial_with_selected("sky_flats_mast_busy");
     let a = index(h.state(), "sky_flats_mast_busy");
     let before = h.state().doc.plan.clone();
     assert!(h.state().analysis.placement(a).is_none());
@@ -108,15 +109,7 @@ fn applying_a_suggestion_makes_it_schedule_and_undo_restores() {
 
 #[test]
 fn editing_a_window_reruns_and_updates_the_banner() {
-    let mut h = harness(
-        tutorial(),
-        SNAPSHOT_SIZE.into(),
-        &View {
-            select: Some("sky_flats_mast_busy".into()),
-            ..View::default()
-        },
-    )
-    .unwrap();
+    let mut h = tutorial_with_selected("sky_flats_mast_busy");
     let a = index(h.state(), "sky_flats_mast_busy");
     h.get_by_label("windows").scroll_to_me();
     h.run_steps(2);
@@ -146,15 +139,7 @@ fn editing_a_window_reruns_and_updates_the_banner() {
 
 #[test]
 fn a_bad_value_is_shown_and_never_applied() {
-    let mut h = harness(
-        tutorial(),
-        SNAPSHOT_SIZE.into(),
-        &View {
-            select: Some("sky_flats_mast_busy".into()),
-            ..View::default()
-        },
-    )
-    .unwrap();
+    let mut h = tutorial_with_selected("sky_flats_mast_busy");
     let before = h.state().doc.plan.clone();
     h.get_by_label("priority").scroll_to_me();
     h.run_steps(2);
@@ -191,15 +176,7 @@ fn opening_a_bad_file_keeps_the_plan_and_shows_the_error() {
 
 #[test]
 fn unsaved_edits_are_guarded_on_open() {
-    let mut h = harness(
-        tutorial(),
-        SNAPSHOT_SIZE.into(),
-        &View {
-            select: Some("sky_flats_mast_busy".into()),
-            ..View::default()
-        },
-    )
-    .unwrap();
+    let mut h = tutorial_with_selected("sky_flats_mast_busy");
     h.get_by_label_contains("Apply: Widen window 1").click();
     h.run_steps(3);
     assert!(h.state().doc.dirty);

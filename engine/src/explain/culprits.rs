@@ -102,13 +102,18 @@ pub fn energy_consumers(
             })
         })
         .collect();
-    out.sort_by(|a, b| {
+    rank(&mut out);
+    (from, out)
+}
+
+/// Largest amount first; ties by activity, then kind (deterministic).
+fn rank(list: &mut [Consumer]) {
+    list.sort_by(|a, b| {
         b.amount
             .cmp(&a.amount)
             .then(a.activity.cmp(&b.activity))
             .then(a.kind.cmp(b.kind))
     });
-    (from, out)
 }
 
 /// Peak-power users at instant `t` after step `k`, ranked by their peak.
@@ -123,12 +128,7 @@ pub fn peak_users(sched: &Schedule, k: usize, t: i64) -> Vec<Consumer> {
             amount: l.peak_mw,
         })
         .collect();
-    out.sort_by(|a, b| {
-        b.amount
-            .cmp(&a.amount)
-            .then(a.activity.cmp(&b.activity))
-            .then(a.kind.cmp(b.kind))
-    });
+    rank(&mut out);
     out
 }
 
