@@ -19,6 +19,8 @@ pub struct Theme {
     pub pending: Color32,
     /// Awake periods.
     pub awake: Color32,
+    /// Wakeup and shutdown at the ends of awake periods.
+    pub wake: Color32,
     /// Preheats.
     pub preheat: Color32,
     /// Maintenance heating.
@@ -66,6 +68,7 @@ impl Theme {
                 skipped: Color32::from_rgb(150, 110, 170),
                 pending: Color32::from_rgba_unmultiplied(160, 160, 160, 60),
                 awake: Color32::from_rgb(90, 170, 110),
+                wake: Color32::from_rgb(50, 110, 70),
                 preheat: Color32::from_rgb(230, 120, 50),
                 maintenance: Color32::from_rgb(190, 100, 60),
                 comm: Color32::from_rgb(60, 190, 200),
@@ -86,6 +89,7 @@ impl Theme {
                 skipped: Color32::from_rgb(130, 90, 160),
                 pending: Color32::from_rgba_unmultiplied(90, 90, 90, 50),
                 awake: Color32::from_rgb(60, 150, 80),
+                wake: Color32::from_rgb(30, 100, 50),
                 preheat: Color32::from_rgb(220, 100, 30),
                 maintenance: Color32::from_rgb(170, 80, 40),
                 comm: Color32::from_rgb(20, 150, 170),

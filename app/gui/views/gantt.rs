@@ -97,7 +97,31 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
             }),
         }
     }
-    rows.extend(pack(awake, "Awake", 1));
+    // Wakeup and shutdown drawn over the start and end of each awake period.
+    let (wake, shut) = (pb.wake as f64, pb.shut as f64);
+    let mut edges = Vec::new();
+    for bar in &awake {
+        for (start, end, label) in [
+            (bar.start, bar.start + wake, "wakeup"),
+            (bar.end - shut, bar.end, "shutdown"),
+        ] {
+            if end > start {
+                edges.push(Bar {
+                    start,
+                    end,
+                    color: t.wake,
+                    activity: None,
+                    label: label.into(),
+                });
+            }
+        }
+    }
+    awake.sort_by(|a, b| a.start.total_cmp(&b.start));
+    awake.extend(edges);
+    rows.push(Row {
+        label: "Awake".into(),
+        bars: awake,
+    });
     for (z, bars) in heat.into_iter().enumerate() {
         rows.extend(pack(bars, &format!("Heat: {}", pb.zone_names[z]), 3));
     }
