@@ -457,6 +457,18 @@ fn groups_skip_and_expanding_takes_the_longest() {
     assert_eq!(placed(&doc, "drive2"), 700);
     assert_eq!(s.placement(2), Some((700, 1000)));
     assert_eq!(s.placement(1), Some((0, 700)));
+    // The trace records the chosen duration (found by binary search) and its
+    // intervals: the unit resource allows a start at 0 for 700 s.
+    let drive = s.step_of(1).expect("step");
+    assert_eq!(drive.duration, 700);
+    let res = drive
+        .categories
+        .iter()
+        .find(|c| c.category == Category::UnitResource)
+        .expect("res");
+    assert!(res.valid.contains(0));
+    let drive2 = s.step_of(2).expect("step");
+    assert_eq!(drive2.duration, 300);
     assert_eq!(outcome(&doc, "small").0, "skipped");
     assert_eq!(step_of(&s, 4).outcome, Outcome::Skipped { by: 3 });
 }

@@ -232,18 +232,8 @@ pub(crate) fn run_step(
                 None => hi = mid - 1,
             }
         }
-        if let Some(ev) = &best {
-            // Record the chosen duration's intervals last.
-            let d = ev.placement.duration;
-            let tried = try_duration(state, a, d, scope);
-            step.duration = d;
-            step.categories = if clip {
-                clip_to_windows(pb, a, tried.categories)
-            } else {
-                tried.categories
-            };
-            step.intersection = tried.union;
-        }
+        // Successes come at increasing durations, so the last one `attempt` recorded
+        // is the chosen duration's.
         best
     } else {
         // End effects (or a backward min_awake extension) can make a shorter
