@@ -282,11 +282,6 @@ fn try_duration(state: &State<'_>, a: usize, d: i64, scope: &Scope) -> Tried {
     let pb = state.pb;
     let act = &pb.acts[a];
     let categories = state.phase1(a, d, scope);
-    let (wake, shut) = if act.awake == AwakeMode::Required {
-        (pb.wake, pb.shut)
-    } else {
-        (0, 0)
-    };
     let others = categories
         .iter()
         .skip(1)
@@ -297,7 +292,7 @@ fn try_duration(state: &State<'_>, a: usize, d: i64, scope: &Scope) -> Tried {
     let mut found = None;
     let mut tries = Vec::new();
     for w in &act.windows {
-        let range = state.window_range(a, w.start, w.end, w.cutoff, d, wake, shut);
+        let range = state.window_range(a, w, d);
         let cand = others.clip(range.lo, range.hi);
         if cand.is_empty() {
             continue;
@@ -341,11 +336,6 @@ fn duration_monotone(pb: &Problem, a: usize) -> bool {
 fn longest_monotone(state: &State<'_>, a: usize, scope: &Scope) -> i64 {
     let pb = state.pb;
     let act = &pb.acts[a];
-    let (wake, shut) = if act.awake == AwakeMode::Required {
-        (pb.wake, pb.shut)
-    } else {
-        (0, 0)
-    };
     let fits = |d: i64| {
         let others = state
             .phase1(a, d, scope)
@@ -355,7 +345,7 @@ fn longest_monotone(state: &State<'_>, a: usize, scope: &Scope) -> i64 {
                 acc.intersect(&c.valid)
             });
         act.windows.iter().any(|w| {
-            let r = state.window_range(a, w.start, w.end, w.cutoff, d, wake, shut);
+            let r = state.window_range(a, w, d);
             !others.clip(r.lo, r.hi).is_empty()
         })
     };

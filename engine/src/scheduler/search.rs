@@ -16,7 +16,7 @@
 //! boundaries of the feasible part.
 
 use super::Scope;
-use super::problem::Problem;
+use super::problem::{Problem, Win};
 use super::state::{Placement, State, uncovered};
 use super::trace::{Category, CategoryIntervals, Phase2Reason, Try};
 use crate::model::{AwakeMode, EffectAt};
@@ -44,15 +44,10 @@ impl State<'_> {
     /// of a known placement.
     pub fn fits(&self, a: usize, s: i64, d: i64, scope: &Scope) -> bool {
         let act = &self.pb.acts[a];
-        let (wake, shut) = if act.awake == AwakeMode::Required {
-            (self.pb.wake, self.pb.shut)
-        } else {
-            (0, 0)
-        };
-        let in_window = act.windows.iter().any(|w| {
-            self.window_range(a, w.start, w.end, w.cutoff, d, wake, shut)
-                .contains(s)
-        });
+        let in_window = act
+            .windows
+            .iter()
+            .any(|w| self.window_range(a, w, d).contains(s));
         in_window
             && self
                 .phase1_in(a, d, scope, s, s)
@@ -75,15 +70,10 @@ impl State<'_> {
         let all = || IntervalSet::single(lo, hi);
         let mut out = Vec::with_capacity(8);
         // execution
-        let (wake, shut) = if act.awake == AwakeMode::Required {
-            (pb.wake, pb.shut)
-        } else {
-            (0, 0)
-        };
         let exec: IntervalSet = act
             .windows
             .iter()
-            .map(|w| self.window_range(a, w.start, w.end, w.cutoff, d, wake, shut))
+            .map(|w| self.window_range(a, w, d))
             .collect();
         out.push((Category::Execution, exec));
         // dependency
@@ -184,22 +174,19 @@ impl State<'_> {
             .collect()
     }
 
-    /// The execution range of one window for duration `d`.
-    #[allow(clippy::too_many_arguments)]
-    pub fn window_range(
-        &self,
-        _a: usize,
-        start: i64,
-        end: i64,
-        cutoff: Option<i64>,
-        d: i64,
-        wake: i64,
-        shut: i64,
-    ) -> Interval {
+    /// The execution range of window `w` of activity `a` for duration `d`: the
+    /// window, its cutoff, the plan bounds, and for an activity that needs the rover
+    /// awake room for the wakeup before and the shutdown after it.
+    pub fn window_range(&self, a: usize, w: &Win, d: i64) -> Interval {
         let pb = self.pb;
-        let lo = start.max(pb.h0.saturating_add(wake));
-        let mut hi = end.min(pb.h1.saturating_sub(d).saturating_sub(shut));
-        if let Some(c) = cutoff {
+        let (wake, shut) = if pb.acts[a].awake == AwakeMode::Required {
+            (pb.wake, pb.shut)
+        } else {
+            (0, 0)
+        };
+        let lo = w.start.max(pb.h0.saturating_add(wake));
+        let mut hi = w.end.min(pb.h1.saturating_sub(d).saturating_sub(shut));
+        if let Some(c) = w.cutoff {
             hi = hi.min(c.saturating_sub(d));
         }
         Interval::new(lo, hi)
