@@ -185,20 +185,13 @@ impl SolscopeApp {
     /// Opens `path`, or the default plan when it cannot be read; the error, if any,
     /// is shown in the app.
     pub fn open_or_default(path: Option<&Path>) -> Result<Self, solscope_engine::Error> {
-        match path {
-            None => Self::with_default_plan(),
-            Some(p) => match solscope_engine::load_plan_file(p) {
-                Ok(_) => {
-                    let text = std::fs::read_to_string(p).unwrap_or_default();
-                    Self::from_text(&text, Some(p.to_path_buf()))
-                }
-                Err(e) => {
-                    let mut app = Self::with_default_plan()?;
-                    app.ui.error = Some(format!("Could not open {}: {e}", p.display()));
-                    Ok(app)
-                }
-            },
+        let mut app = Self::with_default_plan()?;
+        if let Some(p) = path {
+            // The same path as File > Open: a bad file keeps the default plan and
+            // shows its path-named error.
+            app.open_now(p);
         }
+        Ok(app)
     }
 
     /// Queues a command (views call this through their `&mut Vec<Command>`).
@@ -647,6 +640,24 @@ pub fn run(app: SolscopeApp) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn opening_at_start_up_falls_back_to_the_default_plan_with_the_error() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let good = root.join("../shared/examples/pitfall.json");
+        let app = SolscopeApp::open_or_default(Some(&good)).expect("app");
+        assert_eq!(app.doc.plan.activities.len(), 2);
+        assert_eq!(app.doc.path.as_deref(), Some(good.as_path()));
+        assert!(app.ui.error.is_none());
+        let bad = root.join("tests/malformed/window-end-before-start.json");
+        let app = SolscopeApp::open_or_default(Some(&bad)).expect("app");
+        assert_eq!(
+            app.doc.plan,
+            SolscopeApp::with_default_plan().expect("default").doc.plan
+        );
+        let err = app.ui.error.expect("error shown");
+        assert!(err.contains("windows[0].end"), "{err}");
+    }
 
     #[test]
     fn step_view_series_are_monotone_in_time() {
