@@ -57,7 +57,7 @@ impl State<'_> {
     }
 
     /// Phase 1 restricted to starts in `[lo, hi]`.
-    fn phase1_in(
+    pub(crate) fn phase1_in(
         &self,
         a: usize,
         d: i64,
@@ -412,30 +412,42 @@ impl State<'_> {
     }
 
     /// The critical points for activity `a` with duration `d` and starts in `[lo, hi]`.
+    ///
+    /// A generated piece `[s + o1, s + o2)` meets a fixed interval `[x, y)` iff
+    /// `s < y - o1` and `s >= x - o2 + 1`, so a breakpoint `p` yields the point
+    /// `p - o` for a start offset `o` and `p - o + 1` for an end offset. (Energy
+    /// only needs the cells to keep every piece end inside one rate segment, which
+    /// either point does.)
     fn critical_points(&self, a: usize, d: i64, lo: i64, hi: i64) -> Vec<i64> {
         let pb = self.pb;
         let act = &pb.acts[a];
-        let mut offsets = vec![0, d];
+        // (offset, +1 for an end offset)
+        let mut offsets: Vec<(i64, i64)> = vec![(0, 0), (d, 1)];
         let mut preheat_lengths = Vec::new();
         if act.awake == AwakeMode::Required {
             offsets.extend([
-                -pb.wake,
-                d + pb.shut,
-                -pb.wake + pb.min_awake,
-                d + pb.shut - pb.min_awake,
+                (-pb.wake, 0),
+                (d + pb.shut, 1),
+                (-pb.wake + pb.min_awake, 1),
+                (d + pb.shut - pb.min_awake, 0),
             ]);
+        }
+        if !act.zones.is_empty() {
+            // A preheat `[s - p, s)` ends at the start.
+            offsets.push((0, 1));
         }
         for &z in &act.zones {
             for &(_, p) in &pb.zones[z].table {
                 preheat_lengths.push(p);
-                offsets.push(-p);
+                offsets.push((-p, 0));
             }
         }
         offsets.sort_unstable();
         offsets.dedup();
         preheat_lengths.sort_unstable();
         preheat_lengths.dedup();
-        let (omin, omax) = (offsets[0], offsets[offsets.len() - 1]);
+        let omin = offsets.iter().map(|o| o.0).min().unwrap_or(0);
+        let omax = offsets.iter().map(|o| o.0).max().unwrap_or(0);
         let gap = pb.min_sleep.max(1);
         let (xlo, xhi) = (lo + omin - gap - 2, hi + omax + gap + 2);
         let mut fixed: Vec<i64> = Vec::new();
@@ -451,28 +463,25 @@ impl State<'_> {
                     .filter(in_range),
             );
             for &(x, y) in &self.zone_on[z] {
-                fixed.extend([x, y, x + 1, y + 1]);
+                fixed.extend([x, y, x + 1, y + 1].into_iter().filter(in_range));
             }
         }
         for &(x, y, _) in &self.sleeps {
-            fixed.extend([x, y]);
+            fixed.extend([x, y].into_iter().filter(in_range));
         }
         fixed.extend([pb.h0, pb.h1]);
         if let Some(t) = pb.handover_time {
             fixed.push(t);
         }
-        let mut awake_pts = Vec::new();
         for &(x, y) in &self.awake {
-            awake_pts.extend([x, y, x - gap, y + gap]);
+            fixed.extend([x, y, x - gap, y + gap].into_iter().filter(in_range));
         }
-        fixed.extend(awake_pts);
         fixed.sort_unstable();
         fixed.dedup();
-        let mut points = Vec::with_capacity(fixed.len() * offsets.len() * 2 + 16);
+        let mut points = Vec::with_capacity(fixed.len() * offsets.len() + 16);
         for &x in &fixed {
-            for &o in &offsets {
-                points.push(x - o);
-                points.push(x - o + 1);
+            for &(o, end) in &offsets {
+                points.push(x - o + end);
             }
         }
         for &p in &preheat_lengths {
