@@ -201,17 +201,20 @@ pub(crate) fn run_step(
         return (step, None);
     }
     let mut any_candidate = false;
+    // The trace keeps category intervals within the window span only, so phase 1
+    // need not look further; probes (`clip == false`) want the whole horizon.
+    let span = if clip {
+        window_span(pb, a)
+    } else {
+        (pb.h0, pb.h1)
+    };
     let mut attempt = |d: i64, step: &mut Step, record: bool| {
-        let tried = try_duration(state, a, d, scope);
+        let tried = try_duration(state, a, d, scope, span);
         any_candidate |= !tried.union.is_empty();
         step.tries.extend(tried.tries);
         if record || tried.found.is_some() {
             step.duration = d;
-            step.categories = if clip {
-                clip_to_windows(pb, a, tried.categories)
-            } else {
-                tried.categories
-            };
+            step.categories = tried.categories;
             step.intersection = tried.union;
         }
         tried.found
@@ -239,7 +242,7 @@ pub(crate) fn run_step(
         // End effects (or a backward min_awake extension) can make a shorter
         // duration fail where a longer one fits: scan down from the longest duration
         // the monotone categories allow.
-        let top = longest_monotone(state, a, scope);
+        let top = longest_monotone(state, a, scope, span);
         let mut found = None;
         for d in (act.dur_min..=top).rev() {
             if let Some(ev) = attempt(d, &mut step, d == act.dur_min) {
@@ -277,15 +280,16 @@ struct Tried {
     tries: Vec<Try>,
 }
 
-/// Phase 1 and the window-by-window phase-2 search for one duration.
-fn try_duration(state: &State<'_>, a: usize, d: i64, scope: &Scope) -> Tried {
+/// Phase 1 over starts in `span` and the window-by-window phase-2 search for one
+/// duration.
+fn try_duration(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, i64)) -> Tried {
     let pb = state.pb;
     let act = &pb.acts[a];
-    let categories = state.phase1(a, d, scope);
+    let categories = state.phase1_in(a, d, scope, span.0, span.1);
     let others = categories
         .iter()
         .skip(1)
-        .fold(IntervalSet::single(pb.h0, pb.h1), |acc, c| {
+        .fold(IntervalSet::single(span.0, span.1), |acc, c| {
             acc.intersect(&c.valid)
         });
     let mut union = IntervalSet::empty();
@@ -333,15 +337,14 @@ fn duration_monotone(pb: &Problem, a: usize) -> bool {
 
 /// The longest duration for which the duration-monotone phase-1 categories (all but
 /// state_effect) leave a start in some window; below `dur_min` if none.
-fn longest_monotone(state: &State<'_>, a: usize, scope: &Scope) -> i64 {
-    let pb = state.pb;
-    let act = &pb.acts[a];
+fn longest_monotone(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64)) -> i64 {
+    let act = &state.pb.acts[a];
     let fits = |d: i64| {
         let others = state
-            .phase1(a, d, scope)
+            .phase1_in(a, d, scope, span.0, span.1)
             .iter()
             .filter(|c| c.category != Category::Execution && c.category != Category::StateEffect)
-            .fold(IntervalSet::single(pb.h0, pb.h1), |acc, c| {
+            .fold(IntervalSet::single(span.0, span.1), |acc, c| {
                 acc.intersect(&c.valid)
             });
         act.windows.iter().any(|w| {
@@ -363,23 +366,13 @@ fn longest_monotone(state: &State<'_>, a: usize, scope: &Scope) -> i64 {
     best
 }
 
-/// The category intervals as the trace keeps them: within the span of the
-/// activity's windows (earliest window start to latest window end), which is what
-/// the inspector draws. Over a long horizon the full sets of every step would make
-/// the trace O(N^2); the explainer computes full sets itself when it probes.
-fn clip_to_windows(
-    pb: &Problem,
-    a: usize,
-    categories: Vec<CategoryIntervals>,
-) -> Vec<CategoryIntervals> {
+/// The span the trace keeps category intervals in: from the earliest window start
+/// to the latest window end, which is what the inspector draws. Over a long horizon
+/// the full sets of every step would make the trace O(N^2) in memory and time; the
+/// explainer computes full sets itself when it probes.
+fn window_span(pb: &Problem, a: usize) -> (i64, i64) {
     let act = &pb.acts[a];
     let lo = act.windows.iter().map(|w| w.start).min().unwrap_or(pb.h0);
     let hi = act.windows.iter().map(|w| w.end).max().unwrap_or(pb.h1);
-    categories
-        .into_iter()
-        .map(|c| CategoryIntervals {
-            category: c.category,
-            valid: c.valid.clip(lo, hi),
-        })
-        .collect()
+    (lo.max(pb.h0), hi.min(pb.h1))
 }
