@@ -144,18 +144,22 @@ fn last_full_before(state: &State<'_>, t: i64) -> Option<i64> {
         .map(|(x, _)| x)
 }
 
+/// How many energy consumers an energy failure blames: the largest ones since the
+/// battery was last full. On a long plan with the battery never full again that
+/// would otherwise be every placed activity (thousands), which tells a planner
+/// nothing; the app's energy plot lists them all.
+pub const ENERGY_CULPRITS: usize = 10;
+
 /// The culprits of an explained failure, from the state at its failure step.
 pub fn culprits(state: &State<'_>, ex: &Explanation, step_of: &[usize]) -> Vec<Culprit> {
     let pb = state.pb;
     let a = ex.activity;
     let act = &pb.acts[a];
     let mut out: Vec<Culprit> = Vec::new();
+    let mut seen: std::collections::HashSet<(usize, &'static str)> =
+        std::collections::HashSet::new();
     let mut push = |x: usize, category: &'static str| {
-        if x != a
-            && !out
-                .iter()
-                .any(|c| c.activity == x && c.category == category)
-        {
+        if x != a && seen.insert((x, category)) {
             out.push(Culprit {
                 activity: x,
                 step: step_of[x],
@@ -280,7 +284,7 @@ pub fn culprits(state: &State<'_>, ex: &Explanation, step_of: &[usize]) -> Vec<C
                             .filter(|u| u.0 > 0)
                             .collect();
                         users.sort_by(|p, q| q.0.cmp(&p.0).then(p.1.cmp(&q.1)));
-                        for (_, x) in users {
+                        for (_, x) in users.into_iter().take(ENERGY_CULPRITS) {
                             push(x, kind);
                         }
                     }

@@ -279,30 +279,83 @@ pub fn inclusion_scope(
     k: usize,
     step_of: &[usize],
 ) -> Scope {
-    let act = &pb.acts[a];
-    let mine = step_of[a];
-    let pending = |x: usize| x != a && step_of[x] < mine && step_of[x] > k;
-    let skip_deps = act
-        .after
-        .iter()
-        .enumerate()
-        .filter(|(_, d)| pending(d.target))
-        .map(|(i, _)| i)
-        .collect();
-    let skip_reqs = act
-        .requires
-        .iter()
-        .enumerate()
-        .filter(|(_, (st, v))| {
-            pb.acts.iter().enumerate().any(|(x, other)| {
-                pending(x) && other.effects.iter().any(|e| e.0 == *st && e.1 == *v)
+    Inclusion::new(pb, step_of).thresholds(a).scope_at(k)
+}
+
+/// The inclusion rule precomputed: for each `(state, value)`, the steps of the
+/// activities with an effect setting it, sorted, so that an activity's thresholds
+/// cost O(log N) per requirement instead of a scan of the plan.
+struct Inclusion<'a> {
+    pb: &'a crate::scheduler::Problem,
+    step_of: &'a [usize],
+    setters: std::collections::HashMap<(usize, usize), Vec<usize>>,
+}
+
+/// For one activity: the last step before it of any activity that could satisfy
+/// each dependency / requirement (0 when none). Entry `j` is excluded at step `k`
+/// iff `k < threshold[j]`.
+struct Thresholds {
+    deps: Vec<usize>,
+    reqs: Vec<usize>,
+}
+
+impl<'a> Inclusion<'a> {
+    fn new(pb: &'a crate::scheduler::Problem, step_of: &'a [usize]) -> Self {
+        let mut setters: std::collections::HashMap<(usize, usize), Vec<usize>> =
+            std::collections::HashMap::new();
+        for (x, act) in pb.acts.iter().enumerate() {
+            for e in &act.effects {
+                setters.entry((e.0, e.1)).or_default().push(step_of[x]);
+            }
+        }
+        for v in setters.values_mut() {
+            v.sort_unstable();
+            v.dedup();
+        }
+        Self {
+            pb,
+            step_of,
+            setters,
+        }
+    }
+
+    fn thresholds(&self, a: usize) -> Thresholds {
+        let act = &self.pb.acts[a];
+        let mine = self.step_of[a];
+        let deps = act
+            .after
+            .iter()
+            .map(|d| {
+                let t = self.step_of[d.target];
+                if d.target != a && t < mine { t } else { 0 }
             })
-        })
-        .map(|(i, _)| i)
-        .collect();
-    Scope {
-        skip_deps,
-        skip_reqs,
+            .collect();
+        // The activity's own step is never "before" it, so `< mine` excludes it.
+        let reqs = act
+            .requires
+            .iter()
+            .map(|&(st, v)| {
+                self.setters.get(&(st, v)).map_or(0, |steps| {
+                    let below = steps.partition_point(|&x| x < mine);
+                    if below == 0 { 0 } else { steps[below - 1] }
+                })
+            })
+            .collect();
+        Thresholds { deps, reqs }
+    }
+}
+
+impl Thresholds {
+    fn scope_at(&self, k: usize) -> Scope {
+        let pending = |t: &usize| k < *t;
+        Scope {
+            skip_deps: (0..self.deps.len())
+                .filter(|&j| pending(&self.deps[j]))
+                .collect(),
+            skip_reqs: (0..self.reqs.len())
+                .filter(|&j| pending(&self.reqs[j]))
+                .collect(),
+        }
     }
 }
 
@@ -328,13 +381,15 @@ fn failure_probes(
     // A placement known to fit each target at the previous step: while it still
     // fits, the probe succeeds without a search.
     let mut witness: Vec<Option<(i64, i64)>> = vec![None; targets.len()];
+    let inclusion = Inclusion::new(pb, step_of);
+    let thresholds: Vec<Thresholds> = targets.iter().map(|&a| inclusion.thresholds(a)).collect();
     let mut state = State::new(pb);
     for k in 0..sched.steps.len() {
         for (i, &a) in targets.iter().enumerate() {
             if !open[i] || step_of[a] <= k {
                 continue;
             }
-            let scope = inclusion_scope(pb, a, k, step_of);
+            let scope = thresholds[i].scope_at(k);
             let act = &pb.acts[a];
             let blocked = act.group.is_some_and(|g| state.group_member[g].is_some())
                 || act.after.iter().enumerate().any(|(j, d)| {
@@ -349,9 +404,19 @@ fn failure_probes(
                     }
                 }
             }
-            let (record, placement) = run_step(&state, a, step_of[a], &scope, false);
+            // Whether it fails does not depend on the span phase 1 covers (phase 2
+            // only looks inside the windows), so probe within the window span, and
+            // redo the failing probe over the whole horizon only when the
+            // relaxations need it (starts outside the windows).
+            let (record, placement) = run_step(&state, a, step_of[a], &scope, true);
             match placement {
                 None => {
+                    let record = if record.outcome == Outcome::Failed(FailurePhase::ValidIntervals)
+                    {
+                        run_step(&state, a, step_of[a], &scope, false).0
+                    } else {
+                        record
+                    };
                     on_failure(i, k, record, &state);
                     open[i] = false;
                 }
