@@ -205,7 +205,8 @@ impl State<'_> {
         // Only breakpoints that a piece starting in [lo, hi] can reach split cells
         // (the breakpoints are sorted).
         let all = self.data.breakpoints();
-        let near = &all[all.partition_point(|&x| x < lo)..all.partition_point(|&x| x <= hi + d + 1)];
+        let near =
+            &all[all.partition_point(|&x| x < lo)..all.partition_point(|&x| x <= hi + d + 1)];
         let mut points: Vec<i64> = Vec::with_capacity(near.len() * 4);
         for &x in near {
             for o in [0, d] {

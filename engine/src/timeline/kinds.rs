@@ -12,6 +12,7 @@ pub fn atomic_valid(busy: &[(i64, i64)], d: i64, lo: i64, hi: i64) -> IntervalSe
     let forbidden: IntervalSet = busy
         .iter()
         .map(|&(a, b)| Interval::new(a.saturating_sub(d).saturating_add(1), b.saturating_sub(1)))
+        .filter(|iv| iv.lo <= hi && iv.hi >= lo)
         .collect();
     IntervalSet::single(lo, hi).subtract(&forbidden)
 }
@@ -151,14 +152,24 @@ impl StateTimeline {
     /// activity's effects.
     pub fn effect_valid(&self, own: &[(i64, usize)], lo: i64, hi: i64) -> IntervalSet {
         let mut bad = Vec::new();
+        let mut all: Vec<i64> = self.effects.iter().map(|e| e.0).collect();
+        all.dedup();
+        // Effects at `s + offset` with `s >= lo` cannot reach a requirement that ends
+        // by then.
+        let earliest = own.iter().map(|e| e.0).min().map_or(lo, |o| lo.saturating_add(o));
+        let mut owned: Vec<i64> = Vec::new();
         for &(rs, re, req, owner) in &self.requirements {
-            let mut times: Vec<i64> = self
-                .effects
-                .iter()
-                .filter(|e| e.3 != owner)
-                .map(|e| e.0)
-                .collect();
-            times.dedup();
+            if re <= earliest {
+                continue;
+            }
+            let times: &[i64] = if self.effects.iter().any(|e| e.3 == owner) {
+                owned.clear();
+                owned.extend(self.effects.iter().filter(|e| e.3 != owner).map(|e| e.0));
+                owned.dedup();
+                &owned
+            } else {
+                &all
+            };
             for (k, &(offset, value)) in own.iter().enumerate() {
                 let next_own = own.get(k + 1).map(|e| e.0);
                 if req == value {
