@@ -27,8 +27,8 @@ pub use text::{explanation_notes, format_local, suggestion_line};
 use crate::error::Error;
 use crate::model::Plan;
 use crate::scheduler::{
-    Category, CategoryIntervals, FailurePhase, Outcome, Phase2Reason, Schedule, Scope, State, Step,
-    run_step, schedule,
+    Category, CategoryIntervals, Evaluated, FailurePhase, Outcome, Phase2Reason, Schedule, Scope,
+    State, Step, run_step, schedule,
 };
 use crate::timeline::IntervalSet;
 
@@ -359,6 +359,101 @@ impl Thresholds {
     }
 }
 
+/// A placement known to fit a probe target, and what it takes to know it still
+/// fits without re-checking: the state of charge margin left after the placements
+/// applied since it was verified, its footprint, and the scope it was checked with.
+struct Witness {
+    start: i64,
+    duration: i64,
+    budget: i128,
+    /// Data volume headroom (bit) at the worst time, when the data volume binds it.
+    data_budget: i128,
+    /// Handover production headroom (bit), when the handover limit binds it.
+    handover_budget: i128,
+    /// Footprint widened by everything that can couple two placements through the
+    /// wake/sleep and heating rules.
+    lo: i64,
+    hi: i64,
+    scope: Scope,
+}
+
+impl Witness {
+    fn new(state: &State<'_>, ev: &Evaluated, scope: Scope) -> Self {
+        let pb = state.pb;
+        let act = &pb.acts[ev.placement.act];
+        let (s, d) = (ev.placement.start, ev.placement.duration);
+        let data_budget = match pb.data_cap {
+            Some(cap) if act.data > 0 => cap + state.data.check(&[(s, s + d, act.data)], None).min,
+            _ => i128::MAX,
+        };
+        let handover_budget = match (act.mandatory, pb.handover_time, pb.handover_data) {
+            (false, Some(ht), Some(max)) => {
+                max - state.produced
+                    - i128::from(act.data.max(0)) * overlap((s, s + d), (pb.h0, ht))
+            }
+            _ => i128::MAX,
+        };
+        let (lo, hi) = ev.footprint(pb);
+        let preheat = pb
+            .zones
+            .iter()
+            .flat_map(|z| z.table.iter().map(|t| t.1))
+            .max()
+            .unwrap_or(0);
+        let reach = pb.min_sleep.max(1) + pb.wake + pb.shut + pb.min_awake + preheat + 2;
+        Witness {
+            start: ev.placement.start,
+            duration: ev.placement.duration,
+            budget: ev.margin,
+            data_budget,
+            handover_budget,
+            lo: lo.saturating_sub(reach),
+            hi: hi.saturating_add(reach),
+            scope,
+        }
+    }
+
+    /// Whether applying `applied` (activity `p`) can change whether activity `a`
+    /// fits at the witness. Sufficient conditions for "cannot", from
+    /// docs/semantics.md: the footprints are apart (so every local category, the
+    /// generated pieces and the peak power are unchanged), the state of charge moves
+    /// by at most the applied energy at any time (the capped integration is
+    /// 1-Lipschitz) and the budget covers it, and no state or data coupling.
+    fn disturbed_by(
+        &mut self,
+        pb: &crate::scheduler::Problem,
+        a: usize,
+        applied: &Evaluated,
+    ) -> bool {
+        let (act, other) = (&pb.acts[a], &pb.acts[applied.placement.act]);
+        self.budget -= applied.energy;
+        let (lo, hi) = applied.footprint(pb);
+        let near = lo < self.hi && self.lo < hi;
+        let touches = |x: &crate::scheduler::Act, y: &crate::scheduler::Act| {
+            x.effects.iter().any(|e| {
+                y.requires.iter().any(|r| r.0 == e.0) || y.effects.iter().any(|f| f.0 == e.0)
+            })
+        };
+        let states = touches(other, act) || touches(act, other);
+        // Data volume and production move by at most what the applied activity
+        // produces (the floored integration is 1-Lipschitz too).
+        let (s, d) = (applied.placement.start, applied.placement.duration);
+        let produced = i128::from(other.data.max(0));
+        self.data_budget = self.data_budget.saturating_sub(produced * i128::from(d));
+        if let Some(ht) = pb.handover_time {
+            self.handover_budget = self
+                .handover_budget
+                .saturating_sub(produced * overlap((s, s + d), (pb.h0, ht)));
+        }
+        near || states || self.budget < 0 || self.data_budget < 0 || self.handover_budget < 0
+    }
+}
+
+/// Length of the overlap of two half-open intervals.
+fn overlap(a: (i64, i64), b: (i64, i64)) -> i128 {
+    i128::from((a.1.min(b.1) - a.0.max(b.0)).max(0))
+}
+
 /// Calls `on_failure(i, k, record, state)` for each target `i` that fails, with its
 /// failure step `k`, the probe's step record there and the state after step `k`.
 /// Targets that schedule at their own step (scheduled activities) get no call.
@@ -378,9 +473,10 @@ fn failure_probes(
             )
         })
         .collect();
-    // A placement known to fit each target at the previous step: while it still
-    // fits, the probe succeeds without a search.
-    let mut witness: Vec<Option<(i64, i64)>> = vec![None; targets.len()];
+    // A placement known to fit each target at the previous step: while nothing
+    // applied since can have changed that, the probe succeeds without any check;
+    // while it still fits, without a search.
+    let mut witness: Vec<Option<Witness>> = (0..targets.len()).map(|_| None).collect();
     let inclusion = Inclusion::new(pb, step_of);
     let thresholds: Vec<Thresholds> = targets.iter().map(|&a| inclusion.thresholds(a)).collect();
     let mut state = State::new(pb);
@@ -396,10 +492,15 @@ fn failure_probes(
                     !scope.skip_deps.contains(&j) && state.placed[d.target].is_none()
                 });
             if !blocked {
-                if let Some((s, d)) = witness[i] {
+                if let Some(w) = &witness[i] {
+                    if w.scope == scope && w.budget >= 0 && w.lo < w.hi {
+                        debug_assert!(state.fits(a, w.start, w.duration, &scope));
+                        continue;
+                    }
                     // The same duration as before: a longer one could have become
                     // possible, but a probe only asks whether the activity fails.
-                    if state.fits(a, s, d, &scope) {
+                    if let Some(ev) = state.fitting(a, w.start, w.duration, &scope) {
+                        witness[i] = Some(Witness::new(&state, &ev, scope));
                         continue;
                     }
                 }
@@ -419,8 +520,14 @@ fn failure_probes(
                     };
                     on_failure(i, k, record, &state);
                     open[i] = false;
+                    witness[i] = None;
                 }
-                Some(p) => witness[i] = Some((p.start, p.duration)),
+                Some(p) => {
+                    witness[i] = state
+                        .evaluate(a, p.start, p.duration)
+                        .ok()
+                        .map(|ev| Witness::new(&state, &ev, scope));
+                }
             }
         }
         if !open.iter().any(|o| *o) {
@@ -429,6 +536,14 @@ fn failure_probes(
         let step = &sched.steps[k];
         if let Outcome::Scheduled { start, end } = step.outcome {
             if let Ok(ev) = state.evaluate(step.activity, start, end - start) {
+                for (i, &a) in targets.iter().enumerate() {
+                    if let Some(w) = witness[i].as_mut() {
+                        if open[i] && w.disturbed_by(pb, a, &ev) {
+                            // Mark for a re-check (an empty footprint never skips).
+                            w.hi = w.lo;
+                        }
+                    }
+                }
                 state.apply(step.step, &ev.placement);
             }
         }

@@ -10,7 +10,8 @@ mod search;
 mod state;
 mod trace;
 
-pub use problem::{BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, Problem};
+pub use problem::{Act, BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, Problem};
+pub use search::Evaluated;
 pub use state::{Placement, State};
 pub use trace::*;
 

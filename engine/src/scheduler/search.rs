@@ -31,6 +31,31 @@ pub struct Evaluated {
     pub margin: i128,
     /// The energy reason when `margin < 0`.
     pub soc_reason: Option<Phase2Reason>,
+    /// Total energy its load pieces change (mJ, absolute values): no time's state
+    /// of charge moves by more than this when the placement is applied.
+    pub energy: i128,
+}
+
+impl Evaluated {
+    /// The span `[lo, hi)` of everything the placement touches or depends on
+    /// directly: the activity, the awake period it needs or creates, its preheats.
+    pub fn footprint(&self, pb: &Problem) -> (i64, i64) {
+        let p = &self.placement;
+        let e = p.start + p.duration;
+        let (mut lo, mut hi) = (p.start, e);
+        if pb.acts[p.act].awake == AwakeMode::Required {
+            lo = lo.min(p.start - pb.wake);
+            hi = hi.max(e + pb.shut);
+        }
+        if let Some((qa, qb)) = p.new_awake {
+            lo = lo.min(qa);
+            hi = hi.max(qb);
+        }
+        for &(_, ps, _) in &p.preheats {
+            lo = lo.min(ps);
+        }
+        (lo, hi)
+    }
 }
 
 impl State<'_> {
@@ -43,17 +68,25 @@ impl State<'_> {
     /// category and phase 2), without searching: the explainer's quick re-check
     /// of a known placement.
     pub fn fits(&self, a: usize, s: i64, d: i64, scope: &Scope) -> bool {
+        self.fitting(a, s, d, scope).is_some()
+    }
+
+    /// [`State::fits`], with the passing evaluation.
+    pub fn fitting(&self, a: usize, s: i64, d: i64, scope: &Scope) -> Option<Evaluated> {
         let act = &self.pb.acts[a];
         let in_window = act
             .windows
             .iter()
             .any(|w| self.window_range(a, w, d).contains(s));
-        in_window
-            && self
+        if !in_window
+            || !self
                 .phase1_in(a, d, scope, s, s)
                 .iter()
                 .all(|c| c.valid.contains(s))
-            && self.evaluate(a, s, d).is_ok_and(|ev| ev.margin >= 0)
+        {
+            return None;
+        }
+        self.evaluate(a, s, d).ok().filter(|ev| ev.margin >= 0)
     }
 
     /// Phase 1 restricted to starts in `[lo, hi]`.
@@ -350,6 +383,10 @@ impl State<'_> {
         }
         // Energy.
         let drain: Vec<(i64, i64, i64)> = pieces.iter().map(|p| (p.0, p.1, p.2)).collect();
+        let energy = drain
+            .iter()
+            .map(|&(x, y, r)| i128::from(r).abs() * i128::from(y - x))
+            .sum();
         let handover = match (act.mandatory, pb.handover_time, pb.handover_soc) {
             (false, Some(t), Some(min)) => Some((t, min)),
             _ => None,
@@ -380,6 +417,7 @@ impl State<'_> {
             },
             margin,
             soc_reason,
+            energy,
         })
     }
 

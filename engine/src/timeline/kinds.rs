@@ -156,7 +156,11 @@ impl StateTimeline {
         all.dedup();
         // Effects at `s + offset` with `s >= lo` cannot reach a requirement that ends
         // by then.
-        let earliest = own.iter().map(|e| e.0).min().map_or(lo, |o| lo.saturating_add(o));
+        let earliest = own
+            .iter()
+            .map(|e| e.0)
+            .min()
+            .map_or(lo, |o| lo.saturating_add(o));
         let mut owned: Vec<i64> = Vec::new();
         for &(rs, re, req, owner) in &self.requirements {
             if re <= earliest {
