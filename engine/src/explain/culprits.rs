@@ -134,14 +134,7 @@ pub fn peak_users(sched: &Schedule, k: usize, t: i64) -> Vec<Consumer> {
 
 /// The last time at or before `t` that the state of charge was at capacity.
 fn last_full_before(state: &State<'_>, t: i64) -> Option<i64> {
-    let cap = state.soc.cap();
-    state
-        .soc
-        .profile()
-        .into_iter()
-        .rev()
-        .find(|&(x, l)| x <= t && l >= cap)
-        .map(|(x, _)| x)
+    state.soc.last_at_cap(t)
 }
 
 /// How many energy consumers an energy failure blames: the largest ones since the

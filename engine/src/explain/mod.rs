@@ -359,94 +359,167 @@ impl Thresholds {
     }
 }
 
-/// A placement known to fit a probe target, and what it takes to know it still
-/// fits without re-checking: the state of charge margin left after the placements
-/// applied since it was verified, its footprint, and the scope it was checked with.
+/// What applying one scheduled step changes, for deciding which witnesses it can
+/// disturb (docs/semantics.md, "Explainer replay").
+struct Applied {
+    act: usize,
+    /// Footprint `[lo, hi)` of the placement.
+    lo: i64,
+    hi: i64,
+}
+
+/// Per-step effects of the run, precomputed by one replay: what each scheduled step
+/// touches, and running totals of the energy (mJ, absolute) and data (bit) that
+/// steps 1..=k add, so that "the budget left at step k is used up at step j" is a
+/// binary search.
+struct RunEffects {
+    applied: Vec<Option<Applied>>,
+    energy: Vec<i128>,
+    data: Vec<i128>,
+    handover: Vec<i128>,
+    /// Per group, the steps that scheduled a member, ascending.
+    group_steps: Vec<Vec<usize>>,
+}
+
+impl RunEffects {
+    fn new(sched: &Schedule) -> Self {
+        let pb = &sched.problem;
+        let n = sched.steps.len();
+        let mut out = RunEffects {
+            applied: Vec::with_capacity(n + 1),
+            energy: Vec::with_capacity(n + 1),
+            data: Vec::with_capacity(n + 1),
+            handover: Vec::with_capacity(n + 1),
+            group_steps: Vec::new(),
+        };
+        out.applied.push(None);
+        out.energy.push(0);
+        out.data.push(0);
+        out.handover.push(0);
+        let mut state = State::new(pb);
+        for step in &sched.steps {
+            let (mut e, mut d, mut h) = (0, 0, 0);
+            let mut applied = None;
+            if let Outcome::Scheduled { start, end } = step.outcome {
+                if let Ok(ev) = state.evaluate(step.activity, start, end - start) {
+                    let act = &pb.acts[step.activity];
+                    let produced = i128::from(act.data.max(0));
+                    e = ev.energy;
+                    d = produced * i128::from(end - start);
+                    if let Some(ht) = pb.handover_time {
+                        h = produced * overlap((start, end), (pb.h0, ht));
+                    }
+                    let (lo, hi) = ev.footprint(pb);
+                    applied = Some(Applied {
+                        act: step.activity,
+                        lo,
+                        hi,
+                    });
+                    if let Some(g) = act.group {
+                        if out.group_steps.len() <= g {
+                            out.group_steps.resize(g + 1, Vec::new());
+                        }
+                        out.group_steps[g].push(step.step);
+                    }
+                    state.apply(step.step, &ev.placement);
+                }
+            }
+            out.applied.push(applied);
+            let last = |v: &Vec<i128>| v.last().copied().unwrap_or(0);
+            out.energy.push(last(&out.energy).saturating_add(e));
+            out.data.push(last(&out.data).saturating_add(d));
+            out.handover.push(last(&out.handover).saturating_add(h));
+        }
+        out
+    }
+
+    /// The first step after `k` whose running total exceeds the total at `k` by
+    /// more than `budget` (`len` when none).
+    fn exhausted(sums: &[i128], k: usize, budget: i128) -> usize {
+        let base = sums[k];
+        k + sums[k..].partition_point(|&x| x.saturating_sub(base) <= budget)
+    }
+}
+
+/// A placement known to fit a probe target after step `k`, and the first later
+/// step that could change that.
 struct Witness {
     start: i64,
     duration: i64,
-    budget: i128,
-    /// Data volume headroom (bit) at the worst time, when the data volume binds it.
-    data_budget: i128,
-    /// Handover production headroom (bit), when the handover limit binds it.
-    handover_budget: i128,
-    /// Footprint widened by everything that can couple two placements through the
-    /// wake/sleep and heating rules.
-    lo: i64,
-    hi: i64,
-    scope: Scope,
+    /// The step it is due to be looked at again (`usize::MAX`: not before its own).
+    due: usize,
 }
 
-impl Witness {
-    fn new(state: &State<'_>, ev: &Evaluated, scope: Scope) -> Self {
-        let pb = state.pb;
-        let act = &pb.acts[ev.placement.act];
-        let (s, d) = (ev.placement.start, ev.placement.duration);
-        let data_budget = match pb.data_cap {
-            Some(cap) if act.data > 0 => cap + state.data.check(&[(s, s + d, act.data)], None).min,
-            _ => i128::MAX,
-        };
-        let handover_budget = match (act.mandatory, pb.handover_time, pb.handover_data) {
-            (false, Some(ht), Some(max)) => {
-                max - state.produced
-                    - i128::from(act.data.max(0)) * overlap((s, s + d), (pb.h0, ht))
-            }
-            _ => i128::MAX,
-        };
-        let (lo, hi) = ev.footprint(pb);
-        let preheat = pb
-            .zones
+/// Whether two activities share a state through effects on one side and effects or
+/// requirements on the other (an effect's reach is not bounded in time).
+fn share_state(pb: &crate::scheduler::Problem, a: usize, b: usize) -> bool {
+    let touches = |x: usize, y: usize| {
+        let (x, y) = (&pb.acts[x], &pb.acts[y]);
+        x.effects
             .iter()
-            .flat_map(|z| z.table.iter().map(|t| t.1))
-            .max()
-            .unwrap_or(0);
-        let reach = pb.min_sleep.max(1) + pb.wake + pb.shut + pb.min_awake + preheat + 2;
-        Witness {
-            start: ev.placement.start,
-            duration: ev.placement.duration,
-            budget: ev.margin,
-            data_budget,
-            handover_budget,
-            lo: lo.saturating_sub(reach),
-            hi: hi.saturating_add(reach),
-            scope,
-        }
-    }
+            .any(|e| y.requires.iter().any(|r| r.0 == e.0) || y.effects.iter().any(|f| f.0 == e.0))
+    };
+    touches(a, b) || touches(b, a)
+}
 
-    /// Whether applying `applied` (activity `p`) can change whether activity `a`
-    /// fits at the witness. Sufficient conditions for "cannot", from
-    /// docs/semantics.md: the footprints are apart (so every local category, the
-    /// generated pieces and the peak power are unchanged), the state of charge moves
-    /// by at most the applied energy at any time (the capped integration is
-    /// 1-Lipschitz) and the budget covers it, and no state or data coupling.
-    fn disturbed_by(
-        &mut self,
-        pb: &crate::scheduler::Problem,
-        a: usize,
-        applied: &Evaluated,
-    ) -> bool {
-        let (act, other) = (&pb.acts[a], &pb.acts[applied.placement.act]);
-        self.budget -= applied.energy;
-        let (lo, hi) = applied.footprint(pb);
-        let near = lo < self.hi && self.lo < hi;
-        let touches = |x: &crate::scheduler::Act, y: &crate::scheduler::Act| {
-            x.effects.iter().any(|e| {
-                y.requires.iter().any(|r| r.0 == e.0) || y.effects.iter().any(|f| f.0 == e.0)
-            })
-        };
-        let states = touches(other, act) || touches(act, other);
-        // Data volume and production move by at most what the applied activity
-        // produces (the floored integration is 1-Lipschitz too).
-        let (s, d) = (applied.placement.start, applied.placement.duration);
-        let produced = i128::from(other.data.max(0));
-        self.data_budget = self.data_budget.saturating_sub(produced * i128::from(d));
-        if let Some(ht) = pb.handover_time {
-            self.handover_budget = self
-                .handover_budget
-                .saturating_sub(produced * overlap((s, s + d), (pb.h0, ht)));
-        }
-        near || states || self.budget < 0 || self.data_budget < 0 || self.handover_budget < 0
+/// The first step after `k` that can change whether the witness `ev` of target `a`
+/// (verified against the state after step `k`) still fits; the probe need not look
+/// again before it. Sufficient conditions for "cannot change" (each placement
+/// applied): the footprints, widened by the wake/sleep and preheat reach, are apart
+/// (so every local category, the generated pieces and the peak power are
+/// unchanged); no state is shared; the state of charge, data volume and handover
+/// production move by at most the applied energy / data (capped and floored
+/// integration is 1-Lipschitz) and the witness's margins cover the running total;
+/// no scope threshold and no group member's placement comes first.
+fn next_check(
+    state: &State<'_>,
+    fx: &RunEffects,
+    th: &Thresholds,
+    ev: &Evaluated,
+    k: usize,
+    until: usize,
+) -> usize {
+    let pb = state.pb;
+    let a = ev.placement.act;
+    let act = &pb.acts[a];
+    let (s, d) = (ev.placement.start, ev.placement.duration);
+    let mut due = until.min(RunEffects::exhausted(&fx.energy, k, ev.margin));
+    if let (Some(cap), true) = (pb.data_cap, act.data > 0) {
+        let margin = cap + state.data.check(&[(s, s + d, act.data)], None).min;
+        due = due.min(RunEffects::exhausted(&fx.data, k, margin));
     }
+    if let (false, Some(ht), Some(max)) = (act.mandatory, pb.handover_time, pb.handover_data) {
+        let margin =
+            max - state.produced - i128::from(act.data.max(0)) * overlap((s, s + d), (pb.h0, ht));
+        due = due.min(RunEffects::exhausted(&fx.handover, k, margin));
+    }
+    for &t in th.deps.iter().chain(&th.reqs) {
+        if t > k {
+            due = due.min(t);
+        }
+    }
+    if let Some(steps) = act.group.and_then(|g| fx.group_steps.get(g)) {
+        if let Some(&j) = steps.iter().find(|&&j| j > k) {
+            due = due.min(j);
+        }
+    }
+    let preheat = pb
+        .zones
+        .iter()
+        .flat_map(|z| z.table.iter().map(|t| t.1))
+        .max()
+        .unwrap_or(0);
+    let reach = pb.min_sleep.max(1) + pb.wake + pb.shut + pb.min_awake + preheat + 2;
+    let (lo, hi) = ev.footprint(pb);
+    let (lo, hi) = (lo.saturating_sub(reach), hi.saturating_add(reach));
+    for j in k + 1..due.min(fx.applied.len()) {
+        if let Some(p) = &fx.applied[j] {
+            if (p.lo < hi && lo < p.hi) || share_state(pb, a, p.act) {
+                return j;
+            }
+        }
+    }
+    due
 }
 
 /// Length of the overlap of two half-open intervals.
@@ -457,34 +530,61 @@ fn overlap(a: (i64, i64), b: (i64, i64)) -> i128 {
 /// Calls `on_failure(i, k, record, state)` for each target `i` that fails, with its
 /// failure step `k`, the probe's step record there and the state after step `k`.
 /// Targets that schedule at their own step (scheduled activities) get no call.
+///
+/// Each target is looked at only at the steps that can change its answer: after a
+/// passing probe it keeps the placement found (its witness) and is due again at the
+/// first later step that could disturb it ([`next_check`]); then a quick check of
+/// the witness, and a search only when the witness stopped fitting.
 fn failure_probes(
     sched: &Schedule,
     targets: &[usize],
     step_of: &[usize],
     mut on_failure: impl FnMut(usize, usize, Step, &State<'_>),
 ) {
+    use std::cmp::Reverse;
     let pb = &sched.problem;
-    let mut open: Vec<bool> = targets
+    let fx = RunEffects::new(sched);
+    let inclusion = Inclusion::new(pb, step_of);
+    let thresholds: Vec<Thresholds> = targets.iter().map(|&a| inclusion.thresholds(a)).collect();
+    let mut witness: Vec<Option<Witness>> = (0..targets.len()).map(|_| None).collect();
+    // (due step, target); a target is in the queue at most once.
+    let mut queue: std::collections::BinaryHeap<Reverse<(usize, usize)>> = targets
         .iter()
-        .map(|&a| {
+        .enumerate()
+        .filter(|&(_, &a)| {
             !matches!(
                 sched.steps[step_of[a] - 1].outcome,
                 Outcome::Scheduled { .. }
             )
         })
+        .map(|(i, _)| Reverse((0, i)))
         .collect();
-    // A placement known to fit each target at the previous step: while nothing
-    // applied since can have changed that, the probe succeeds without any check;
-    // while it still fits, without a search.
-    let mut witness: Vec<Option<Witness>> = (0..targets.len()).map(|_| None).collect();
-    let inclusion = Inclusion::new(pb, step_of);
-    let thresholds: Vec<Thresholds> = targets.iter().map(|&a| inclusion.thresholds(a)).collect();
     let mut state = State::new(pb);
     for k in 0..sched.steps.len() {
-        for (i, &a) in targets.iter().enumerate() {
-            if !open[i] || step_of[a] <= k {
-                continue;
+        if queue.is_empty() {
+            break;
+        }
+        // Debug builds (the tests) check every skip against a full check.
+        #[cfg(debug_assertions)]
+        for (i, w) in witness.iter().enumerate() {
+            if let Some(w) = w.as_ref().filter(|w| w.due > k && k < step_of[targets[i]]) {
+                let scope = thresholds[i].scope_at(k);
+                debug_assert!(
+                    state.fits(targets[i], w.start, w.duration, &scope),
+                    "a skipped witness stopped fitting"
+                );
             }
+        }
+        while let Some(&Reverse((due, i))) = queue.peek() {
+            if due > k {
+                break;
+            }
+            queue.pop();
+            if witness[i].as_ref().is_some_and(|w| w.due != due) {
+                continue; // stale entry (not expected: a target is queued once)
+            }
+            let a = targets[i];
+            let until = step_of[a];
             let scope = thresholds[i].scope_at(k);
             let act = &pb.acts[a];
             let blocked = act.group.is_some_and(|g| state.group_member[g].is_some())
@@ -493,14 +593,18 @@ fn failure_probes(
                 });
             if !blocked {
                 if let Some(w) = &witness[i] {
-                    if w.scope == scope && w.budget >= 0 && w.lo < w.hi {
-                        debug_assert!(state.fits(a, w.start, w.duration, &scope));
-                        continue;
-                    }
                     // The same duration as before: a longer one could have become
                     // possible, but a probe only asks whether the activity fails.
                     if let Some(ev) = state.fitting(a, w.start, w.duration, &scope) {
-                        witness[i] = Some(Witness::new(&state, &ev, scope));
+                        let next = next_check(&state, &fx, &thresholds[i], &ev, k, until);
+                        witness[i] = Some(Witness {
+                            start: w.start,
+                            duration: w.duration,
+                            due: if next < until { next } else { usize::MAX },
+                        });
+                        if next < until {
+                            queue.push(Reverse((next, i)));
+                        }
                         continue;
                     }
                 }
@@ -519,31 +623,28 @@ fn failure_probes(
                         record
                     };
                     on_failure(i, k, record, &state);
-                    open[i] = false;
                     witness[i] = None;
                 }
                 Some(p) => {
-                    witness[i] = state
-                        .evaluate(a, p.start, p.duration)
-                        .ok()
-                        .map(|ev| Witness::new(&state, &ev, scope));
+                    // A found placement always evaluates; if it somehow did not, look
+                    // again at the next step.
+                    let next = state.evaluate(a, p.start, p.duration).map_or(k + 1, |ev| {
+                        next_check(&state, &fx, &thresholds[i], &ev, k, until)
+                    });
+                    if next < until {
+                        queue.push(Reverse((next, i)));
+                    }
+                    witness[i] = Some(Witness {
+                        start: p.start,
+                        duration: p.duration,
+                        due: if next < until { next } else { usize::MAX },
+                    });
                 }
             }
-        }
-        if !open.iter().any(|o| *o) {
-            break;
         }
         let step = &sched.steps[k];
         if let Outcome::Scheduled { start, end } = step.outcome {
             if let Ok(ev) = state.evaluate(step.activity, start, end - start) {
-                for (i, &a) in targets.iter().enumerate() {
-                    if let Some(w) = witness[i].as_mut() {
-                        if open[i] && w.disturbed_by(pb, a, &ev) {
-                            // Mark for a re-check (an empty footprint never skips).
-                            w.hi = w.lo;
-                        }
-                    }
-                }
                 state.apply(step.step, &ev.placement);
             }
         }

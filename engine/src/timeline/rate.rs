@@ -38,6 +38,9 @@ pub struct RateTimeline {
     wasted: Vec<i128>,
     /// Range minimum over `levels[i] + wasted[i]` (the uncapped trajectory).
     uncapped: MinTree,
+    /// For each segment, the last segment at or before it with a profile point at
+    /// the cap.
+    last_full: Vec<Option<usize>>,
 }
 
 /// An iterative segment tree answering "first minimum on `[l, r)`" in O(log n).
@@ -108,6 +111,7 @@ impl RateTimeline {
             suffix_min: Vec::new(),
             wasted: Vec::new(),
             uncapped: MinTree::default(),
+            last_full: Vec::new(),
         };
         tl.rebuild(rate);
         tl
@@ -141,6 +145,19 @@ impl RateTimeline {
                 best = (l, i);
             }
             self.prefix_min.push(best);
+        }
+        self.last_full.clear();
+        let mut last = None;
+        for i in 0..self.rates.len() {
+            if self
+                .segment_points(i)
+                .into_iter()
+                .flatten()
+                .any(|p| p.1 >= self.cap)
+            {
+                last = Some(i);
+            }
+            self.last_full.push(last);
         }
         self.suffix_min = vec![(i128::MAX, 0); self.levels.len()];
         let mut best = (i128::MAX, 0);
@@ -185,30 +202,62 @@ impl RateTimeline {
     pub fn profile(&self) -> Vec<(i64, i128)> {
         let mut out = Vec::with_capacity(self.times.len() + 4);
         for i in 0..self.rates.len() {
-            let (t0, t1, r, l) = (
-                self.times[i],
-                self.times[i + 1],
-                self.rates[i],
-                self.levels[i],
-            );
-            out.push((t0, l));
-            if r > 0 && l < self.cap && l + i128::from(r) * i128::from(t1 - t0) > self.cap {
-                // Reaches the cap between whole seconds tc - 1 and tc; give both so
-                // that interpolation is exact at every whole second.
-                let dt = (self.cap - l + i128::from(r) - 1) / i128::from(r);
-                let tc = t0 + i64::try_from(dt).unwrap_or(t1 - t0);
-                if tc - 1 > t0 {
-                    out.push((tc - 1, l + i128::from(r) * i128::from(tc - 1 - t0)));
-                }
-                if tc < t1 {
-                    out.push((tc, self.cap));
-                }
-            }
+            out.extend(self.segment_points(i).into_iter().flatten());
         }
         if let (Some(&t), Some(&l)) = (self.times.last(), self.levels.last()) {
             out.push((t, l));
         }
         out
+    }
+
+    /// The profile points of segment `i`: its start, and where the level reaches the
+    /// cap inside it (the whole seconds before and at, so that interpolation is
+    /// exact at every whole second).
+    fn segment_points(&self, i: usize) -> [Option<(i64, i128)>; 3] {
+        let (t0, t1, r, l) = (
+            self.times[i],
+            self.times[i + 1],
+            self.rates[i],
+            self.levels[i],
+        );
+        let mut out = [Some((t0, l)), None, None];
+        if r > 0 && l < self.cap && l + i128::from(r) * i128::from(t1 - t0) > self.cap {
+            let dt = (self.cap - l + i128::from(r) - 1) / i128::from(r);
+            let tc = t0 + i64::try_from(dt).unwrap_or(t1 - t0);
+            if tc - 1 > t0 {
+                out[1] = Some((tc - 1, l + i128::from(r) * i128::from(tc - 1 - t0)));
+            }
+            if tc < t1 {
+                out[2] = Some((tc, self.cap));
+            }
+        }
+        out
+    }
+
+    /// The last profile point at or before `t` where the level is at the cap (the
+    /// battery was full), scanning back from `t` only.
+    pub fn last_at_cap(&self, t: i64) -> Option<i64> {
+        let n = self.rates.len();
+        if self.times[n] <= t && self.levels[n] >= self.cap {
+            return Some(self.times[n]);
+        }
+        if t < self.times[0] {
+            return None;
+        }
+        let in_segment = |i: usize| {
+            self.segment_points(i)
+                .into_iter()
+                .rev()
+                .flatten()
+                .find(|&(x, l)| x <= t && l >= self.cap)
+                .map(|(x, _)| x)
+        };
+        let i = self.index(t);
+        // Every point of the segments before `i` is before `t`.
+        in_segment(i).or_else(|| {
+            let j = self.last_full[..i].last().copied().flatten()?;
+            in_segment(j)
+        })
     }
 
     /// The rate breakpoints (segment starts).
@@ -430,6 +479,23 @@ mod tests {
                 Some(b[probe as usize]),
                 "{drain:?} probe {probe}"
             );
+        }
+    }
+
+    #[test]
+    fn last_at_cap_matches_the_profile() {
+        let mut rate = StepFn::constant(0, 100, 7);
+        rate.add(20, 50, -12);
+        rate.add(70, 80, -30);
+        let tl = RateTimeline::new(&rate, 0, 60);
+        let profile = tl.profile();
+        for t in -5..110 {
+            let want = profile
+                .iter()
+                .rev()
+                .find(|&&(x, l)| x <= t && l >= 60)
+                .map(|p| p.0);
+            assert_eq!(tl.last_at_cap(t), want, "t={t}");
         }
     }
 
