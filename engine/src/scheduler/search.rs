@@ -591,15 +591,22 @@ impl State<'_> {
                 }
                 Ok(ev) => ev,
             };
-            let margin = |s: i64| {
-                if s == ca {
-                    first.margin
-                } else {
-                    self.evaluate(a, s, d).map_or(i128::MIN, |ev| ev.margin)
+            // The cell's evaluations, so that reporting a probe's reason does not
+            // evaluate it again (a handful per cell: a linear scan is fastest).
+            let memo = std::cell::RefCell::new(vec![(ca, first.margin, first.soc_reason)]);
+            let look = |s: i64| -> (i128, Option<Phase2Reason>) {
+                if let Some(x) = memo.borrow().iter().find(|x| x.0 == s) {
+                    return (x.1, x.2.clone());
                 }
+                let (m, r) = self
+                    .evaluate(a, s, d)
+                    .map_or((i128::MIN, None), |ev| (ev.margin, ev.soc_reason));
+                memo.borrow_mut().push((s, m, r.clone()));
+                (m, r)
             };
+            let margin = |s: i64| look(s).0;
             let (feasible, probe) = concave_feasible(ca, cb, &margin);
-            let reason_at = |s: i64| self.evaluate(a, s, d).ok().and_then(|ev| ev.soc_reason);
+            let reason_at = |s: i64| look(s).1;
             match feasible {
                 None => tries.push(Try {
                     starts: Interval::new(ca, cb),

@@ -189,7 +189,11 @@ impl RateTimeline {
 
     /// The level at `t` and the charge lost to the cap up to `t`.
     fn level_and_waste_at(&self, t: i64) -> (i128, i128) {
-        let i = self.index(t);
+        self.level_and_waste_in(self.index(t), t)
+    }
+
+    /// [`Self::level_and_waste_at`] with `i` the segment index of `t`.
+    fn level_and_waste_in(&self, i: usize, t: i64) -> (i128, i128) {
         let t = t.clamp(self.times[0], self.times[self.rates.len()]);
         let dt = t - self.times[i];
         let level = advance(self.levels[i], self.rates[i], dt, self.cap);
@@ -290,7 +294,7 @@ impl RateTimeline {
         let i_lo = self.index(lo);
         let (mut min, idx) = self.prefix_min[i_lo];
         let mut min_at = self.times[idx];
-        let mut level = self.level_at(lo);
+        let mut level = self.level_and_waste_in(i_lo, lo).0;
         if level < min {
             (min, min_at) = (level, lo);
         }
@@ -325,10 +329,15 @@ impl RateTimeline {
         // loss, E'(t) = E(t) - max(0, deficit - (W(t) - W(hi))). Before the deficit is
         // absorbed that is the uncapped trajectory E + W shifted down (a range
         // minimum); after it, the unchanged levels (a suffix minimum).
-        let (e_hi, w_hi) = self.level_and_waste_at(hi);
+        // `i` is the segment the walk ended in; step to the one holding `hi`.
+        while i + 1 < n && self.times[i + 1] <= hi {
+            i += 1;
+        }
+        let (e_hi, w_hi) = self.level_and_waste_in(i, hi);
         let deficit = e_hi - level;
         if deficit >= 0 {
-            let first = self.times.partition_point(|&x| x <= hi);
+            // The number of breakpoints at or before `hi`.
+            let first = if self.times[n] <= hi { n + 1 } else { i + 1 };
             let absorbed = first + self.wasted[first..].partition_point(|&w| w - w_hi < deficit);
             if let Some((u, idx)) = self.uncapped.query(first, absorbed) {
                 let v = u - w_hi - deficit;
