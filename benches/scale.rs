@@ -92,12 +92,17 @@ fn main() {
         frame(&ctx, &mut app);
         frame(&ctx, &mut app);
         let t_frame = median(10, || frame(&ctx, &mut app));
-        let target = format!("activity:{}", plan.activities[n / 2].id);
+        // The activity of the middle step: the edit changes it in place (its energy
+        // rate), so the rerun redoes the second half of the steps, the median case of
+        // an edit anywhere in the plan.
+        let middle = sched.steps[n / 2].activity;
+        let target = format!("activity:{}", plan.activities[middle].id);
+        let rate = plan.activities[middle].energy_rate;
         let mut flip = 0;
         let t_edit = median(runs, || {
             flip += 1;
             let mut set = serde_json::Map::new();
-            set.insert("priority".into(), json!(1000 + flip));
+            set.insert("energy_rate".into(), json!(rate + f64::from(flip % 2)));
             app.apply(Command::Edit {
                 target: target.clone(),
                 set,

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use solscope_engine::{
     Error, ExplainOptions, Explanation, Outcome, Plan, Schedule, Warning, explain, load_plan,
-    schedule,
+    reschedule, schedule,
 };
 
 /// The open plan.
@@ -121,15 +121,24 @@ pub struct Analysis {
 impl Analysis {
     /// Schedules a plan.
     pub fn of(plan: &Plan) -> Result<Self, Error> {
-        let schedule = schedule(plan)?;
+        Ok(Self::indexed(schedule(plan)?, plan))
+    }
+
+    /// Schedules an edited plan, reusing the steps of this analysis that the edit
+    /// cannot change (the engine's `reschedule`; same result as [`Analysis::of`]).
+    pub fn rerun(&self, plan: &Plan) -> Result<Self, Error> {
+        Ok(Self::indexed(reschedule(&self.schedule, plan)?, plan))
+    }
+
+    fn indexed(schedule: Schedule, plan: &Plan) -> Self {
         let mut step_index = vec![0; plan.activities.len()];
         for (i, st) in schedule.steps.iter().enumerate() {
             step_index[st.activity] = i;
         }
-        Ok(Self {
+        Self {
             schedule,
             step_index,
-        })
+        }
     }
 
     /// The step record of activity `a` (O(1)).

@@ -447,7 +447,7 @@ impl SolscopeApp {
 
     /// Reschedules the current plan and shows the outcome diff against `before`.
     fn reanalyse(&mut self, before: Plan, description: &str) {
-        match Analysis::of(&self.doc.plan) {
+        match self.analysis.rerun(&self.doc.plan) {
             Ok(analysis) => {
                 let old = std::mem::replace(&mut self.analysis, analysis);
                 self.ui.banner = Some(OutcomeDiff::between(

@@ -5,7 +5,9 @@
 //!    activities and profiles match the oracle's second-by-second simulation;
 //! 2. determinism: scheduling twice gives byte-identical JSON;
 //! 3. every shipped example and asset schedules and replays clean; the pitfall
-//!    example gives A at 0 and B failed.
+//!    example gives A at 0 and B failed;
+//! 4. rescheduling an edited plan from the previous run's unchanged prefix gives
+//!    exactly what scheduling it from scratch gives.
 #![allow(clippy::panic, clippy::unwrap_used, clippy::expect_used)]
 
 mod oracle;
@@ -16,7 +18,7 @@ use std::path::{Path, PathBuf};
 
 use proptest::prelude::*;
 use serde_json::Value;
-use solscope_engine::{LoadedPlan, load_plan, schedule, schedule_document};
+use solscope_engine::{LoadedPlan, load_plan, reschedule, schedule, schedule_document};
 
 fn schedule_json(loaded: &LoadedPlan) -> Result<Value, String> {
     let sched = schedule(&loaded.plan).map_err(|e| format!("schedule failed: {e}"))?;
@@ -74,6 +76,47 @@ proptest! {
         let a = run().map_err(TestCaseError::fail)?;
         let b = run().map_err(TestCaseError::fail)?;
         prop_assert!(a == b, "two runs differ on plan:\n{}", pretty(&text));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 512,
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+
+    #[test]
+    fn rescheduling_an_edit_matches_scheduling_from_scratch(
+        text in plangen::plan_text(),
+        pick in 0usize..64,
+        kind in 0u8..5,
+        amount in -3i64..4,
+    ) {
+        let loaded = load_plan(&text).map_err(|e| TestCaseError::fail(format!("load_plan: {e}")))?;
+        let before = schedule(&loaded.plan).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let mut plan = loaded.plan.clone();
+        let n = plan.activities.len();
+        prop_assume!(n > 0);
+        let act = &mut plan.activities[pick % n];
+        match kind {
+            0 => act.priority += amount,
+            1 => {
+                if let Some(w) = act.windows.as_mut().and_then(|w| w.first_mut()) {
+                    w.start += amount * 60;
+                }
+            }
+            2 => act.mandatory = !act.mandatory,
+            3 => act.energy_rate += amount as f64,
+            _ => plan.activities.swap(pick % n, (pick / 2) % n),
+        }
+        // Edits that make the plan invalid are refused before any rescheduling.
+        let edited = serde_json::to_string(&plan).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let Ok(edited) = load_plan(&edited) else { return Ok(()) };
+        let full = schedule(&edited.plan).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let reused = reschedule(&before, &edited.plan).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        prop_assert_eq!(&full.steps, &reused.steps, "plan:\n{}", pretty(&text));
+        prop_assert_eq!(&full.generated, &reused.generated);
     }
 }
 

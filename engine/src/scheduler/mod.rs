@@ -82,13 +82,56 @@ impl Schedule {
 /// Schedules a validated plan.
 pub fn schedule(plan: &Plan) -> Result<Schedule, Error> {
     let problem = Problem::compile(plan)?;
-    let mut steps = Vec::with_capacity(problem.acts.len());
-    let mut generated: Vec<Generated> = Vec::new();
-    // Index into `generated` of each current awake period (parallel to state.awake).
-    let mut awake_gen: Vec<usize> = Vec::new();
+    Ok(run(problem, Vec::new(), Vec::new()))
+}
+
+/// Schedules an edited plan, reusing the steps of `prev` (the run of the plan
+/// before the edit) that the edit cannot change: the steps before the first one
+/// whose activity moved or changed. The result is identical to [`schedule`]'s.
+pub fn reschedule(prev: &Schedule, plan: &Plan) -> Result<Schedule, Error> {
+    let problem = Problem::compile(plan)?;
+    let k = prev.problem.common_steps(&problem);
+    let steps = prev.steps[..k].to_vec();
+    // Generated activities are recorded in step order, so those of the first k
+    // steps are a prefix; undo the retirements that later steps made.
+    let generated = prev
+        .generated
+        .iter()
+        .take_while(|g| g.added_at <= k)
+        .map(|g| Generated {
+            retired_at: g.retired_at.filter(|&r| r <= k),
+            ..*g
+        })
+        .collect();
+    Ok(run(problem, steps, generated))
+}
+
+/// Runs the steps after `done` (the records of the first steps, already known)
+/// with `generated` the generated activities of those steps.
+fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>) -> Schedule {
+    let mut steps = done;
+    steps.reserve(problem.acts.len().saturating_sub(steps.len()));
+    let mut generated = generated;
+    // Index into `generated` of each current awake period (parallel to state.awake,
+    // which is sorted by start).
+    let mut awake_gen: Vec<usize> = {
+        let k = steps.len();
+        let mut alive: Vec<usize> = (0..generated.len())
+            .filter(|&g| generated[g].kind == GeneratedKind::Awake && generated[g].alive_after(k))
+            .collect();
+        alive.sort_by_key(|&g| generated[g].start);
+        alive
+    };
     {
         let mut state = State::new(&problem);
-        for (k, &a) in problem.order.iter().enumerate() {
+        for step in &steps {
+            if let Outcome::Scheduled { start, end } = step.outcome {
+                if let Ok(ev) = state.evaluate(step.activity, start, end - start) {
+                    state.apply(step.step, &ev.placement);
+                }
+            }
+        }
+        for (k, &a) in problem.order.iter().enumerate().skip(steps.len()) {
             let step_no = k + 1;
             let mut step = run_step(&state, a, step_no, &Scope::default(), true);
             if let Some(placement) = step.1.take() {
@@ -158,11 +201,11 @@ pub fn schedule(plan: &Plan) -> Result<Schedule, Error> {
             steps.push(step.0);
         }
     }
-    Ok(Schedule {
+    Schedule {
         problem,
         steps,
         generated,
-    })
+    }
 }
 
 /// Runs one step against `state`; returns the record and the placement to apply.

@@ -48,7 +48,7 @@ pub struct Dep {
 }
 
 /// An activity in compiled form.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Act {
     /// Shortest duration.
     pub dur_min: i64,
@@ -94,7 +94,7 @@ impl Act {
 }
 
 /// A thermal zone in compiled form.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Zone {
     /// `(from, duration)`, sorted by `from`.
     pub table: Vec<(i64, i64)>,
@@ -107,7 +107,7 @@ pub struct Zone {
 }
 
 /// The compiled plan the scheduler works on.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Problem {
     /// Horizon start.
     pub h0: i64,
@@ -166,6 +166,28 @@ pub struct Problem {
 }
 
 impl Problem {
+    /// How many leading steps two compiled plans share: everything but the
+    /// activities equal, and the same activity, compiled the same, at each of those
+    /// steps. The greedy run never looks ahead, so those steps come out the same.
+    pub fn common_steps(&self, other: &Problem) -> usize {
+        let plan_wide = |p: &Problem| Problem {
+            acts: Vec::new(),
+            order: Vec::new(),
+            zones: p.zones.clone(),
+            zone_names: p.zone_names.clone(),
+            state_initial: p.state_initial.clone(),
+            ..*p
+        };
+        if self.acts.len() != other.acts.len() || plan_wide(self) != plan_wide(other) {
+            return 0;
+        }
+        self.order
+            .iter()
+            .zip(&other.order)
+            .take_while(|&(&a, &b)| a == b && self.acts[a] == other.acts[b])
+            .count()
+    }
+
     /// Local time of day of plan time `t`.
     pub fn tod(&self, t: i64) -> i64 {
         (self.offset + t).rem_euclid(self.sol)
