@@ -192,3 +192,48 @@ fn unsaved_edits_are_guarded_on_open() {
     h.run_steps(3);
     assert_eq!(h.state().doc.plan, edited, "the edits are kept");
 }
+
+#[test]
+fn suggestions_are_verified_off_the_frame_and_never_stale() {
+    let mut app = tutorial();
+    app.background = true;
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    let a = index(h.state(), "sky_flats_mast_busy");
+    h.state_mut().apply(Command::Select(Some(a)));
+    h.run_steps(1);
+    // The frame does not wait for the worker: the inspector says so meanwhile.
+    let wait_for = |h: &mut egui_kittest::Harness<'static, SolscopeApp>| {
+        for _ in 0..1000 {
+            if h.state().cached_suggestions(a).is_some() {
+                return;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(10));
+            h.run_steps(1);
+        }
+        panic!("suggestions never arrived");
+    };
+    wait_for(&mut h);
+    let first: Vec<String> = h
+        .state()
+        .cached_suggestions(a)
+        .unwrap()
+        .iter()
+        .map(|s| s.description.clone())
+        .collect();
+    assert!(
+        first.iter().any(|d| d.starts_with("Widen window 1")),
+        "{first:?}"
+    );
+    assert!(
+        h.query_by_label_contains("Apply: Widen window 1 of sky_flats_mast_busy")
+            .is_some()
+    );
+    // After an edit the old list is not shown: new ones are verified for the new
+    // revision (here the edit makes it schedule, so there are none).
+    h.get_by_label_contains("Apply: Widen window 1 of sky_flats_mast_busy")
+        .click();
+    h.run_steps(2);
+    assert!(h.state().analysis.placement(a).is_some());
+    wait_for(&mut h);
+    assert_eq!(h.state().cached_suggestions(a), Some(&[][..]));
+}

@@ -112,8 +112,8 @@ impl Document {
 /// costs one reschedule.
 #[derive(Clone, Debug)]
 pub struct Analysis {
-    /// The run.
-    pub schedule: Schedule,
+    /// The run (shared with the worker that verifies suggestions).
+    pub schedule: std::sync::Arc<Schedule>,
     /// Index into `schedule.steps` of each activity's step.
     step_index: Vec<usize>,
 }
@@ -136,7 +136,7 @@ impl Analysis {
             step_index[st.activity] = i;
         }
         Self {
-            schedule,
+            schedule: std::sync::Arc::new(schedule),
             step_index,
         }
     }

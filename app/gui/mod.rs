@@ -99,6 +99,27 @@ pub struct UiState {
     pub plot_x: Option<(f32, f32)>,
 }
 
+/// Verified suggestions for failed activity `a` (explains it, then reschedules the
+/// plan once per candidate edit).
+fn verify_suggestions(
+    plan: &Plan,
+    schedule: &solscope_engine::Schedule,
+    a: usize,
+) -> Vec<Suggestion> {
+    let Some(act) = plan.activities.get(a) else {
+        return Vec::new();
+    };
+    let opts = ExplainOptions {
+        activity: Some(act.id.clone()),
+        no_suggestions: false,
+    };
+    solscope_engine::explain(plan, schedule, &opts)
+        .ok()
+        .and_then(|mut v| v.pop())
+        .map(|e| e.suggestions)
+        .unwrap_or_default()
+}
+
 /// The app: document, derived analysis, UI state, and the command queue.
 pub struct SolscopeApp {
     /// The open plan.
@@ -115,6 +136,12 @@ pub struct SolscopeApp {
     pub step_view: StepView,
     /// Verified suggestions of the selected activity, per plan revision.
     suggestions: Option<(usize, u64, Vec<Suggestion>)>,
+    /// Suggestions being verified on a worker thread (rescheduling once per
+    /// candidate edit can take seconds on a big plan): activity, revision, result.
+    pending: Option<(usize, u64, std::sync::mpsc::Receiver<Vec<Suggestion>>)>,
+    /// Verify suggestions on a worker thread (the desktop app); headless renders
+    /// and tests compute them in the frame so that what they draw is settled.
+    pub background: bool,
     /// Explanation of the selected activity, per plan revision.
     explanation: Option<(usize, u64, Option<solscope_engine::Explanation>)>,
     /// Full valid intervals of the selected scheduled activity as it saw them.
@@ -167,6 +194,8 @@ impl SolscopeApp {
             theme: Theme::new(true),
             step_view: StepView::default(),
             suggestions: None,
+            pending: None,
+            background: false,
             explanation: None,
             valid: None,
             revision: 0,
@@ -231,6 +260,11 @@ impl SolscopeApp {
             self.explanation_for(a);
             self.suggestions_for(a);
             self.valid_for(a);
+        }
+        if self.verifying() {
+            // Poll the worker until its result is in.
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_millis(50));
         }
         views::layout_ui(ui, self, &mut cmds);
         for cmd in cmds {
@@ -378,28 +412,50 @@ impl SolscopeApp {
         )
     }
 
-    /// Verified suggestions for activity `a` (computed once per plan revision).
-    pub fn suggestions_for(&mut self, a: usize) -> &[Suggestion] {
+    /// Verified suggestions for activity `a`, computed once per plan revision: in the
+    /// frame, or with `background` on a worker thread (then `None` until they
+    /// arrive; a result for an older revision or another activity is dropped).
+    pub fn suggestions_for(&mut self, a: usize) -> Option<&[Suggestion]> {
         let fresh = matches!(&self.suggestions, Some((x, r, _)) if *x == a && *r == self.revision);
         if !fresh {
-            let list = self
-                .analysis
-                .placement(a)
-                .is_none()
-                .then_some(())
-                .and_then(|()| {
-                    let opts = ExplainOptions {
-                        activity: Some(self.doc.plan.activities[a].id.clone()),
-                        no_suggestions: false,
-                    };
-                    solscope_engine::explain(&self.doc.plan, &self.analysis.schedule, &opts).ok()
-                })
-                .and_then(|mut v| v.pop())
-                .map(|e| e.suggestions)
-                .unwrap_or_default();
-            self.suggestions = Some((a, self.revision, list));
+            if self.analysis.placement(a).is_some() {
+                self.suggestions = Some((a, self.revision, Vec::new()));
+            } else if !self.background {
+                let list = verify_suggestions(&self.doc.plan, &self.analysis.schedule, a);
+                self.suggestions = Some((a, self.revision, list));
+            } else {
+                match &self.pending {
+                    Some((x, r, rx)) if *x == a && *r == self.revision => match rx.try_recv() {
+                        Ok(list) => {
+                            self.suggestions = Some((a, self.revision, list));
+                            self.pending = None;
+                        }
+                        Err(std::sync::mpsc::TryRecvError::Empty) => {}
+                        Err(std::sync::mpsc::TryRecvError::Disconnected) => {
+                            self.suggestions = Some((a, self.revision, Vec::new()));
+                            self.pending = None;
+                        }
+                    },
+                    _ => {
+                        let (tx, rx) = std::sync::mpsc::channel();
+                        let plan = self.doc.plan.clone();
+                        let schedule = std::sync::Arc::clone(&self.analysis.schedule);
+                        // A superseded worker finishes on its own; its result is
+                        // dropped with its receiver.
+                        std::thread::spawn(move || {
+                            let _ = tx.send(verify_suggestions(&plan, &schedule, a));
+                        });
+                        self.pending = Some((a, self.revision, rx));
+                    }
+                }
+            }
         }
-        self.suggestions.as_ref().map_or(&[], |s| s.2.as_slice())
+        self.cached_suggestions(a)
+    }
+
+    /// Whether suggestions are being verified in the background.
+    pub fn verifying(&self) -> bool {
+        self.pending.is_some()
     }
 
     /// The explanation of activity `a` if it did not schedule (computed once per
@@ -478,6 +534,7 @@ impl SolscopeApp {
         match Self::from_text(&text, Some(path.to_path_buf())) {
             Ok(mut fresh) => {
                 fresh.persisted = std::mem::take(&mut self.persisted);
+                fresh.background = self.background;
                 fresh.persisted.recent.retain(|p| p != path);
                 fresh.persisted.recent.insert(0, path.to_path_buf());
                 fresh.persisted.recent.truncate(10);
@@ -567,6 +624,8 @@ impl SolscopeHost {
         {
             app.persisted = p;
         }
+        // On a workstation, verifying suggestions must not stall a click.
+        app.background = true;
         Self { app }
     }
 }

@@ -132,7 +132,10 @@ fn activity_ui(
         ui.label(RichText::new("Suggestions (verified by rescheduling)").strong());
         match m.suggestions {
             None => {
-                ui.label("computing…");
+                ui.horizontal(|ui| {
+                    ui.spinner();
+                    ui.label("verifying candidate edits by rescheduling…");
+                });
             }
             Some([]) => {
                 ui.label("No single edit found that makes it schedule.");
