@@ -72,3 +72,17 @@ fn editor_after_an_edit() {
         },
     );
 }
+
+#[test]
+fn gantt_grouped_by_resource() {
+    let mut app = app();
+    app.apply(Command::GroupByResource(true));
+    check(
+        "overview_by_resource",
+        app,
+        View {
+            step: Some(35),
+            ..View::default()
+        },
+    );
+}

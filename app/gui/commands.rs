@@ -52,6 +52,8 @@ pub enum Command {
     ExportPng(Option<PathBuf>),
     /// Dark (true) or light theme.
     SetDark(bool),
+    /// Gantt rows per unit resource (true) or packed lanes.
+    GroupByResource(bool),
     /// Filter activities by id or name.
     SetFilter(String),
     /// Hide the outcome banner.

@@ -33,6 +33,10 @@ pub struct Persisted {
     pub recent: Vec<PathBuf>,
     /// Light theme instead of dark.
     pub light: bool,
+    /// Gantt: scheduled activities in one row per unit resource instead of packed
+    /// lanes.
+    #[serde(default)]
+    pub by_resource: bool,
 }
 
 /// An action waiting for "discard unsaved changes?".
@@ -381,6 +385,7 @@ impl SolscopeApp {
                 self.ui.export_png = true;
             }
             Command::SetDark(dark) => self.persisted.light = !dark,
+            Command::GroupByResource(on) => self.persisted.by_resource = on,
             Command::SetFilter(f) => self.ui.filter = f,
             Command::DismissBanner => self.ui.banner = None,
             Command::DismissError => self.ui.error = None,

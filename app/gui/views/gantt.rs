@@ -180,9 +180,42 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
         }
     }
     rows.extend(pack(comm, "Comm passes", 2));
-    rows.extend(pack(scheduled, "Scheduled", 64));
+    if m.persisted.by_resource {
+        rows.extend(by_resource(plan, scheduled));
+    } else {
+        rows.extend(pack(scheduled, "Scheduled", 64));
+    }
     rows.extend(pack(failed, "Failed / skipped", 8));
     rows.extend(pack(pending, "Pending (windows)", 8));
+    rows
+}
+
+/// Scheduled bars in one row per unit resource (resource names in order; an
+/// activity holding several appears in each of their rows), then those holding
+/// none in packed lanes. A unit resource is held by one activity at a time, so
+/// each resource needs one row.
+fn by_resource(plan: &solscope_engine::Plan, scheduled: Vec<Bar>) -> Vec<Row> {
+    let mut groups: std::collections::BTreeMap<&str, Vec<Bar>> = std::collections::BTreeMap::new();
+    let mut none = Vec::new();
+    for bar in scheduled {
+        let held = bar
+            .activity
+            .and_then(|a| plan.activities.get(a))
+            .map(|act| act.resources.as_slice())
+            .unwrap_or_default();
+        if held.is_empty() {
+            none.push(bar);
+            continue;
+        }
+        for r in held {
+            groups.entry(r.as_str()).or_default().push(bar.clone());
+        }
+    }
+    let mut rows: Vec<Row> = groups
+        .into_iter()
+        .flat_map(|(r, bars)| pack(bars, &format!("Resource: {r}"), 2))
+        .collect();
+    rows.extend(pack(none, "No resource", 64));
     rows
 }
 
@@ -330,5 +363,95 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut V
                 cmds.push(Command::SetAxis(a));
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gui::SolscopeApp;
+
+    fn model(app: &SolscopeApp) -> Model<'_> {
+        Model {
+            doc: &app.doc,
+            analysis: &app.analysis,
+            theme: app.theme,
+            step_view: &app.step_view,
+            persisted: &app.persisted,
+            suggestions: None,
+            revision: app.revision,
+            explanation: None,
+            valid: None,
+        }
+    }
+
+    /// `(row label, activity ids)` of the activity bars drawn after the last step
+    /// (a continuation lane carries its group's label; heating rows left out).
+    fn layout(app: &SolscopeApp) -> Vec<(String, Vec<String>)> {
+        let m = model(app);
+        let mut group = String::new();
+        rows(&m, app.analysis.steps())
+            .into_iter()
+            .map(|mut r| {
+                if r.label.is_empty() {
+                    r.label = group.clone();
+                } else {
+                    group = r.label.clone();
+                }
+                let ids = r
+                    .bars
+                    .iter()
+                    .filter_map(|b| b.activity)
+                    .map(|a| app.doc.plan.activities[a].id.clone())
+                    .collect();
+                (r.label, ids)
+            })
+            .filter(|r| !r.0.starts_with("Heat: "))
+            .collect()
+    }
+
+    #[test]
+    fn grouping_by_resource_gives_one_row_per_resource() {
+        let mut app = SolscopeApp::with_default_plan().expect("default plan");
+        let packed = layout(&app);
+        assert!(packed.iter().any(|r| r.0 == "Scheduled"));
+        assert!(!packed.iter().any(|r| r.0.starts_with("Resource: ")));
+        app.apply(Command::GroupByResource(true));
+        let grouped = layout(&app);
+        assert!(!grouped.iter().any(|r| r.0 == "Scheduled"));
+        let plan = &app.doc.plan;
+        for (a, act) in plan.activities.iter().enumerate() {
+            if app.analysis.placement(a).is_none() || act.comm_kind.is_some() {
+                continue;
+            }
+            // Each scheduled activity appears in the row of every resource it holds,
+            // or among those holding none.
+            let rows_with: Vec<&str> = grouped
+                .iter()
+                .filter(|r| r.1.contains(&act.id))
+                .map(|r| r.0.as_str())
+                .collect();
+            if act.resources.is_empty() {
+                assert_eq!(rows_with, vec!["No resource"], "{}", act.id);
+            } else {
+                let want: Vec<String> = act
+                    .resources
+                    .iter()
+                    .map(|r| format!("Resource: {r}"))
+                    .collect();
+                assert_eq!(rows_with.len(), want.len(), "{}: {rows_with:?}", act.id);
+                assert!(rows_with.iter().all(|r| want.iter().any(|w| w == r)));
+            }
+        }
+        // A unit resource is held by one activity at a time: one row each.
+        let labels: Vec<&str> = grouped
+            .iter()
+            .map(|r| r.0.as_str())
+            .filter(|l| l.starts_with("Resource: "))
+            .collect();
+        let mut unique = labels.clone();
+        unique.dedup();
+        assert_eq!(labels, unique, "a resource needed a second lane");
+        assert!(labels.len() >= 3);
     }
 }

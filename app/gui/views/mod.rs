@@ -257,6 +257,14 @@ fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec
         {
             cmds.push(Command::SetDark(!dark));
         }
+        let mut by_resource = m.persisted.by_resource;
+        if ui
+            .checkbox(&mut by_resource, "Group by resource")
+            .on_hover_text("Gantt: one row per unit resource instead of packed lanes")
+            .changed()
+        {
+            cmds.push(Command::GroupByResource(by_resource));
+        }
         ui.separator();
         let dirty = if m.doc.dirty { " (unsaved)" } else { "" };
         ui.label(RichText::new(format!("{}{dirty}", m.doc.title())).strong());

@@ -22,7 +22,12 @@ fn plot_ui(
     let limit_color = m.theme.limit;
     let axis = st.axis;
     let probe = st.probe;
-    let points: PlotPoints = series.iter().copied().collect();
+    let width = st
+        .plot_x
+        .map_or(f64::from(ui.available_width()), |(l, r)| f64::from(r - l));
+    let points: PlotPoints = decimate(series, axis.start, axis.end, width)
+        .into_iter()
+        .collect();
     let local = m.doc.plan.local_time;
     let resp = Plot::new(id)
         .x_axis_formatter(move |mark, _range| {
@@ -39,7 +44,9 @@ fn plot_ui(
         .y_axis_min_width(LABEL_WIDTH - 30.0)
         .show(ui, |plot_ui| {
             plot_ui.set_plot_bounds_x(axis.start..=axis.end);
-            plot_ui.line(Line::new(id, points).color(color));
+            // egui_plot's own aggregation fills bands between buckets, which draws
+            // a step function as shaded triangles; `decimate` did the thinning.
+            plot_ui.line(Line::new(id, points).color(color).allow_band(false));
             for &(name, y) in limits {
                 plot_ui.hline(HLine::new(name, y).color(limit_color));
             }
@@ -55,6 +62,51 @@ fn plot_ui(
             cmds.push(Command::ProbePlot(Some(p.x.round() as i64)));
         }
     }
+}
+
+/// The part of `series` (sorted by time) that `[start, end]` shows at `width`
+/// pixels, with every pixel column holding more than two points replaced by one
+/// vertical stroke from its lowest to its highest value (ordered to continue from
+/// the previous point). Dense step segments otherwise make a path that turns back
+/// on itself within a pixel, which the line tessellator draws as spikes and shading;
+/// the envelope is what the eye sees at that zoom anyway, and it bounds the work
+/// per frame by the width instead of the plan size.
+pub fn decimate(series: &[[f64; 2]], start: f64, end: f64, width: f64) -> Vec<[f64; 2]> {
+    // (Written so that NaN bounds also return the series as it is.)
+    let usable = end > start && width >= 1.0;
+    if series.is_empty() || !usable {
+        return series.to_vec();
+    }
+    let spp = (end - start) / width;
+    // One point either side of the range, so that the line reaches the edges.
+    let from = series.partition_point(|p| p[0] < start).saturating_sub(1);
+    let to = (series.partition_point(|p| p[0] <= end) + 1).min(series.len());
+    let column = |x: f64| ((x - start) / spp).floor();
+    let mut out: Vec<[f64; 2]> = Vec::with_capacity(((width as usize) + 2) * 2);
+    let mut i = from;
+    while i < to {
+        let c = column(series[i][0]);
+        let mut j = i + 1;
+        while j < to && column(series[j][0]) == c {
+            j += 1;
+        }
+        let group = &series[i..j];
+        if group.len() <= 2 {
+            out.extend_from_slice(group);
+        } else {
+            let lo = group.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
+            let hi = group.iter().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
+            let x = group[0][0];
+            let prev = out.last().map_or(group[0][1], |p| p[1]);
+            if (prev - lo).abs() <= (prev - hi).abs() {
+                out.extend([[x, lo], [x, hi]]);
+            } else {
+                out.extend([[x, hi], [x, lo]]);
+            }
+        }
+        i = j;
+    }
+    out
 }
 
 /// The three plots and the consumers at the probed time.
@@ -168,4 +220,48 @@ fn merge_by_who(m: &Model<'_>, list: &[Consumer]) -> Vec<(String, i64)> {
     }
     out.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::decimate;
+
+    #[test]
+    fn decimation_keeps_each_columns_envelope_and_time_order() {
+        // A dense step function: 10,000 alternating steps over [0, 100,000).
+        let mut series = Vec::new();
+        for k in 0..10_000 {
+            let (x, y) = (
+                f64::from(k) * 10.0,
+                f64::from(k % 7) * 3.0 + f64::from(k / 1000),
+            );
+            series.push([x, y]);
+            series.push([x + 10.0, y]);
+        }
+        let (start, end, width) = (20_000.0, 80_000.0, 300.0);
+        let out = decimate(&series, start, end, width);
+        assert!(out.len() <= 2 * (width as usize + 3), "{}", out.len());
+        assert!(out.windows(2).all(|w| w[0][0] <= w[1][0]), "time order");
+        let spp = (end - start) / width;
+        for c in 0..width as usize {
+            let (a, b) = (start + c as f64 * spp, start + (c + 1) as f64 * spp);
+            let inside = |p: &&[f64; 2]| p[0] >= a && p[0] < b;
+            let ys = |v: &[[f64; 2]]| {
+                let v: Vec<f64> = v.iter().filter(inside).map(|p| p[1]).collect();
+                (
+                    v.iter().copied().fold(f64::INFINITY, f64::min),
+                    v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                )
+            };
+            assert_eq!(ys(&series), ys(&out), "column {c}");
+        }
+        // Sparse data is left exact.
+        let sparse = vec![
+            [0.0, 1.0],
+            [50_000.0, 1.0],
+            [50_000.0, 4.0],
+            [90_000.0, 4.0],
+        ];
+        assert_eq!(decimate(&sparse, 0.0, 100_000.0, 800.0), sparse);
+    }
 }
