@@ -269,12 +269,23 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut V
                 painter.rect_filled(r, 2.0, c);
             }
         };
+        // Right edge of what this row has painted so far (bars come sorted by
+        // start): a bar inside it is hidden under earlier ones, as in an overflow
+        // lane holding thousands of failed activities' windows, so it is skipped
+        // unless it is highlighted.
+        let mut painted = f64::NEG_INFINITY;
         for bar in &row.bars {
             if bar.end < axis.start || bar.start > axis.end {
                 continue;
             }
             let x0 = axis.x(bar.start, timeline).max(f64::from(timeline.left()));
             let x1 = axis.x(bar.end, timeline).min(f64::from(timeline.right()));
+            let marked =
+                bar.activity.is_some() && (bar.activity == current || bar.activity == st.selected);
+            if x1 <= painted && !marked {
+                continue;
+            }
+            painted = painted.max(x1);
             if x1 - x0 < 1.0 {
                 merged = match merged {
                     Some((a, b, c)) if x0 <= b + 1.0 => Some((a, b.max(x1), c)),
