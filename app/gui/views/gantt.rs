@@ -117,6 +117,7 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
         }
     }
     awake.sort_by(|a, b| a.start.total_cmp(&b.start));
+    edges.sort_by(|a, b| a.start.total_cmp(&b.start));
     awake.extend(edges);
     rows.push(Row {
         label: "Awake".into(),
@@ -269,11 +270,11 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut V
                 painter.rect_filled(r, 2.0, c);
             }
         };
-        // Right edge of what this row has painted so far (bars come sorted by
-        // start): a bar inside it is hidden under earlier ones, as in an overflow
-        // lane holding thousands of failed activities' windows, so it is skipped
-        // unless it is highlighted.
-        let mut painted = f64::NEG_INFINITY;
+        // The contiguous span `[lo, hi]` that the last bars of one colour painted:
+        // a bar of that colour inside it is hidden under earlier ones, as in an
+        // overflow lane holding thousands of failed activities' windows, so it is
+        // skipped unless it is highlighted.
+        let mut painted = (f64::INFINITY, f64::NEG_INFINITY, Color32::TRANSPARENT);
         for bar in &row.bars {
             if bar.end < axis.start || bar.start > axis.end {
                 continue;
@@ -282,10 +283,15 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut V
             let x1 = axis.x(bar.end, timeline).min(f64::from(timeline.right()));
             let marked =
                 bar.activity.is_some() && (bar.activity == current || bar.activity == st.selected);
-            if x1 <= painted && !marked {
+            let (lo, hi, color) = painted;
+            if bar.color == color && lo <= x0 && x1 <= hi && !marked {
                 continue;
             }
-            painted = painted.max(x1);
+            painted = if bar.color == color && x0 <= hi && lo <= x1 {
+                (lo.min(x0), hi.max(x1), color)
+            } else {
+                (x0, x1, bar.color)
+            };
             if x1 - x0 < 1.0 {
                 merged = match merged {
                     Some((a, b, c)) if x0 <= b + 1.0 => Some((a, b.max(x1), c)),
