@@ -101,6 +101,8 @@ pub struct UiState {
     /// Screen x range of the plots' data area last frame: the Gantt's timeline
     /// uses the same, so one time maps to one x everywhere.
     pub plot_x: Option<(f32, f32)>,
+    /// The Gantt rows last built, with what they were built for.
+    pub gantt: Option<views::GanttRows>,
 }
 
 /// Verified suggestions for failed activity `a` (explains it, then reschedules the
@@ -193,6 +195,7 @@ impl SolscopeApp {
                 editor_for: None,
                 export_png: false,
                 plot_x: None,
+                gantt: None,
             },
             persisted: Persisted::default(),
             theme: Theme::new(true),

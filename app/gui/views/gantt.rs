@@ -21,6 +21,7 @@ struct Bar {
 }
 
 /// One row: a label and its bars.
+#[derive(Clone, Debug)]
 struct Row {
     label: String,
     bars: Vec<Bar>,
@@ -220,10 +221,23 @@ fn by_resource(plan: &solscope_engine::Plan, scheduled: Vec<Bar>) -> Vec<Row> {
     rows
 }
 
+/// The rows as of one step, kept between frames: building them sorts and packs
+/// every activity, which at 10k activities costs more than drawing them.
+#[derive(Clone, Debug)]
+pub struct GanttRows {
+    /// Plan revision, step, grouping and palette they were built for.
+    key: (u64, usize, bool, Color32),
+    rows: Vec<Row>,
+}
+
 /// The Gantt chart.
 pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
     let k = st.step;
-    let rows = rows(m, k);
+    let key = (m.revision, k, m.persisted.by_resource, m.theme.scheduled);
+    let rows = match st.gantt.take() {
+        Some(cached) if cached.key == key => cached.rows,
+        _ => rows(m, k),
+    };
     let height = rows.len() as f32 * (LANE_HEIGHT + LANE_GAP) + 4.0;
     let (rect, response) = ui.allocate_exact_size(
         egui::vec2(ui.available_width(), height),
@@ -381,6 +395,7 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut V
             }
         }
     }
+    st.gantt = Some(GanttRows { key, rows });
 }
 
 #[cfg(test)]
@@ -425,6 +440,41 @@ mod tests {
             })
             .filter(|r| !r.0.starts_with("Heat: "))
             .collect()
+    }
+
+    /// `(label, bar count)` per row.
+    fn shape(rows: &[Row]) -> Vec<(String, usize)> {
+        rows.iter()
+            .map(|r| (r.label.clone(), r.bars.len()))
+            .collect()
+    }
+
+    #[test]
+    fn cached_rows_follow_the_step_the_plan_and_the_grouping() {
+        let mut app = SolscopeApp::with_default_plan().expect("default plan");
+        let ctx = egui::Context::default();
+        let check = |app: &mut SolscopeApp| {
+            let mut out = ctx.run_ui(egui::RawInput::default(), |ui| app.frame_ui(ui));
+            out.textures_delta.clear();
+            let cached = app.ui.gantt.clone().expect("rows kept");
+            assert_eq!(shape(&cached.rows), shape(&rows(&model(app), app.ui.step)));
+        };
+        check(&mut app);
+        for k in [0, 10, 35] {
+            app.apply(Command::SetStep(k));
+            check(&mut app);
+        }
+        app.apply(Command::GroupByResource(true));
+        check(&mut app);
+        let mut set = serde_json::Map::new();
+        set.insert("mandatory".into(), serde_json::json!(false));
+        let id = app.doc.plan.activities[0].id.clone();
+        app.apply(Command::Edit {
+            target: format!("activity:{id}"),
+            set,
+            description: "test".into(),
+        });
+        check(&mut app);
     }
 
     #[test]

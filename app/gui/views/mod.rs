@@ -2,6 +2,7 @@
 //! widget state in [`UiState`] is written while drawing.
 
 mod gantt;
+pub use gantt::GanttRows;
 mod inspector;
 mod plots;
 
