@@ -252,10 +252,11 @@ pub(crate) fn run_step(
     } else {
         (pb.h0, pb.h1)
     };
+    let mut pending: Vec<(Try, Option<i64>)> = Vec::new();
     let mut attempt = |d: i64, step: &mut Step, record: bool| {
         let tried = try_duration(state, a, d, scope, span);
         any_candidate |= !tried.union.is_empty();
-        step.tries.extend(tried.tries);
+        pending.extend(tried.tries);
         if record || tried.found.is_some() {
             step.duration = d;
             step.categories = tried.categories;
@@ -299,7 +300,32 @@ pub(crate) fn run_step(
         }
         found
     };
-    step.tries = merge_tries(std::mem::take(&mut step.tries));
+    // Cells proven to fail on min_soc carry a bound instead of numbers; the exact
+    // numbers are computed only for those that could be reported. Debug builds (the
+    // property tests) check the result against computing every cell exactly.
+    #[cfg(debug_assertions)]
+    let all_exact = merge_tries(
+        pending
+            .iter()
+            .flat_map(|(t, bound)| match bound {
+                Some(_) => state.cell_tries(a, t.duration, t.starts.lo, t.starts.hi),
+                None => vec![t.clone()],
+            })
+            .collect(),
+    );
+    step.tries = merge_tries_with(std::mem::take(&mut pending), |t| {
+        let exact = state.cell_tries(a, t.duration, t.starts.lo, t.starts.hi);
+        debug_assert!(exact.len() == 1 && exact[0].reason.is_some());
+        exact
+            .into_iter()
+            .find(|x| x.reason.is_some())
+            .unwrap_or_else(|| t.clone())
+    });
+    #[cfg(debug_assertions)]
+    debug_assert_eq!(
+        step.tries, all_exact,
+        "pruned cells changed the reported tries"
+    );
     if let Some(ev) = found {
         let p = ev.placement;
         step.outcome = Outcome::Scheduled {
@@ -321,7 +347,7 @@ struct Tried {
     categories: Vec<CategoryIntervals>,
     union: IntervalSet,
     found: Option<search::Evaluated>,
-    tries: Vec<Try>,
+    tries: Vec<(Try, Option<i64>)>,
 }
 
 /// Phase 1 over starts in `span` and the window-by-window phase-2 search for one

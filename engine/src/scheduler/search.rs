@@ -258,6 +258,18 @@ impl State<'_> {
     /// Phase 2 at start `s` with duration `d`: the generated activities and every
     /// check. `Err` is a structural or peak reason (constant within a cell).
     pub fn evaluate(&self, a: usize, s: i64, d: i64) -> Result<Evaluated, Phase2Reason> {
+        self.evaluate_inner(a, s, d, true)
+    }
+
+    /// [`State::evaluate`]; without `soc`, only the structural and peak checks
+    /// (the margin is then `i128::MAX` and there is no energy reason).
+    fn evaluate_inner(
+        &self,
+        a: usize,
+        s: i64,
+        d: i64,
+        soc: bool,
+    ) -> Result<Evaluated, Phase2Reason> {
         let pb = self.pb;
         let act = &pb.acts[a];
         let e = s + d;
@@ -391,6 +403,22 @@ impl State<'_> {
             (false, Some(t), Some(min)) => Some((t, min)),
             _ => None,
         };
+        let placement = Placement {
+            act: a,
+            start: s,
+            duration: d,
+            retire,
+            new_awake,
+            preheats,
+        };
+        if !soc {
+            return Ok(Evaluated {
+                placement,
+                margin: i128::MAX,
+                soc_reason: None,
+                energy,
+            });
+        }
         let check = self.soc.check(&drain, handover.map(|h| h.0));
         let mut margin = check.min - pb.min_soc;
         let mut soc_reason = (margin < 0).then(|| Phase2Reason::MinSoc {
@@ -407,14 +435,7 @@ impl State<'_> {
             margin = margin.min(hm);
         }
         Ok(Evaluated {
-            placement: Placement {
-                act: a,
-                start: s,
-                duration: d,
-                retire,
-                new_awake,
-                preheats,
-            },
+            placement,
             margin,
             soc_reason,
             energy,
@@ -551,13 +572,19 @@ impl State<'_> {
 
     /// The best start in `cand` (nearest `preferred`, ties earlier) passing phase 2,
     /// and every try made.
+    ///
+    /// A cell that an upper bound on its lowest state of charge
+    /// ([`State::soc_bound`]) proves to fail on `min_soc` everywhere is not
+    /// searched: its try carries the bound as its closeness (`Some`), and
+    /// [`merge_tries_with`] computes exact numbers only for the cells that could
+    /// end up reported (with [`State::cell_tries`]).
     pub fn search(
         &self,
         a: usize,
         d: i64,
         cand: &IntervalSet,
         preferred: i64,
-    ) -> (Option<Evaluated>, Vec<Try>) {
+    ) -> (Option<Evaluated>, Vec<(Try, Option<i64>)>) {
         let mut tries = Vec::new();
         let (Some(lo), Some(hi)) = (cand.first(), cand.intervals().last().map(|i| i.hi)) else {
             return (None, tries);
@@ -579,74 +606,123 @@ impl State<'_> {
                 break;
             }
             let (ca, cb) = cell;
-            let first = match self.evaluate(a, ca, d) {
-                Err(reason) => {
-                    tries.push(Try {
-                        starts: Interval::new(ca, cb),
-                        duration: d,
-                        reason: Some(reason),
-                        probe: ca,
-                    });
+            if let Some(bound) = self.soc_bound(a, d, ca, cb) {
+                if bound < self.pb.min_soc {
+                    let closeness = clamp_i64(bound);
+                    tries.push((
+                        Try {
+                            starts: Interval::new(ca, cb),
+                            duration: d,
+                            reason: Some(Phase2Reason::MinSoc {
+                                at: ca,
+                                soc_mj: closeness,
+                            }),
+                            probe: ca,
+                        },
+                        Some(closeness),
+                    ));
                     continue;
                 }
-                Ok(ev) => ev,
-            };
-            // The cell's evaluations, so that reporting a probe's reason does not
-            // evaluate it again (a handful per cell: a linear scan is fastest).
-            let memo = std::cell::RefCell::new(vec![(ca, first.margin, first.soc_reason)]);
-            let look = |s: i64| -> (i128, Option<Phase2Reason>) {
-                if let Some(x) = memo.borrow().iter().find(|x| x.0 == s) {
-                    return (x.1, x.2.clone());
-                }
-                let (m, r) = self
-                    .evaluate(a, s, d)
-                    .map_or((i128::MIN, None), |ev| (ev.margin, ev.soc_reason));
-                memo.borrow_mut().push((s, m, r.clone()));
-                (m, r)
-            };
-            let margin = |s: i64| look(s).0;
-            let (feasible, probe) = concave_feasible(ca, cb, &margin);
-            let reason_at = |s: i64| look(s).1;
-            match feasible {
-                None => tries.push(Try {
-                    starts: Interval::new(ca, cb),
-                    duration: d,
-                    reason: reason_at(probe),
-                    probe,
-                }),
-                Some(iv) => {
-                    if iv.lo > ca {
-                        tries.push(Try {
-                            starts: Interval::new(ca, iv.lo - 1),
-                            duration: d,
-                            reason: reason_at(ca),
-                            probe: ca,
-                        });
-                    }
-                    tries.push(Try {
-                        starts: iv,
-                        duration: d,
-                        reason: None,
-                        probe: iv.lo,
-                    });
-                    if iv.hi < cb {
-                        tries.push(Try {
-                            starts: Interval::new(iv.hi + 1, cb),
-                            duration: d,
-                            reason: reason_at(cb),
-                            probe: cb,
-                        });
-                    }
-                    let s = preferred.clamp(iv.lo, iv.hi);
+            }
+            let cell_tries = self.cell_tries(a, d, ca, cb);
+            for t in &cell_tries {
+                if t.reason.is_none() {
+                    let s = preferred.clamp(t.starts.lo, t.starts.hi);
                     let key = ((s - preferred).abs(), s);
                     if best.is_none_or(|b| key < b) {
                         best = Some(key);
                     }
                 }
             }
+            tries.extend(cell_tries.into_iter().map(|t| (t, None)));
         }
         let chosen = best.and_then(|(_, s)| self.evaluate(a, s, d).ok());
         (chosen, tries)
+    }
+
+    /// An upper bound on the lowest state of charge for every start in `[ca, cb]`
+    /// with duration `d`, from the activity's own energy alone (other generated
+    /// pieces only drain more), when the cell passes the structural and peak
+    /// checks; `None` when no bound applies (a structural failure, an activity
+    /// that does not drain, or awake periods that charge).
+    fn soc_bound(&self, a: usize, d: i64, ca: i64, cb: i64) -> Option<i128> {
+        let pb = self.pb;
+        let act = &pb.acts[a];
+        if act.energy <= 0 || pb.awake < pb.asleep {
+            return None;
+        }
+        // Structural and peak results are constant within a cell.
+        self.evaluate_inner(a, ca, d, false).ok()?;
+        let energy = i128::from(act.energy) * i128::from(d);
+        Some(self.soc.drain_bound(ca, cb.saturating_add(d), energy))
+    }
+
+    /// The tries of one cell: its structural or peak reason, or the exact
+    /// state-of-charge search (the part that passes, and the numbers of the start
+    /// that came closest on either side).
+    pub fn cell_tries(&self, a: usize, d: i64, ca: i64, cb: i64) -> Vec<Try> {
+        let mut tries = Vec::new();
+        let first = match self.evaluate(a, ca, d) {
+            Err(reason) => {
+                tries.push(Try {
+                    starts: Interval::new(ca, cb),
+                    duration: d,
+                    reason: Some(reason),
+                    probe: ca,
+                });
+                return tries;
+            }
+            Ok(ev) => ev,
+        };
+        // The cell's evaluations, so that reporting a probe's reason does not
+        // evaluate it again (a handful per cell: a linear scan is fastest).
+        let memo = std::cell::RefCell::new(vec![(ca, first.margin, first.soc_reason)]);
+        let look = |s: i64| -> (i128, Option<Phase2Reason>) {
+            if let Some(x) = memo.borrow().iter().find(|x| x.0 == s) {
+                return (x.1, x.2.clone());
+            }
+            let (m, r) = self
+                .evaluate(a, s, d)
+                .map_or((i128::MIN, None), |ev| (ev.margin, ev.soc_reason));
+            memo.borrow_mut().push((s, m, r.clone()));
+            (m, r)
+        };
+        let margin = |s: i64| look(s).0;
+        let (feasible, probe) = concave_feasible(ca, cb, &margin);
+        let reason_at = |s: i64| look(s).1;
+        match feasible {
+            None => tries.push(Try {
+                starts: Interval::new(ca, cb),
+                duration: d,
+                reason: reason_at(probe),
+                probe,
+            }),
+            Some(iv) => {
+                if iv.lo > ca {
+                    tries.push(Try {
+                        starts: Interval::new(ca, iv.lo - 1),
+                        duration: d,
+                        reason: reason_at(ca),
+                        probe: ca,
+                    });
+                }
+                tries.push(Try {
+                    starts: iv,
+                    duration: d,
+                    reason: None,
+                    probe: iv.lo,
+                });
+                if iv.hi < cb {
+                    tries.push(Try {
+                        starts: Interval::new(iv.hi + 1, cb),
+                        duration: d,
+                        reason: reason_at(cb),
+                        probe: cb,
+                    });
+                }
+            }
+        }
+        tries
     }
 }
 

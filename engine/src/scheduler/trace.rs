@@ -161,29 +161,86 @@ impl Phase2Reason {
 /// adjacent ranges with the same outcome (pass, or the same kind of reason) merge,
 /// keeping the numbers of the start that came closest to passing. This keeps the
 /// trace O(ranges of distinct outcome) instead of O(cells).
-pub fn merge_tries(mut tries: Vec<Try>) -> Vec<Try> {
-    tries.sort_by_key(|t| (std::cmp::Reverse(t.duration), t.starts.lo, t.starts.hi));
+pub fn merge_tries(tries: Vec<Try>) -> Vec<Try> {
+    merge_tries_with(tries.into_iter().map(|t| (t, None)).collect(), |t| {
+        t.clone()
+    })
+}
+
+/// [`merge_tries`] where some tries carry only an upper bound on their closeness
+/// (`Some(bound)`: numbers not computed yet). Within a range, tries are looked at
+/// from the highest bound down, and `exact` computes a try's numbers only while it
+/// could still be the closest (ties: the earliest start, as in [`merge_tries`]).
+pub fn merge_tries_with(
+    mut tries: Vec<(Try, Option<i64>)>,
+    mut exact: impl FnMut(&Try) -> Try,
+) -> Vec<Try> {
+    tries.sort_by_key(|(t, _)| (std::cmp::Reverse(t.duration), t.starts.lo, t.starts.hi));
     let mut out: Vec<Try> = Vec::with_capacity(tries.len().min(64));
+    let mut run: Vec<(Try, Option<i64>)> = Vec::new();
+    let mut flush = |run: &mut Vec<(Try, Option<i64>)>, out: &mut Vec<Try>| {
+        if let Some(merged) = merge_run(std::mem::take(run), &mut exact) {
+            out.push(merged);
+        }
+    };
     for t in tries {
-        match out.last_mut() {
-            Some(last)
-                if last.duration == t.duration
-                    && last.reason.as_ref().map(Phase2Reason::kind)
-                        == t.reason.as_ref().map(Phase2Reason::kind)
-                    && last.starts.hi.saturating_add(1) >= t.starts.lo =>
-            {
-                last.starts.hi = last.starts.hi.max(t.starts.hi);
-                if let (Some(a), Some(b)) = (&last.reason, &t.reason) {
-                    if b.closeness() > a.closeness() {
-                        last.reason = t.reason;
-                        last.probe = t.probe;
-                    }
-                }
+        let joins = run.first().is_some_and(|(first, _)| {
+            let hi = run.iter().map(|r| r.0.starts.hi).max().unwrap_or(i64::MIN);
+            first.duration == t.0.duration
+                && first.reason.as_ref().map(Phase2Reason::kind)
+                    == t.0.reason.as_ref().map(Phase2Reason::kind)
+                && hi.saturating_add(1) >= t.0.starts.lo
+        });
+        if !joins {
+            flush(&mut run, &mut out);
+        }
+        run.push(t);
+    }
+    flush(&mut run, &mut out);
+    out
+}
+
+/// One merged range: the span of the run, with the numbers of its closest try.
+fn merge_run(run: Vec<(Try, Option<i64>)>, exact: &mut impl FnMut(&Try) -> Try) -> Option<Try> {
+    let lo = run.first()?.0.starts.lo;
+    let hi = run.iter().map(|r| r.0.starts.hi).max()?;
+    // (closeness or its bound, start, index), highest first, then earliest.
+    let mut order: Vec<(i64, i64, usize)> = run
+        .iter()
+        .enumerate()
+        .map(|(i, (t, bound))| {
+            let c = bound.unwrap_or_else(|| t.reason.as_ref().map_or(0, Phase2Reason::closeness));
+            (c, t.starts.lo, i)
+        })
+        .collect();
+    order.sort_by_key(|&(c, s, _)| (std::cmp::Reverse(c), s));
+    let mut best: Option<(i64, i64, Try)> = None;
+    for (c, start, i) in order {
+        if let Some((bc, bs, _)) = &best {
+            // Nothing after this can come closer, or tie and start earlier.
+            if c < *bc || (c == *bc && start > *bs) {
+                break;
             }
-            _ => out.push(t),
+        }
+        let t = match run[i].1 {
+            Some(_) => exact(&run[i].0),
+            None => run[i].0.clone(),
+        };
+        let tc = t.reason.as_ref().map_or(0, Phase2Reason::closeness);
+        if best
+            .as_ref()
+            .is_none_or(|(bc, bs, _)| tc > *bc || (tc == *bc && start < *bs))
+        {
+            best = Some((tc, start, t));
         }
     }
-    out
+    let (_, _, t) = best?;
+    Some(Try {
+        starts: Interval::new(lo, hi),
+        duration: t.duration,
+        reason: t.reason,
+        probe: t.probe,
+    })
 }
 
 /// Why an activity failed.

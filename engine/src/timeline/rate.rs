@@ -269,6 +269,24 @@ impl RateTimeline {
         &self.times
     }
 
+    /// An upper bound on the lowest level if `energy` (> 0) more is drained over some
+    /// span inside `[from, until)` (and any further drain anywhere): the levels
+    /// before `from` can only fall, and at a time `t >= until` the level falls by
+    /// at least `energy` less the charge the unchanged trajectory loses to the cap
+    /// between `from` and `t` (the most the cap can give back). Taken at the lowest
+    /// level from `until` on.
+    pub fn drain_bound(&self, from: i64, until: i64, energy: i128) -> i128 {
+        let n = self.rates.len();
+        let before = self.prefix_min[self.index(from)].0;
+        let i = self.times.partition_point(|&x| x < until);
+        if i > n || from < self.times[0] {
+            return before;
+        }
+        let (m, idx) = self.suffix_min[i];
+        let absorbed = self.wasted[idx] - self.level_and_waste_at(from).1;
+        before.min(m - (energy - absorbed).max(0))
+    }
+
     /// Lowest level, and level at `probe`, if `drain` (sorted, disjoint `[a, b)`
     /// pieces with a rate subtracted from the timeline's rate) were added.
     pub fn check(&self, drain: &[(i64, i64, i64)], probe: Option<i64>) -> LevelCheck {
@@ -505,6 +523,39 @@ mod tests {
                 .find(|&&(x, l)| x <= t && l >= 60)
                 .map(|p| p.0);
             assert_eq!(tl.last_at_cap(t), want, "t={t}");
+        }
+    }
+
+    #[test]
+    fn drain_bound_bounds_every_placement() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = |m: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (m as u64)) as i64
+        };
+        for _ in 0..300 {
+            let mut rate = StepFn::constant(0, 120, next(9) - 3);
+            for _ in 0..next(6) {
+                let a = next(120);
+                rate.add(a, a + next(40), next(21) - 10);
+            }
+            let (cap, initial) = (100 + next(100) as i128, next(100) as i128);
+            let tl = RateTimeline::new(&rate, initial.min(cap), cap);
+            let (d, r) = (1 + next(20), 1 + next(12));
+            let from = next(100);
+            let to = from + next(10);
+            let bound = tl.drain_bound(from, to + d, i128::from(r * d));
+            for s in from..=to.min(120 - d) {
+                // The activity's own drain, plus an arbitrary extra drain elsewhere.
+                let extra = next(30);
+                let drain = [(s, s + d, r), (s + d, (s + d + extra).min(120), next(5))];
+                let drain: Vec<_> = drain.into_iter().filter(|p| p.0 < p.1).collect();
+                let b = brute(&rate, &drain, initial.min(cap), cap);
+                let min = *b.iter().min().unwrap();
+                assert!(min <= bound, "s={s} min={min} bound={bound}");
+            }
         }
     }
 
