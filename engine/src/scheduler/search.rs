@@ -353,11 +353,11 @@ impl State<'_> {
         }
         for &z in &act.zones {
             let zone = &pb.zones[z];
-            let mut demands = vec![(s, e, zone.maintenance)];
-            if let Some(&(_, ps, pe)) = preheats.iter().find(|x| x.0 == z) {
-                demands.push((ps, pe, zone.preheat));
-            }
-            for (x, y, power) in demands {
+            let preheat = preheats
+                .iter()
+                .find(|x| x.0 == z)
+                .map(|&(_, ps, pe)| (ps, pe, zone.preheat));
+            for (x, y, power) in std::iter::once((s, e, zone.maintenance)).chain(preheat) {
                 for (u, v, cur) in self.zone_draw[z].segments(x, y) {
                     if power > cur {
                         piece(u, v, power - cur, power - cur);

@@ -39,8 +39,8 @@ pub struct RateTimeline {
     /// Range minimum over `levels[i] + wasted[i]` (the uncapped trajectory).
     uncapped: MinTree,
     /// For each segment, the last segment at or before it with a profile point at
-    /// the cap.
-    last_full: Vec<Option<usize>>,
+    /// the cap (built on first use: only blame queries ask).
+    last_full: std::sync::OnceLock<Vec<Option<usize>>>,
 }
 
 /// An iterative segment tree answering "first minimum on `[l, r)`" in O(log n).
@@ -111,7 +111,7 @@ impl RateTimeline {
             suffix_min: Vec::new(),
             wasted: Vec::new(),
             uncapped: MinTree::default(),
-            last_full: Vec::new(),
+            last_full: std::sync::OnceLock::new(),
         };
         tl.rebuild(rate);
         tl
@@ -146,19 +146,7 @@ impl RateTimeline {
             }
             self.prefix_min.push(best);
         }
-        self.last_full.clear();
-        let mut last = None;
-        for i in 0..self.rates.len() {
-            if self
-                .segment_points(i)
-                .into_iter()
-                .flatten()
-                .any(|p| p.1 >= self.cap)
-            {
-                last = Some(i);
-            }
-            self.last_full.push(last);
-        }
+        self.last_full = std::sync::OnceLock::new();
         self.suffix_min = vec![(i128::MAX, 0); self.levels.len()];
         let mut best = (i128::MAX, 0);
         for i in (0..self.levels.len()).rev() {
@@ -257,9 +245,25 @@ impl RateTimeline {
                 .map(|(x, _)| x)
         };
         let i = self.index(t);
+        let last_full = self.last_full.get_or_init(|| {
+            let mut last = None;
+            (0..self.rates.len())
+                .map(|i| {
+                    if self
+                        .segment_points(i)
+                        .into_iter()
+                        .flatten()
+                        .any(|p| p.1 >= self.cap)
+                    {
+                        last = Some(i);
+                    }
+                    last
+                })
+                .collect()
+        });
         // Every point of the segments before `i` is before `t`.
         in_segment(i).or_else(|| {
-            let j = self.last_full[..i].last().copied().flatten()?;
+            let j = last_full[..i].last().copied().flatten()?;
             in_segment(j)
         })
     }
@@ -292,11 +296,21 @@ impl RateTimeline {
     pub fn check(&self, drain: &[(i64, i64, i64)], probe: Option<i64>) -> LevelCheck {
         let n = self.rates.len();
         let (start, end) = (self.times[0], self.times[n]);
-        let pieces: Vec<(i64, i64, i64)> = drain
+        // Usually every piece is inside the domain already: no copy then.
+        let clean = drain
             .iter()
-            .map(|&(a, b, r)| (a.max(start), b.min(end), r))
-            .filter(|&(a, b, r)| a < b && r != 0)
-            .collect();
+            .all(|&(a, b, r)| start <= a && b <= end && a < b && r != 0);
+        let clipped: Vec<(i64, i64, i64)>;
+        let pieces: &[(i64, i64, i64)] = if clean {
+            drain
+        } else {
+            clipped = drain
+                .iter()
+                .map(|&(a, b, r)| (a.max(start), b.min(end), r))
+                .filter(|&(a, b, r)| a < b && r != 0)
+                .collect();
+            &clipped
+        };
         let (Some(first), Some(last)) = (pieces.first(), pieces.last()) else {
             let (min, idx) = self.prefix_min[n];
             return LevelCheck {
