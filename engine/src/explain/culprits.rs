@@ -276,8 +276,16 @@ pub fn culprits(state: &State<'_>, ex: &Explanation, step_of: &[usize]) -> Vec<C
                             })
                             .filter(|u| u.0 > 0)
                             .collect();
-                        users.sort_by(|p, q| q.0.cmp(&p.0).then(p.1.cmp(&q.1)));
-                        for (_, x) in users.into_iter().take(ENERGY_CULPRITS) {
+                        // The largest first (ties by activity): a total order, so
+                        // selecting the top ones then sorting them equals sorting all.
+                        let order =
+                            |p: &(i64, usize), q: &(i64, usize)| q.0.cmp(&p.0).then(p.1.cmp(&q.1));
+                        if users.len() > ENERGY_CULPRITS {
+                            users.select_nth_unstable_by(ENERGY_CULPRITS, order);
+                            users.truncate(ENERGY_CULPRITS);
+                        }
+                        users.sort_by(order);
+                        for (_, x) in users {
                             push(x, kind);
                         }
                     }

@@ -78,15 +78,82 @@ impl State<'_> {
             .windows
             .iter()
             .any(|w| self.window_range(a, w, d).contains(s));
-        if !in_window
-            || !self
-                .phase1_in(a, d, scope, s, s)
-                .iter()
-                .all(|c| c.valid.contains(s))
-        {
+        if !in_window || !self.phase1_point(a, s, d, scope) {
             return None;
         }
         self.evaluate(a, s, d).ok().filter(|ev| ev.margin >= 0)
+    }
+
+    /// Whether start `s` with duration `d` satisfies every phase-1 category but
+    /// execution: the point version of [`State::phase1_in`] (which debug builds
+    /// check it against), stopping at the first category that fails.
+    fn phase1_point(&self, a: usize, s: i64, d: i64, scope: &Scope) -> bool {
+        let ok = self.phase1_point_unchecked(a, s, d, scope);
+        debug_assert_eq!(
+            ok,
+            self.phase1_in(a, d, scope, s, s)
+                .iter()
+                .filter(|c| c.category != Category::Execution)
+                .all(|c| c.valid.contains(s)),
+            "phase1_point disagrees with phase1_in at {s}"
+        );
+        ok
+    }
+
+    fn phase1_point_unchecked(&self, a: usize, s: i64, d: i64, scope: &Scope) -> bool {
+        let pb = self.pb;
+        let act = &pb.acts[a];
+        let e = s.saturating_add(d);
+        let overlaps = |x: i64, y: i64| x < e && s < y;
+        // dependency
+        for (k, x) in act.after.iter().enumerate() {
+            if scope.skip_deps.contains(&k) {
+                continue;
+            }
+            let Some((_, end)) = self.placed[x.target] else {
+                return false;
+            };
+            let lo = end.saturating_add(x.min_delay);
+            let hi = x.max_delay.map_or(i64::MAX, |m| end.saturating_add(m));
+            if s < lo || s > hi {
+                return false;
+            }
+        }
+        // unit_resource
+        if act
+            .resources
+            .iter()
+            .any(|&r| self.busy[r].iter().any(|&(x, y)| overlaps(x, y)))
+        {
+            return false;
+        }
+        // sequence_engines
+        if let (Some(cap), true) = (pb.engines, act.engines > 0) {
+            if self
+                .engines
+                .max_on(s, e)
+                .is_some_and(|(v, _)| v > cap - act.engines)
+            {
+                return false;
+            }
+        }
+        // uhf
+        let blocked = self
+            .comms
+            .iter()
+            .any(|&(x, y, kind, _)| !act.allows(kind) && overlaps(x, y))
+            || act.comm.is_some_and(|kind| {
+                self.restricted
+                    .iter()
+                    .any(|&(x, y, other)| !pb.acts[other].allows(kind) && overlaps(x, y))
+            });
+        if blocked {
+            return false;
+        }
+        // state_requirement, state_effect, data_volume: as phase 1 does them.
+        self.phase1_states_data(a, d, scope, s, s)
+            .iter()
+            .all(|c| c.1.contains(s))
     }
 
     /// Phase 1 restricted to starts in `[lo, hi]`.
@@ -141,52 +208,7 @@ impl State<'_> {
             _ => all(),
         };
         out.push((Category::SequenceEngines, eng));
-        // state_requirement
-        let mut req = all();
-        for (_, &(st, v)) in act
-            .requires
-            .iter()
-            .enumerate()
-            .filter(|(k, _)| !scope.skip_reqs.contains(k))
-        {
-            req = req.intersect(&self.states[st].requirement_valid(v, d, lo, hi));
-        }
-        out.push((Category::StateRequirement, req));
-        // state_effect
-        let mut eff = all();
-        let mut states: Vec<usize> = act.effects.iter().map(|e| e.0).collect();
-        states.sort_unstable();
-        states.dedup();
-        for st in states {
-            let mut own: Vec<(i64, usize)> = act
-                .effects
-                .iter()
-                .filter(|e| e.0 == st)
-                .map(|e| (if e.2 == EffectAt::Start { 0 } else { d }, e.1))
-                .collect();
-            own.sort_unstable();
-            eff = eff.intersect(&self.states[st].effect_valid(&own, lo, hi));
-        }
-        out.push((Category::StateEffect, eff));
-        // data_volume
-        let mut data = all();
-        if let (true, Some(cap)) = (act.data > 0, pb.data_cap) {
-            data = self.data_valid(act.data, d, cap, lo, hi);
-        }
-        // The handover limit binds every optional activity, even one producing
-        // nothing, once the placed activities have exceeded it.
-        if let (false, Some(ht), Some(max)) = (act.mandatory, pb.handover_time, pb.handover_data) {
-            let range = (pb.h0, ht);
-            data = data.intersect(&cumulative_valid(
-                self.produced,
-                max,
-                act.data,
-                d,
-                range,
-                (lo, hi),
-            ));
-        }
-        out.push((Category::DataVolume, data));
+        out.extend(self.phase1_states_data(a, d, scope, lo, hi));
         // uhf
         let mut busy = Vec::new();
         for &(s, e, kind, _) in &self.comms {
@@ -205,6 +227,69 @@ impl State<'_> {
         out.into_iter()
             .map(|(category, valid)| CategoryIntervals { category, valid })
             .collect()
+    }
+
+    /// The state_requirement, state_effect and data_volume categories of phase 1
+    /// over starts in `[lo, hi]`.
+    fn phase1_states_data(
+        &self,
+        a: usize,
+        d: i64,
+        scope: &Scope,
+        lo: i64,
+        hi: i64,
+    ) -> [(Category, IntervalSet); 3] {
+        let pb = self.pb;
+        let act = &pb.acts[a];
+        let all = || IntervalSet::single(lo, hi);
+        // state_requirement
+        let mut req = all();
+        for (_, &(st, v)) in act
+            .requires
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| !scope.skip_reqs.contains(k))
+        {
+            req = req.intersect(&self.states[st].requirement_valid(v, d, lo, hi));
+        }
+        // state_effect
+        let mut eff = all();
+        let mut states: Vec<usize> = act.effects.iter().map(|e| e.0).collect();
+        states.sort_unstable();
+        states.dedup();
+        for st in states {
+            let mut own: Vec<(i64, usize)> = act
+                .effects
+                .iter()
+                .filter(|e| e.0 == st)
+                .map(|e| (if e.2 == EffectAt::Start { 0 } else { d }, e.1))
+                .collect();
+            own.sort_unstable();
+            eff = eff.intersect(&self.states[st].effect_valid(&own, lo, hi));
+        }
+        // data_volume
+        let mut data = all();
+        if let (true, Some(cap)) = (act.data > 0, pb.data_cap) {
+            data = self.data_valid(act.data, d, cap, lo, hi);
+        }
+        // The handover limit binds every optional activity, even one producing
+        // nothing, once the placed activities have exceeded it.
+        if let (false, Some(ht), Some(max)) = (act.mandatory, pb.handover_time, pb.handover_data) {
+            let range = (pb.h0, ht);
+            data = data.intersect(&cumulative_valid(
+                self.produced,
+                max,
+                act.data,
+                d,
+                range,
+                (lo, hi),
+            ));
+        }
+        [
+            (Category::StateRequirement, req),
+            (Category::StateEffect, eff),
+            (Category::DataVolume, data),
+        ]
     }
 
     /// The execution range of window `w` of activity `a` for duration `d`: the
