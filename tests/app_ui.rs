@@ -237,3 +237,25 @@ fn suggestions_are_verified_off_the_frame_and_never_stale() {
     wait_for(&mut h);
     assert_eq!(h.state().cached_suggestions(a), Some(&[][..]));
 }
+
+#[test]
+fn every_reason_kind_shows_its_numbers() {
+    let view = View {
+        select: Some("supercam_dawn_sky_412".into()),
+        ..View::default()
+    };
+    let h = harness(
+        SolscopeApp::with_default_plan().unwrap(),
+        SNAPSHOT_SIZE.into(),
+        &view,
+    )
+    .unwrap();
+    // A preheat reason names the zone and when the preheat would start, not only
+    // its kind.
+    assert!(
+        h.query_by_label_contains(
+            "preheat_operability for starts 44680–45580: mast preheat from 41080"
+        )
+        .is_some()
+    );
+}

@@ -104,7 +104,29 @@ fn activity_ui(
                         m.time(*at)
                     )
                 }
-                other => other.kind().to_string(),
+                Phase2Reason::HandoverSoc { soc_mj } => format!(
+                    "SOC {:.1} Wh at handover",
+                    *soc_mj as f64 / solscope_engine::MJ_PER_WH
+                ),
+                Phase2Reason::PreheatOutsidePlan {
+                    zone,
+                    preheat_start,
+                }
+                | Phase2Reason::PreheatOperability {
+                    zone,
+                    preheat_start,
+                } => format!(
+                    "{} preheat from {}",
+                    zone_name(m, *zone),
+                    m.time(*preheat_start)
+                ),
+                Phase2Reason::ForcedSleep { sleep: Some(x) }
+                | Phase2Reason::MinSleep { sleep: x }
+                | Phase2Reason::MinAwake { sleep: Some(x) } => {
+                    format!("manual sleep {}", m.doc.plan.activities[*x].id)
+                }
+                Phase2Reason::ForcedSleep { sleep: None } => "an awake period".to_string(),
+                Phase2Reason::MinAwake { sleep: None } => "the plan bounds".to_string(),
             };
             ui.label(format!(
                 "{} for starts {}–{}: {detail}",
@@ -342,4 +364,15 @@ fn plan_editor_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut
                 json_field_ui(ui, m, st, "plan", key, value.get(key), cmds);
             }
         });
+}
+
+/// The name of zone `z` (compiled zone index).
+fn zone_name(m: &Model<'_>, z: usize) -> String {
+    m.analysis
+        .schedule
+        .problem
+        .zone_names
+        .get(z)
+        .cloned()
+        .unwrap_or_else(|| format!("zone {z}"))
 }
