@@ -259,3 +259,34 @@ fn every_reason_kind_shows_its_numbers() {
         .is_some()
     );
 }
+
+#[test]
+fn one_suggestion_worker_at_a_time() {
+    let mut app = SolscopeApp::with_default_plan().unwrap();
+    app.background = true;
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    let first = index(h.state(), "moxie_run_413");
+    let second = index(h.state(), "supercam_dawn_sky_412");
+    h.state_mut().apply(Command::Select(Some(first)));
+    h.run_steps(1);
+    assert_eq!(h.state().verifying(), Some(first));
+    // Selecting another activity while the first is verified does not start a
+    // second worker; its turn comes when the first is done.
+    h.state_mut().apply(Command::Select(Some(second)));
+    h.run_steps(1);
+    if h.state().cached_suggestions(first).is_none() {
+        assert_eq!(h.state().verifying(), Some(first));
+    }
+    for _ in 0..3000 {
+        if h.state().cached_suggestions(second).is_some() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+        h.run_steps(1);
+    }
+    let list = h.state().cached_suggestions(second).expect("arrived");
+    assert!(
+        list.iter().any(|s| s.description.contains("mast heating")),
+        "{list:?}"
+    );
+}

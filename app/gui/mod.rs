@@ -268,7 +268,8 @@ impl SolscopeApp {
             self.suggestions_for(a);
             self.valid_for(a);
         }
-        if self.verifying() {
+        self.reap_worker();
+        if self.verifying().is_some() {
             // Poll the worker until its result is in.
             ui.ctx()
                 .request_repaint_after(std::time::Duration::from_millis(50));
@@ -432,38 +433,53 @@ impl SolscopeApp {
                 let list = verify_suggestions(&self.doc.plan, &self.analysis.schedule, a);
                 self.suggestions = Some((a, self.revision, list));
             } else {
-                match &self.pending {
-                    Some((x, r, rx)) if *x == a && *r == self.revision => match rx.try_recv() {
-                        Ok(list) => {
-                            self.suggestions = Some((a, self.revision, list));
-                            self.pending = None;
-                        }
-                        Err(std::sync::mpsc::TryRecvError::Empty) => {}
-                        Err(std::sync::mpsc::TryRecvError::Disconnected) => {
-                            self.suggestions = Some((a, self.revision, Vec::new()));
-                            self.pending = None;
-                        }
-                    },
-                    _ => {
-                        let (tx, rx) = std::sync::mpsc::channel();
-                        let plan = self.doc.plan.clone();
-                        let schedule = std::sync::Arc::clone(&self.analysis.schedule);
-                        // A superseded worker finishes on its own; its result is
-                        // dropped with its receiver.
-                        std::thread::spawn(move || {
-                            let _ = tx.send(verify_suggestions(&plan, &schedule, a));
-                        });
-                        self.pending = Some((a, self.revision, rx));
-                    }
-                }
+                self.poll_worker(a);
             }
         }
         self.cached_suggestions(a)
     }
 
-    /// Whether suggestions are being verified in the background.
-    pub fn verifying(&self) -> bool {
-        self.pending.is_some()
+    /// Background verification for activity `a`: collect the worker's result, or
+    /// start a worker when none is running. One worker at a time: a request made
+    /// while another activity's (or an older revision's) worker runs waits for it
+    /// to finish, so stepping through many activities does not pile up threads
+    /// that each reschedule the plan.
+    fn poll_worker(&mut self, a: usize) {
+        self.reap_worker();
+        let fresh = matches!(&self.suggestions, Some((x, r, _)) if *x == a && *r == self.revision);
+        if fresh || self.pending.is_some() {
+            return;
+        }
+        let (tx, rx) = std::sync::mpsc::channel();
+        let plan = self.doc.plan.clone();
+        let schedule = std::sync::Arc::clone(&self.analysis.schedule);
+        std::thread::spawn(move || {
+            let _ = tx.send(verify_suggestions(&plan, &schedule, a));
+        });
+        self.pending = Some((a, self.revision, rx));
+    }
+
+    /// Takes a finished worker's result: kept when it is for the current revision,
+    /// dropped otherwise.
+    fn reap_worker(&mut self) {
+        let Some((x, r, rx)) = &self.pending else {
+            return;
+        };
+        let (x, r) = (*x, *r);
+        let list = match rx.try_recv() {
+            Ok(list) => list,
+            Err(std::sync::mpsc::TryRecvError::Empty) => return,
+            Err(std::sync::mpsc::TryRecvError::Disconnected) => Vec::new(),
+        };
+        self.pending = None;
+        if r == self.revision {
+            self.suggestions = Some((x, r, list));
+        }
+    }
+
+    /// The activity whose suggestions a worker is verifying, if any.
+    pub fn verifying(&self) -> Option<usize> {
+        self.pending.as_ref().map(|p| p.0)
     }
 
     /// The explanation of activity `a` if it did not schedule (computed once per
