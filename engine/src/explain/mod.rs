@@ -360,7 +360,7 @@ impl Thresholds {
 }
 
 /// What applying one scheduled step changes, for deciding which witnesses it can
-/// disturb (docs/semantics.md, "Explainer replay").
+/// disturb ([`next_check`]).
 struct Applied {
     act: usize,
     /// Footprint `[lo, hi)` of the placement.
@@ -379,6 +379,9 @@ struct RunEffects {
     handover: Vec<i128>,
     /// Per group, the steps that scheduled a member, ascending.
     group_steps: Vec<Vec<usize>>,
+    /// How far the wake/sleep and preheat rules can couple two placements: the
+    /// widening of a witness's footprint in [`next_check`].
+    reach: i64,
 }
 
 impl RunEffects {
@@ -391,6 +394,15 @@ impl RunEffects {
             data: Vec::with_capacity(n + 1),
             handover: Vec::with_capacity(n + 1),
             group_steps: Vec::new(),
+            reach: {
+                let preheat = pb
+                    .zones
+                    .iter()
+                    .flat_map(|z| z.table.iter().map(|t| t.1))
+                    .max()
+                    .unwrap_or(0);
+                pb.min_sleep.max(1) + pb.wake + pb.shut + pb.min_awake + preheat + 2
+            },
         };
         out.applied.push(None);
         out.energy.push(0);
@@ -400,8 +412,8 @@ impl RunEffects {
         for step in &sched.steps {
             let (mut e, mut d, mut h) = (0, 0, 0);
             let mut applied = None;
-            if let Outcome::Scheduled { start, end } = step.outcome {
-                if let Ok(ev) = state.evaluate(step.activity, start, end - start) {
+            if let Some(ev) = state.replay(step) {
+                if let Outcome::Scheduled { start, end } = step.outcome {
                     let act = &pb.acts[step.activity];
                     let produced = i128::from(act.data.max(0));
                     e = ev.energy;
@@ -421,7 +433,6 @@ impl RunEffects {
                         }
                         out.group_steps[g].push(step.step);
                     }
-                    state.apply(step.step, &ev.placement);
                 }
             }
             out.applied.push(applied);
@@ -503,15 +514,8 @@ fn next_check(
             due = due.min(j);
         }
     }
-    let preheat = pb
-        .zones
-        .iter()
-        .flat_map(|z| z.table.iter().map(|t| t.1))
-        .max()
-        .unwrap_or(0);
-    let reach = pb.min_sleep.max(1) + pb.wake + pb.shut + pb.min_awake + preheat + 2;
     let (lo, hi) = ev.footprint(pb);
-    let (lo, hi) = (lo.saturating_sub(reach), hi.saturating_add(reach));
+    let (lo, hi) = (lo.saturating_sub(fx.reach), hi.saturating_add(fx.reach));
     for j in k + 1..due.min(fx.applied.len()) {
         if let Some(p) = &fx.applied[j] {
             if (p.lo < hi && lo < p.hi) || share_state(pb, a, p.act) {
@@ -586,68 +590,53 @@ fn failure_probes(
             let a = targets[i];
             let until = step_of[a];
             let scope = thresholds[i].scope_at(k);
-            let act = &pb.acts[a];
-            let blocked = act.group.is_some_and(|g| state.group_member[g].is_some())
-                || act.after.iter().enumerate().any(|(j, d)| {
-                    !scope.skip_deps.contains(&j) && state.placed[d.target].is_none()
-                });
-            if !blocked {
-                if let Some(w) = &witness[i] {
-                    // The same duration as before: a longer one could have become
-                    // possible, but a probe only asks whether the activity fails.
-                    if let Some(ev) = state.fitting(a, w.start, w.duration, &scope) {
-                        let next = next_check(&state, &fx, &thresholds[i], &ev, k, until);
-                        witness[i] = Some(Witness {
-                            start: w.start,
-                            duration: w.duration,
-                            due: if next < until { next } else { usize::MAX },
-                        });
-                        if next < until {
-                            queue.push(Reverse((next, i)));
-                        }
-                        continue;
-                    }
-                }
-            }
-            // Whether it fails does not depend on the span phase 1 covers (phase 2
-            // only looks inside the windows), so probe within the window span, and
-            // redo the failing probe over the whole horizon only when the
-            // relaxations need it (starts outside the windows).
-            let (record, placement) = run_step(&state, a, step_of[a], &scope, true);
-            match placement {
+            // A witness that still fits answers the probe without a search (the same
+            // duration as before: a longer one could have become possible, but a
+            // probe only asks whether the activity fails). A group member placed
+            // since skips the activity, which no placement check sees; an unplaced
+            // dependency fails the witness's phase-1 check.
+            let grouped = pb.acts[a]
+                .group
+                .is_some_and(|g| state.group_member[g].is_some());
+            let kept = witness[i]
+                .as_ref()
+                .filter(|_| !grouped)
+                .and_then(|w| state.fitting(a, w.start, w.duration, &scope));
+            let ev = match kept {
+                Some(ev) => ev,
                 None => {
-                    let record = if record.outcome == Outcome::Failed(FailurePhase::ValidIntervals)
-                    {
-                        run_step(&state, a, step_of[a], &scope, false).0
-                    } else {
-                        record
-                    };
-                    on_failure(i, k, record, &state);
-                    witness[i] = None;
-                }
-                Some(p) => {
-                    // A found placement always evaluates; if it somehow did not, look
-                    // again at the next step.
-                    let next = state.evaluate(a, p.start, p.duration).map_or(k + 1, |ev| {
-                        next_check(&state, &fx, &thresholds[i], &ev, k, until)
-                    });
-                    if next < until {
-                        queue.push(Reverse((next, i)));
+                    // Whether it fails does not depend on the span phase 1 covers
+                    // (phase 2 only looks inside the windows), so probe within the
+                    // window span, and redo the failing probe over the whole horizon
+                    // only when the relaxations need it (starts outside the windows).
+                    match run_step(&state, a, step_of[a], &scope, true) {
+                        (_, Some(ev)) => ev,
+                        (record, None) => {
+                            let record = if record.outcome
+                                == Outcome::Failed(FailurePhase::ValidIntervals)
+                            {
+                                run_step(&state, a, step_of[a], &scope, false).0
+                            } else {
+                                record
+                            };
+                            on_failure(i, k, record, &state);
+                            witness[i] = None;
+                            continue;
+                        }
                     }
-                    witness[i] = Some(Witness {
-                        start: p.start,
-                        duration: p.duration,
-                        due: if next < until { next } else { usize::MAX },
-                    });
                 }
+            };
+            let next = next_check(&state, &fx, &thresholds[i], &ev, k, until);
+            witness[i] = Some(Witness {
+                start: ev.placement.start,
+                duration: ev.placement.duration,
+                due: if next < until { next } else { usize::MAX },
+            });
+            if next < until {
+                queue.push(Reverse((next, i)));
             }
         }
-        let step = &sched.steps[k];
-        if let Outcome::Scheduled { start, end } = step.outcome {
-            if let Ok(ev) = state.evaluate(step.activity, start, end - start) {
-                state.apply(step.step, &ev.placement);
-            }
-        }
+        state.replay(&sched.steps[k]);
     }
 }
 

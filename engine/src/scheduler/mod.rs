@@ -62,13 +62,7 @@ impl Schedule {
     pub fn state_after(&self, k: usize) -> State<'_> {
         let mut state = State::new(&self.problem);
         for step in self.steps.iter().take(k) {
-            if let Outcome::Scheduled { start, end } = step.outcome {
-                // Re-deriving the generated activities is deterministic, so the replay
-                // reproduces the run exactly.
-                if let Ok(ev) = state.evaluate(step.activity, start, end - start) {
-                    state.apply(step.step, &ev.placement);
-                }
-            }
+            state.replay(step);
         }
         state
     }
@@ -125,16 +119,12 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>) -> Schedule
     {
         let mut state = State::new(&problem);
         for step in &steps {
-            if let Outcome::Scheduled { start, end } = step.outcome {
-                if let Ok(ev) = state.evaluate(step.activity, start, end - start) {
-                    state.apply(step.step, &ev.placement);
-                }
-            }
+            state.replay(step);
         }
         for (k, &a) in problem.order.iter().enumerate().skip(steps.len()) {
             let step_no = k + 1;
             let mut step = run_step(&state, a, step_no, &Scope::default(), true);
-            if let Some(placement) = step.1.take() {
+            if let Some(placement) = step.1.take().map(|ev| ev.placement) {
                 // Record generated activities.
                 let act = &problem.acts[a];
                 let (s, e) = (placement.start, placement.start + placement.duration);
@@ -208,7 +198,8 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>) -> Schedule
     }
 }
 
-/// Runs one step against `state`; returns the record and the placement to apply.
+/// Runs one step against `state`; returns the record and the evaluation of the
+/// placement to apply.
 /// With `clip`, the recorded category intervals are clipped to the activity's window
 /// span (what the trace keeps); probes ask for the full sets.
 pub(crate) fn run_step(
@@ -217,7 +208,7 @@ pub(crate) fn run_step(
     step_no: usize,
     scope: &Scope,
     clip: bool,
-) -> (Step, Option<Placement>) {
+) -> (Step, Option<search::Evaluated>) {
     let pb = state.pb;
     let act = &pb.acts[a];
     let mut step = Step {
@@ -327,12 +318,12 @@ pub(crate) fn run_step(
         "pruned cells changed the reported tries"
     );
     if let Some(ev) = found {
-        let p = ev.placement;
+        let p = &ev.placement;
         step.outcome = Outcome::Scheduled {
             start: p.start,
             end: p.start + p.duration,
         };
-        return (step, Some(p));
+        return (step, Some(ev));
     }
     step.outcome = Outcome::Failed(if any_candidate {
         FailurePhase::Placement

@@ -110,6 +110,17 @@ impl<'p> State<'p> {
         self.peak.add(a, b, peak);
     }
 
+    /// Replays a recorded step: re-derives its placement (deterministic) and applies
+    /// it when the step scheduled its activity. Returns the evaluation applied.
+    pub fn replay(&mut self, step: &super::Step) -> Option<super::Evaluated> {
+        let super::Outcome::Scheduled { start, end } = step.outcome else {
+            return None;
+        };
+        let ev = self.evaluate(step.activity, start, end - start).ok()?;
+        self.apply(step.step, &ev.placement);
+        Some(ev)
+    }
+
     /// Applies a placement decided at `step`.
     pub fn apply(&mut self, step: usize, p: &Placement) {
         let pb = self.pb;
