@@ -16,7 +16,7 @@
 //! boundaries of the feasible part.
 
 use super::Scope;
-use super::problem::{Problem, Win};
+use super::problem::{Dep, Problem, Win};
 use super::state::{Placement, State, uncovered};
 use super::trace::{Category, CategoryIntervals, Phase2Reason, Try};
 use crate::model::{AwakeMode, EffectAt};
@@ -106,18 +106,17 @@ impl State<'_> {
         let e = s.saturating_add(d);
         let overlaps = |x: i64, y: i64| x < e && s < y;
         // dependency
-        for (k, x) in act.after.iter().enumerate() {
-            if scope.skip_deps.contains(&k) {
-                continue;
-            }
-            let Some((_, end)) = self.placed[x.target] else {
-                return false;
-            };
-            let lo = end.saturating_add(x.min_delay);
-            let hi = x.max_delay.map_or(i64::MAX, |m| end.saturating_add(m));
-            if s < lo || s > hi {
-                return false;
-            }
+        let in_range = |x: &Dep| {
+            self.dependency_range(x)
+                .is_some_and(|(lo, hi)| lo <= s && s <= hi)
+        };
+        if !act
+            .after
+            .iter()
+            .enumerate()
+            .all(|(k, x)| scope.skip_deps.contains(&k) || in_range(x))
+        {
+            return false;
         }
         // unit_resource
         if act
@@ -138,16 +137,7 @@ impl State<'_> {
             }
         }
         // uhf
-        let blocked = self
-            .comms
-            .iter()
-            .any(|&(x, y, kind, _)| !act.allows(kind) && overlaps(x, y))
-            || act.comm.is_some_and(|kind| {
-                self.restricted
-                    .iter()
-                    .any(|&(x, y, other)| !pb.acts[other].allows(kind) && overlaps(x, y))
-            });
-        if blocked {
+        if self.uhf_busy(a).any(|(x, y)| overlaps(x, y)) {
             return false;
         }
         // state_requirement, state_effect, data_volume: as phase 1 does them.
@@ -184,12 +174,8 @@ impl State<'_> {
             .enumerate()
             .filter(|(k, _)| !scope.skip_deps.contains(k))
         {
-            match self.placed[x.target] {
-                Some((_, end)) => {
-                    let lo = end.saturating_add(x.min_delay);
-                    let hi = x.max_delay.map_or(i64::MAX, |m| end.saturating_add(m));
-                    dep = dep.clip(lo, hi);
-                }
+            match self.dependency_range(x) {
+                Some((lo, hi)) => dep = dep.clip(lo, hi),
                 None => dep = IntervalSet::empty(),
             }
         }
@@ -210,23 +196,40 @@ impl State<'_> {
         out.push((Category::SequenceEngines, eng));
         out.extend(self.phase1_states_data(a, d, scope, lo, hi));
         // uhf
-        let mut busy = Vec::new();
-        for &(s, e, kind, _) in &self.comms {
-            if !act.allows(kind) {
-                busy.push((s, e));
-            }
-        }
-        if let Some(kind) = act.comm {
-            for &(s, e, other) in &self.restricted {
-                if !pb.acts[other].allows(kind) {
-                    busy.push((s, e));
-                }
-            }
-        }
+        let busy: Vec<(i64, i64)> = self.uhf_busy(a).collect();
         out.push((Category::Uhf, atomic_valid(&busy, d, lo, hi)));
         out.into_iter()
             .map(|(category, valid)| CategoryIntervals { category, valid })
             .collect()
+    }
+
+    /// The starts a dependency allows, `[target end + min_delay, target end +
+    /// max_delay]`; `None` while its target is not placed.
+    fn dependency_range(&self, x: &Dep) -> Option<(i64, i64)> {
+        let (_, end) = self.placed[x.target]?;
+        let lo = end.saturating_add(x.min_delay);
+        let hi = x.max_delay.map_or(i64::MAX, |m| end.saturating_add(m));
+        Some((lo, hi))
+    }
+
+    /// The placed intervals activity `a` may not overlap on UHF grounds: comm
+    /// activities of a kind it does not allow, and, for a comm activity, activities
+    /// that do not allow its kind.
+    fn uhf_busy(&self, a: usize) -> impl Iterator<Item = (i64, i64)> + '_ {
+        let pb = self.pb;
+        let act = &pb.acts[a];
+        let comms = self
+            .comms
+            .iter()
+            .filter(move |c| !act.allows(c.2))
+            .map(|c| (c.0, c.1));
+        let restricted = act.comm.into_iter().flat_map(move |kind| {
+            self.restricted
+                .iter()
+                .filter(move |r| !pb.acts[r.2].allows(kind))
+                .map(|r| (r.0, r.1))
+        });
+        comms.chain(restricted)
     }
 
     /// The state_requirement, state_effect and data_volume categories of phase 1
@@ -659,7 +662,7 @@ impl State<'_> {
     /// and every try made.
     ///
     /// A cell that an upper bound on its lowest state of charge
-    /// ([`State::soc_bound`]) proves to fail on `min_soc` everywhere is not
+    /// ([`State::failing_soc_bound`]) proves to fail on `min_soc` everywhere is not
     /// searched: its try carries the bound as its closeness (`Some`), and
     /// [`merge_tries_with`] computes exact numbers only for the cells that could
     /// end up reported (with [`State::cell_tries`]).
@@ -691,23 +694,21 @@ impl State<'_> {
                 break;
             }
             let (ca, cb) = cell;
-            if let Some(bound) = self.soc_bound(a, d, ca, cb) {
-                if bound < self.pb.min_soc {
-                    let closeness = clamp_i64(bound);
-                    tries.push((
-                        Try {
-                            starts: Interval::new(ca, cb),
-                            duration: d,
-                            reason: Some(Phase2Reason::MinSoc {
-                                at: ca,
-                                soc_mj: closeness,
-                            }),
-                            probe: ca,
-                        },
-                        Some(closeness),
-                    ));
-                    continue;
-                }
+            if let Some(bound) = self.failing_soc_bound(a, d, ca, cb) {
+                let closeness = clamp_i64(bound);
+                tries.push((
+                    Try {
+                        starts: Interval::new(ca, cb),
+                        duration: d,
+                        reason: Some(Phase2Reason::MinSoc {
+                            at: ca,
+                            soc_mj: closeness,
+                        }),
+                        probe: ca,
+                    },
+                    Some(closeness),
+                ));
+                continue;
             }
             let cell_tries = self.cell_tries(a, d, ca, cb);
             for t in &cell_tries {
@@ -725,21 +726,23 @@ impl State<'_> {
         (chosen, tries)
     }
 
-    /// An upper bound on the lowest state of charge for every start in `[ca, cb]`
-    /// with duration `d`, from the activity's own energy alone (other generated
-    /// pieces only drain more), when the cell passes the structural and peak
-    /// checks; `None` when no bound applies (a structural failure, an activity
-    /// that does not drain, or awake periods that charge).
-    fn soc_bound(&self, a: usize, d: i64, ca: i64, cb: i64) -> Option<i128> {
+    /// An upper bound below `min_soc` on the lowest state of charge for every start
+    /// in `[ca, cb]` with duration `d`, from the activity's own energy alone (other
+    /// generated pieces only drain more): the cell then fails on `min_soc`
+    /// everywhere. `None` when the bound does not prove that, when the cell fails
+    /// a structural or peak check (reported as such), or when no bound applies (an
+    /// activity that does not drain, or awake periods that charge).
+    fn failing_soc_bound(&self, a: usize, d: i64, ca: i64, cb: i64) -> Option<i128> {
         let pb = self.pb;
         let act = &pb.acts[a];
         if act.energy <= 0 || pb.awake < pb.asleep {
             return None;
         }
-        // Structural and peak results are constant within a cell.
-        self.evaluate_inner(a, ca, d, false).ok()?;
         let energy = i128::from(act.energy) * i128::from(d);
-        Some(self.soc.drain_bound(ca, cb.saturating_add(d), energy))
+        let bound = self.soc.drain_bound(ca, cb.saturating_add(d), energy);
+        // Structural and peak results are constant within a cell; they are
+        // evaluated only when the bound would prune it.
+        (bound < pb.min_soc && self.evaluate_inner(a, ca, d, false).is_ok()).then_some(bound)
     }
 
     /// The tries of one cell: its structural or peak reason, or the exact
