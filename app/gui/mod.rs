@@ -16,7 +16,7 @@ mod views;
 use std::path::{Path, PathBuf};
 
 use eframe::egui;
-use solscope_engine::{ExplainOptions, Plan, Suggestion};
+use solscope_engine::{Plan, Suggestion};
 
 pub use commands::Command;
 pub use document::{Analysis, Document, OutcomeDiff};
@@ -105,25 +105,23 @@ pub struct UiState {
     pub gantt: Option<views::GanttRows>,
 }
 
-/// Verified suggestions for failed activity `a` (explains it, then reschedules the
-/// plan once per candidate edit).
-fn verify_suggestions(
-    plan: &Plan,
-    schedule: &solscope_engine::Schedule,
-    a: usize,
-) -> Vec<Suggestion> {
-    let Some(act) = plan.activities.get(a) else {
-        return Vec::new();
-    };
-    let opts = ExplainOptions {
-        activity: Some(act.id.clone()),
-        no_suggestions: false,
-    };
-    solscope_engine::explain(plan, schedule, &opts)
-        .ok()
-        .and_then(|mut v| v.pop())
-        .map(|e| e.suggestions)
-        .unwrap_or_default()
+/// A value derived for one activity at one plan revision (its explanation, valid
+/// intervals, verified suggestions, or the worker computing them). It is read back
+/// only for that activity and revision, so nothing stale is ever shown.
+#[derive(Debug)]
+struct Derived<T> {
+    activity: usize,
+    revision: u64,
+    value: T,
+}
+
+impl<T> Derived<T> {
+    /// The value in `slot` if it was derived for `activity` at `revision`.
+    fn get(slot: &Option<Self>, activity: usize, revision: u64) -> Option<&T> {
+        slot.as_ref()
+            .filter(|d| d.activity == activity && d.revision == revision)
+            .map(|d| &d.value)
+    }
 }
 
 /// The app: document, derived analysis, UI state, and the command queue.
@@ -141,17 +139,17 @@ pub struct SolscopeApp {
     /// Profiles as of the current step.
     pub step_view: StepView,
     /// Verified suggestions of the selected activity, per plan revision.
-    suggestions: Option<(usize, u64, Vec<Suggestion>)>,
+    suggestions: Option<Derived<Vec<Suggestion>>>,
     /// Suggestions being verified on a worker thread (rescheduling once per
     /// candidate edit can take seconds on a big plan): activity, revision, result.
-    pending: Option<(usize, u64, std::sync::mpsc::Receiver<Vec<Suggestion>>)>,
+    pending: Option<Derived<std::sync::mpsc::Receiver<Vec<Suggestion>>>>,
     /// Verify suggestions on a worker thread (the desktop app); headless renders
     /// and tests compute them in the frame so that what they draw is settled.
     pub background: bool,
     /// Explanation of the selected activity, per plan revision.
-    explanation: Option<(usize, u64, Option<solscope_engine::Explanation>)>,
+    explanation: Option<Derived<Option<solscope_engine::Explanation>>>,
     /// Full valid intervals of the selected scheduled activity as it saw them.
-    valid: Option<(usize, u64, Vec<solscope_engine::CategoryIntervals>)>,
+    valid: Option<Derived<Vec<solscope_engine::CategoryIntervals>>>,
     /// Bumped on every accepted change of the plan.
     pub revision: u64,
     commands: Vec<Command>,
@@ -421,100 +419,115 @@ impl SolscopeApp {
         )
     }
 
-    /// Verified suggestions for activity `a`, computed once per plan revision: in the
-    /// frame, or with `background` on a worker thread (then `None` until they
-    /// arrive; a result for an older revision or another activity is dropped).
+    /// Verified suggestions for activity `a`, computed once per plan revision from
+    /// its explanation: in the frame, or with `background` on a worker thread (then
+    /// `None` until they arrive; a result for an older revision is dropped). One
+    /// worker at a time: a request made while another activity's (or an older
+    /// revision's) worker runs waits for it to finish, so stepping through many
+    /// activities does not pile up threads that each reschedule the plan.
     pub fn suggestions_for(&mut self, a: usize) -> Option<&[Suggestion]> {
-        let fresh = matches!(&self.suggestions, Some((x, r, _)) if *x == a && *r == self.revision);
-        if !fresh {
-            if self.analysis.placement(a).is_some() {
-                self.suggestions = Some((a, self.revision, Vec::new()));
-            } else if !self.background {
-                let list = verify_suggestions(&self.doc.plan, &self.analysis.schedule, a);
-                self.suggestions = Some((a, self.revision, list));
-            } else {
-                self.poll_worker(a);
+        if self.background {
+            self.reap_worker();
+        }
+        if self.cached_suggestions(a).is_none() && self.pending.is_none() {
+            let revision = self.revision;
+            match self.explanation_for(a).cloned() {
+                Some(ex) if self.background => {
+                    let (tx, rx) = std::sync::mpsc::channel();
+                    let plan = self.doc.plan.clone();
+                    let schedule = std::sync::Arc::clone(&self.analysis.schedule);
+                    std::thread::spawn(move || {
+                        let _ =
+                            tx.send(solscope_engine::verified_suggestions(&plan, &schedule, &ex));
+                    });
+                    self.pending = Some(Derived {
+                        activity: a,
+                        revision,
+                        value: rx,
+                    });
+                }
+                ex => {
+                    let value = ex.map_or_else(Vec::new, |ex| {
+                        solscope_engine::verified_suggestions(
+                            &self.doc.plan,
+                            &self.analysis.schedule,
+                            &ex,
+                        )
+                    });
+                    self.suggestions = Some(Derived {
+                        activity: a,
+                        revision,
+                        value,
+                    });
+                }
             }
         }
         self.cached_suggestions(a)
     }
 
-    /// Background verification for activity `a`: collect the worker's result, or
-    /// start a worker when none is running. One worker at a time: a request made
-    /// while another activity's (or an older revision's) worker runs waits for it
-    /// to finish, so stepping through many activities does not pile up threads
-    /// that each reschedule the plan.
-    fn poll_worker(&mut self, a: usize) {
-        self.reap_worker();
-        let fresh = matches!(&self.suggestions, Some((x, r, _)) if *x == a && *r == self.revision);
-        if fresh || self.pending.is_some() {
-            return;
-        }
-        let (tx, rx) = std::sync::mpsc::channel();
-        let plan = self.doc.plan.clone();
-        let schedule = std::sync::Arc::clone(&self.analysis.schedule);
-        std::thread::spawn(move || {
-            let _ = tx.send(verify_suggestions(&plan, &schedule, a));
-        });
-        self.pending = Some((a, self.revision, rx));
-    }
-
     /// Takes a finished worker's result: kept when it is for the current revision,
     /// dropped otherwise.
     fn reap_worker(&mut self) {
-        let Some((x, r, rx)) = &self.pending else {
+        let Some(pending) = &self.pending else {
             return;
         };
-        let (x, r) = (*x, *r);
-        let list = match rx.try_recv() {
+        let value = match pending.value.try_recv() {
             Ok(list) => list,
             Err(std::sync::mpsc::TryRecvError::Empty) => return,
             Err(std::sync::mpsc::TryRecvError::Disconnected) => Vec::new(),
         };
+        let (activity, revision) = (pending.activity, pending.revision);
         self.pending = None;
-        if r == self.revision {
-            self.suggestions = Some((x, r, list));
+        if revision == self.revision {
+            self.suggestions = Some(Derived {
+                activity,
+                revision,
+                value,
+            });
         }
     }
 
     /// The activity whose suggestions a worker is verifying, if any.
     pub fn verifying(&self) -> Option<usize> {
-        self.pending.as_ref().map(|p| p.0)
+        self.pending.as_ref().map(|p| p.activity)
     }
 
     /// The explanation of activity `a` if it did not schedule (computed once per
     /// plan revision).
     pub fn explanation_for(&mut self, a: usize) -> Option<&solscope_engine::Explanation> {
-        let fresh = matches!(&self.explanation, Some((x, r, _)) if *x == a && *r == self.revision);
-        if !fresh {
-            let ex = self.analysis.explain(&self.doc.plan, a);
-            self.explanation = Some((a, self.revision, ex));
+        if Derived::get(&self.explanation, a, self.revision).is_none() {
+            let value = self.analysis.explain(&self.doc.plan, a);
+            self.explanation = Some(Derived {
+                activity: a,
+                revision: self.revision,
+                value,
+            });
         }
-        self.explanation.as_ref().and_then(|e| e.2.as_ref())
+        Derived::get(&self.explanation, a, self.revision).and_then(Option::as_ref)
     }
 
     /// The valid intervals of activity `a` at its own step (over the whole
     /// horizon: the trace keeps them only within the window span).
     fn valid_for(&mut self, a: usize) {
-        let fresh = matches!(&self.valid, Some((x, r, _)) if *x == a && *r == self.revision);
-        if !fresh {
+        if Derived::get(&self.valid, a, self.revision).is_none() {
             let sched = &self.analysis.schedule;
-            let v = sched
+            let value = sched
                 .step_of(a)
                 .map(|st| {
                     solscope_engine::valid_intervals_at(sched, a, st.step - 1, Some(st.duration))
                 })
                 .unwrap_or_default();
-            self.valid = Some((a, self.revision, v));
+            self.valid = Some(Derived {
+                activity: a,
+                revision: self.revision,
+                value,
+            });
         }
     }
 
     /// Cached suggestions, if computed for this revision (views read these).
     pub fn cached_suggestions(&self, a: usize) -> Option<&[Suggestion]> {
-        match &self.suggestions {
-            Some((x, r, list)) if *x == a && *r == self.revision => Some(list),
-            _ => None,
-        }
+        Derived::get(&self.suggestions, a, self.revision).map(Vec::as_slice)
     }
 
     fn accept_plan(&mut self, plan: Plan, description: &str, record: bool) {

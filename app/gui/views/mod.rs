@@ -10,8 +10,8 @@ use eframe::egui::{self, RichText};
 use solscope_engine::{Outcome, Suggestion};
 
 use super::{
-    Analysis, Command, Document, Pending, Persisted, SolscopeApp, StepView, Theme, TimeAxis,
-    UiState,
+    Analysis, Command, Derived, Document, Pending, Persisted, SolscopeApp, StepView, Theme,
+    TimeAxis, UiState,
 };
 use crate::gui::theme::INSPECTOR_WIDTH;
 
@@ -149,28 +149,25 @@ pub fn dropped_files(ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
 
 /// The whole window.
 pub fn layout_ui(ui: &mut egui::Ui, app: &mut SolscopeApp, cmds: &mut Vec<Command>) {
-    let suggestions = match (&app.suggestions, app.ui.selected) {
-        (Some((a, r, list)), Some(sel)) if *a == sel && *r == app.revision => Some(list.as_slice()),
-        _ => None,
-    };
-    let valid = match (&app.valid, app.ui.selected) {
-        (Some((a, r, v)), Some(sel)) if *a == sel && *r == app.revision => Some(v.as_slice()),
-        _ => None,
-    };
-    let explanation = match (&app.explanation, app.ui.selected) {
-        (Some((a, r, ex)), Some(sel)) if *a == sel && *r == app.revision => ex.as_ref(),
-        _ => None,
-    };
+    // Field by field (the UI state is borrowed mutably below): only what was
+    // derived for the selected activity at this revision.
+    let (selected, revision) = (app.ui.selected, app.revision);
     let m = Model {
         doc: &app.doc,
         analysis: &app.analysis,
         theme: app.theme,
         step_view: &app.step_view,
         persisted: &app.persisted,
-        suggestions,
-        revision: app.revision,
-        explanation,
-        valid,
+        suggestions: selected
+            .and_then(|a| Derived::get(&app.suggestions, a, revision))
+            .map(Vec::as_slice),
+        revision,
+        explanation: selected
+            .and_then(|a| Derived::get(&app.explanation, a, revision))
+            .and_then(Option::as_ref),
+        valid: selected
+            .and_then(|a| Derived::get(&app.valid, a, revision))
+            .map(Vec::as_slice),
     };
     let st = &mut app.ui;
     egui::Panel::top("toolbar").show(ui, |ui| {

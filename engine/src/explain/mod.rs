@@ -147,7 +147,6 @@ pub fn explain(
     sched: &Schedule,
     opts: &ExplainOptions,
 ) -> Result<Vec<Explanation>, Error> {
-    let pb = &sched.problem;
     let targets: Vec<usize> = match &opts.activity {
         Some(id) => {
             let a = plan
@@ -164,13 +163,7 @@ pub fn explain(
             .map(|s| s.activity)
             .collect(),
     };
-    let step_of: Vec<usize> = {
-        let mut v = vec![0; pb.acts.len()];
-        for s in &sched.steps {
-            v[s.activity] = s.step;
-        }
-        v
-    };
+    let step_of = steps_of(sched);
     // Culprits need the state at the failure step: take it from the replay that
     // finds the step instead of rebuilding it per activity.
     let mut found: Vec<Option<Explanation>> = vec![None; targets.len()];
@@ -199,6 +192,26 @@ pub fn explain(
         out.push(ex);
     }
     Ok(out)
+}
+
+/// The step number of every activity.
+fn steps_of(sched: &Schedule) -> Vec<usize> {
+    let mut v = vec![0; sched.problem.acts.len()];
+    for s in &sched.steps {
+        v[s.activity] = s.step;
+    }
+    v
+}
+
+/// The verified suggestions for an explained failure (what [`explain`] adds unless
+/// `no_suggestions`): for a caller that already holds the explanation, such as the
+/// app, which explains on selection and verifies suggestions in the background.
+/// Reschedules the plan once per candidate edit.
+pub fn verified_suggestions(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec<Suggestion> {
+    if ex.failure_step.is_none() {
+        return Vec::new();
+    }
+    suggest::suggestions(plan, sched, ex, &steps_of(sched))
 }
 
 /// The explanation skeleton of a scheduled activity (its own step's record).
