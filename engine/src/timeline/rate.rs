@@ -485,23 +485,34 @@ mod tests {
         }
     }
 
-    #[test]
-    fn random_drains_match_per_second() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |m: i64| {
+    /// A xorshift generator: `next(m)` is in `[0, m)`.
+    fn xorshift(mut seed: u64) -> impl FnMut(i64) -> i64 {
+        move |m: i64| {
             seed ^= seed << 13;
             seed ^= seed >> 7;
             seed ^= seed << 17;
             (seed % (m as u64)) as i64
-        };
+        }
+    }
+
+    /// A random rate over `[0, 120)` and its timeline: `(rate, initial, cap, tl)`.
+    fn random_timeline(next: &mut impl FnMut(i64) -> i64) -> (StepFn, i128, i128, RateTimeline) {
+        let mut rate = StepFn::constant(0, 120, next(9) - 3);
+        for _ in 0..next(6) {
+            let a = next(120);
+            rate.add(a, a + next(40), next(21) - 10);
+        }
+        let (cap, initial) = (100 + next(100) as i128, next(100) as i128);
+        let initial = initial.min(cap);
+        let tl = RateTimeline::new(&rate, initial, cap);
+        (rate, initial, cap, tl)
+    }
+
+    #[test]
+    fn random_drains_match_per_second() {
+        let mut next = xorshift(0x2545_f491_4f6c_dd1d);
         for _ in 0..300 {
-            let mut rate = StepFn::constant(0, 120, next(9) - 3);
-            for _ in 0..next(6) {
-                let a = next(120);
-                rate.add(a, a + next(40), next(21) - 10);
-            }
-            let (cap, initial) = (100 + next(100) as i128, next(100) as i128);
-            let tl = RateTimeline::new(&rate, initial.min(cap), cap);
+            let (rate, initial, cap, tl) = random_timeline(&mut next);
             let mut drain = Vec::new();
             let mut t = next(60);
             for _ in 0..next(4) {
@@ -509,7 +520,7 @@ mod tests {
                 drain.push((t, t + len, next(15) - 2));
                 t += len + next(10);
             }
-            let b = brute(&rate, &drain, initial.min(cap), cap);
+            let b = brute(&rate, &drain, initial, cap);
             let min = *b.iter().min().unwrap();
             let probe = next(121);
             let c = tl.check(&drain, Some(probe));
@@ -542,21 +553,9 @@ mod tests {
 
     #[test]
     fn drain_bound_bounds_every_placement() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = |m: i64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % (m as u64)) as i64
-        };
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
         for _ in 0..300 {
-            let mut rate = StepFn::constant(0, 120, next(9) - 3);
-            for _ in 0..next(6) {
-                let a = next(120);
-                rate.add(a, a + next(40), next(21) - 10);
-            }
-            let (cap, initial) = (100 + next(100) as i128, next(100) as i128);
-            let tl = RateTimeline::new(&rate, initial.min(cap), cap);
+            let (rate, initial, cap, tl) = random_timeline(&mut next);
             let (d, r) = (1 + next(20), 1 + next(12));
             let from = next(100);
             let to = from + next(10);
@@ -566,7 +565,7 @@ mod tests {
                 let extra = next(30);
                 let drain = [(s, s + d, r), (s + d, (s + d + extra).min(120), next(5))];
                 let drain: Vec<_> = drain.into_iter().filter(|p| p.0 < p.1).collect();
-                let b = brute(&rate, &drain, initial.min(cap), cap);
+                let b = brute(&rate, &drain, initial, cap);
                 let min = *b.iter().min().unwrap();
                 assert!(min <= bound, "s={s} min={min} bound={bound}");
             }
