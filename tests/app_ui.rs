@@ -183,7 +183,7 @@ fn unsaved_edits_are_guarded_on_open() {
     let edited = h.state().doc.plan.clone();
     let other = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../shared/examples/pitfall.json"
+        "/assets/examples/pitfall.json"
     );
     h.state_mut().push(Command::Open(other.into()));
     h.run_steps(3);

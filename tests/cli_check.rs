@@ -78,7 +78,7 @@ fn check_warnings(name: &str, plan: &Value) -> Vec<String> {
 
 #[test]
 fn shared_examples_are_valid() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/examples");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/examples");
     let mut plans: Vec<PathBuf> = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .map(|e| e.expect("directory entry").path())
@@ -112,7 +112,7 @@ fn shared_examples_are_valid() {
 fn drill_sol_example_warns_about_optional_before_manual_sleep() {
     // supercam_big and supercam_small (optional, priorities 40/41) come before the
     // mandatory night_sleep (priority 50).
-    let plan = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/examples/drill-sol.json");
+    let plan = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/examples/drill-sol.json");
     let out = solscope_check(&plan);
     let so = stdout(&out);
     assert_eq!(out.status.code(), Some(0));

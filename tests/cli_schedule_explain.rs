@@ -31,8 +31,8 @@ fn json(out: &Output) -> Value {
 const PLANS: [&str; 4] = [
     "assets/default-plan.json",
     "assets/tutorial-plan.json",
-    "../shared/examples/drill-sol.json",
-    "../shared/examples/pitfall.json",
+    "assets/examples/drill-sol.json",
+    "assets/examples/pitfall.json",
 ];
 
 #[test]
@@ -100,7 +100,7 @@ fn explain_covers_every_failed_activity() {
 
 #[test]
 fn explain_text_and_single_activity() {
-    let out = run(&["explain", "--text", "../shared/examples/pitfall.json"]);
+    let out = run(&["explain", "--text", "assets/examples/pitfall.json"]);
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("== B (B), step 2"), "{text}");
@@ -110,7 +110,7 @@ fn explain_text_and_single_activity() {
         "explain",
         "--activity",
         "A",
-        "../shared/examples/pitfall.json",
+        "assets/examples/pitfall.json",
     ]));
     let e = &doc["explanations"][0];
     assert_eq!(e["activity"], "A");
@@ -121,7 +121,7 @@ fn explain_text_and_single_activity() {
         "explain",
         "--activity",
         "nope",
-        "../shared/examples/pitfall.json",
+        "assets/examples/pitfall.json",
     ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(out.stdout.is_empty());
@@ -130,7 +130,7 @@ fn explain_text_and_single_activity() {
 
 #[test]
 fn pitfall_explains_b_by_the_arm() {
-    let doc = json(&run(&["explain", "../shared/examples/pitfall.json"]));
+    let doc = json(&run(&["explain", "assets/examples/pitfall.json"]));
     let e = &doc["explanations"][0];
     assert_eq!(e["activity"], "B");
     assert_eq!(e["failure_step"], 1);
@@ -149,11 +149,11 @@ fn pitfall_explains_b_by_the_arm() {
 fn readme_worked_example_is_current() {
     let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
     let start = readme
-        .find("$ solscope explain --text ../shared/examples/pitfall.json\n")
+        .find("$ solscope explain --text assets/examples/pitfall.json\n")
         .expect("example in README");
     let block = &readme[start..];
     let body = &block[block.find('\n').unwrap() + 1..block.find("```").unwrap()];
-    let out = run(&["explain", "--text", "../shared/examples/pitfall.json"]);
+    let out = run(&["explain", "--text", "assets/examples/pitfall.json"]);
     assert_eq!(
         String::from_utf8(out.stdout).unwrap().trim_end(),
         body.trim_end()

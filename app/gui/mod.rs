@@ -740,7 +740,7 @@ mod tests {
     #[test]
     fn opening_at_start_up_falls_back_to_the_default_plan_with_the_error() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-        let good = root.join("../shared/examples/pitfall.json");
+        let good = root.join("assets/examples/pitfall.json");
         let app = SolscopeApp::open_or_default(Some(&good)).expect("app");
         assert_eq!(app.doc.plan.activities.len(), 2);
         assert_eq!(app.doc.path.as_deref(), Some(good.as_path()));

@@ -204,8 +204,8 @@ fn bundled_plans_and_examples_are_explained_consistently() {
     for path in [
         "assets/default-plan.json",
         "assets/tutorial-plan.json",
-        "../shared/examples/drill-sol.json",
-        "../shared/examples/pitfall.json",
+        "assets/examples/drill-sol.json",
+        "assets/examples/pitfall.json",
     ] {
         let text = std::fs::read_to_string(root.join(path)).expect("read plan");
         let loaded = load_plan(&text).expect("valid");

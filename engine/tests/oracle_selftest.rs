@@ -923,7 +923,7 @@ fn generator_coverage() {
 #[test]
 #[ignore]
 fn oracle_on_examples() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/examples");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/examples");
     let Ok(rd) = std::fs::read_dir(&dir) else {
         return;
     };

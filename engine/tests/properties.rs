@@ -127,7 +127,7 @@ fn json_files(dir: &Path) -> Vec<PathBuf> {
             .map(|e| e.path())
             .filter(|p| p.extension().is_some_and(|x| x == "json"))
             .collect(),
-        Err(_) => Vec::new(),
+        Err(e) => panic!("{}: {e}", dir.display()),
     };
     out.sort();
     out
@@ -135,7 +135,7 @@ fn json_files(dir: &Path) -> Vec<PathBuf> {
 
 fn plan_dirs() -> Vec<PathBuf> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    vec![root.join("../../shared/examples"), root.join("../assets")]
+    vec![root.join("../assets/examples"), root.join("../assets")]
 }
 
 #[test]
@@ -162,28 +162,16 @@ fn examples_and_assets_replay_clean() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+    // The two bundled plans and the two example plans.
+    assert!(seen >= 4, "only {seen} plans found");
     eprintln!("{seen} example/asset plans replayed clean");
 }
-
-/// `pitfall.json` (inlined so the test does not depend on the shared folder).
-const PITFALL: &str = r#"{
-  "format": "solscope.plan/1",
-  "name": "Greedy pitfall: A takes the arm first",
-  "horizon": { "start": 0, "end": 7200 },
-  "battery": { "capacity": 1000.0, "initial": 900.0, "min_soc": 100.0 },
-  "power": { "rtg": 100.0, "asleep": 10.0, "awake": 60.0 },
-  "activities": [
-    { "id": "A", "priority": 1, "duration": 600, "resources": ["arm"], "energy_rate": 20.0 },
-    { "id": "B", "priority": 2, "duration": 600, "resources": ["arm"], "energy_rate": 20.0,
-      "windows": [ { "start": 0, "end": 0 } ] }
-  ]
-}"#;
 
 #[test]
 fn pitfall_a_at_zero_b_failed() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(root.join("../../shared/examples/pitfall.json"))
-        .unwrap_or_else(|_| PITFALL.to_string());
+    let text = std::fs::read_to_string(root.join("../assets/examples/pitfall.json"))
+        .expect("assets/examples/pitfall.json is in the repository");
     let doc = match check_plan(&text) {
         Ok(d) => d,
         Err(e) => panic!("{e}"),

@@ -9,8 +9,8 @@ use proptest::prelude::*;
 use solscope_engine::{Error, ExplainOptions, explain, load_plan, schedule};
 
 const SEEDS: [&str; 3] = [
-    include_str!("../../../shared/examples/pitfall.json"),
-    include_str!("../../../shared/examples/drill-sol.json"),
+    include_str!("../../assets/examples/pitfall.json"),
+    include_str!("../../assets/examples/drill-sol.json"),
     include_str!("../../assets/tutorial-plan.json"),
 ];
 
