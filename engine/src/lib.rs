@@ -1,29 +1,53 @@
 //! solscope engine: the plan model, timelines, the greedy scheduler with a full
-//! per-step trace, and (later) the explainer. No GUI dependencies.
+//! per-step trace, and the explainer. No GUI dependencies.
 //!
 //! Data flow: JSON text → [`load_plan`] (strict serde + semantic validation, with
 //! warnings) → [`Plan`] → [`schedule`] (compiles the plan to fixed-point
 //! [`Problem`] and runs the greedy scheduler) → [`Schedule`] (step trace) →
-//! [`schedule_document`] (the `solscope.schedule/1` JSON).
+//! [`explain`] ([`Explanation`]s, failures as data) → the documents
+//! ([`schedule_document`], [`explain_document`]) and the text
+//! ([`explain_text`]). Units and times read the same everywhere through the
+//! `units` functions re-exported here ([`format_wh`], [`format_plan_time`], ...).
 #![deny(missing_docs)]
 
+mod edit;
 mod error;
 mod explain;
 mod generate;
-mod io;
+mod load;
 mod model;
+mod report;
 mod scheduler;
 mod timeline;
+mod units;
 mod validate;
 
+pub use edit::apply_edit;
 pub use error::{Error, Warning};
-pub use explain::*;
-pub use generate::generate_plan;
-pub use io::{
-    ActivityEntry, ExplainDoc, GeneratedEntry, LoadedPlan, Profiles, ScheduleDoc, apply_edit,
-    explain_document, explain_text, load_plan, load_plan_file, schedule_document,
+pub use explain::{
+    Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,
+    Suggestion, energy_consumers, explain, explain_text, explanation_notes, minimal_conflicts,
+    peak_users, suggestion_line, verified_suggestions,
 };
-pub use model::*;
-pub use scheduler::*;
+pub use generate::generate_plan;
+pub use load::{LoadedPlan, MAX_PLAN_BYTES, load_plan, load_plan_file};
+pub use model::{
+    Activity, AwakeMode, Battery, Data, Dependency, Duration, EffectAt, Handover, Horizon,
+    LocalTime, MARS_SOL, OperablePeriod, PLAN_FORMAT, Plan, Power, PreheatEntry, Sleep, StateDef,
+    StateEffect, StateRequirement, ThermalZone, Window,
+};
+pub use report::{
+    ActivityEntry, CulpritEntry, EditEntry, ExplainDoc, ExplanationEntry, GeneratedEntry,
+    RelaxationEntry, ScheduleDoc, SuggestionEntry, explain_document, schedule_document,
+};
+pub use scheduler::{
+    Act, Category, CategoryIntervals, FailurePhase, Generated, GeneratedKind, Outcome,
+    PartialSchedule, Phase2Reason, Placement, Problem, Profiles, ReasonKind, Schedule, State, Step,
+    Try, partial_schedule, reschedule, schedule, valid_intervals_at,
+};
 pub use timeline::{Interval, IntervalSet};
+pub use units::{
+    BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, format_local, format_plan_time, format_time_of_day,
+    format_watts, format_wh, mbit, watts, wh,
+};
 pub use validate::validate;

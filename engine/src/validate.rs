@@ -1798,7 +1798,7 @@ mod tests {
     }
 
     fn load_err(text: &str) -> (String, String) {
-        match crate::io::load_plan(text) {
+        match crate::load::load_plan(text) {
             Err(Error::Invalid { path, reason }) => (path, reason),
             other => panic!("expected an Invalid error, got {other:?}"),
         }

@@ -35,7 +35,13 @@ fn explain_one(plan: &Plan, id: &str) -> (Schedule, Explanation) {
 fn culprits(plan: &Plan, ex: &Explanation) -> Vec<(String, usize, &'static str)> {
     ex.culprits
         .iter()
-        .map(|c| (plan.activities[c.activity].id.clone(), c.step, c.category))
+        .map(|c| {
+            (
+                plan.activities[c.activity].id.clone(),
+                c.step,
+                c.blame.name(),
+            )
+        })
         .collect()
 }
 

@@ -130,7 +130,7 @@ fn activity_ui(
             };
             ui.label(format!(
                 "{} for starts {}–{}: {detail}",
-                r.reason.kind(),
+                r.reason.kind().name(),
                 r.first,
                 r.last
             ));
@@ -143,7 +143,9 @@ fn activity_ui(
             for c in ex.culprits.iter().take(10) {
                 let text = format!(
                     "{} (step {}, {})",
-                    m.doc.plan.activities[c.activity].id, c.step, c.category
+                    m.doc.plan.activities[c.activity].id,
+                    c.step,
+                    c.blame.name()
                 );
                 if ui.link(text).clicked() {
                     cmds.push(Command::Select(Some(c.activity)));

@@ -4,7 +4,9 @@
 use serde::Serialize;
 
 use super::{Culprit, Explanation, Phase};
-use crate::scheduler::{Category, GeneratedKind, Outcome, Phase2Reason, Schedule, State};
+use crate::scheduler::{
+    Category, GeneratedKind, Outcome, Phase2Reason, ReasonKind, Schedule, State,
+};
 use crate::timeline::IntervalSet;
 
 /// One consumer of energy or peak power.
@@ -137,6 +139,32 @@ fn last_full_before(state: &State<'_>, t: i64) -> Option<i64> {
     state.soc.last_at_cap(t)
 }
 
+/// What a culprit is blamed for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Blame {
+    /// It is the dependency target that did not schedule (phase `dependency`).
+    Dependency,
+    /// It is the group member that was scheduled (phase `group`).
+    Group,
+    /// Its placement narrows this phase-1 category (phase `valid_intervals`).
+    Constraint(Category),
+    /// It contributes to this phase-2 reason (phase `placement`).
+    Reason(ReasonKind),
+}
+
+impl Blame {
+    /// The spec's name: the phase, category or reason kind.
+    pub fn name(self) -> &'static str {
+        match self {
+            Blame::Dependency => "dependency",
+            Blame::Group => "group",
+            Blame::Constraint(c) => c.name(),
+            Blame::Reason(r) => r.name(),
+        }
+    }
+}
+
 /// How many energy consumers an energy failure blames: the largest ones since the
 /// battery was last full. On a long plan with the battery never full again that
 /// would otherwise be every placed activity (thousands), which tells a planner
@@ -144,19 +172,18 @@ fn last_full_before(state: &State<'_>, t: i64) -> Option<i64> {
 pub const ENERGY_CULPRITS: usize = 10;
 
 /// The culprits of an explained failure, from the state at its failure step.
-pub fn culprits(state: &State<'_>, ex: &Explanation, step_of: &[usize]) -> Vec<Culprit> {
+pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
     let pb = state.pb;
     let a = ex.activity;
     let act = &pb.acts[a];
     let mut out: Vec<Culprit> = Vec::new();
-    let mut seen: std::collections::HashSet<(usize, &'static str)> =
-        std::collections::HashSet::new();
-    let mut push = |x: usize, category: &'static str| {
-        if x != a && seen.insert((x, category)) {
+    let mut seen: std::collections::HashSet<(usize, Blame)> = std::collections::HashSet::new();
+    let mut push = |x: usize, blame: Blame| {
+        if x != a && seen.insert((x, blame)) {
             out.push(Culprit {
                 activity: x,
-                step: step_of[x],
-                category,
+                step: pb.step_of[x],
+                blame,
             });
         }
     };
@@ -166,9 +193,9 @@ pub fn culprits(state: &State<'_>, ex: &Explanation, step_of: &[usize]) -> Vec<C
                 push(
                     x,
                     if ex.phase == Some(Phase::Group) {
-                        "group"
+                        Blame::Group
                     } else {
-                        "dependency"
+                        Blame::Dependency
                     },
                 );
             }
@@ -195,7 +222,7 @@ pub fn culprits(state: &State<'_>, ex: &Explanation, step_of: &[usize]) -> Vec<C
             }
             for (cat, span_lo, span_hi) in blamed {
                 let overlaps = |(s, e): (i64, i64)| s < span_hi && span_lo < e;
-                let name = cat.name();
+                let blame = Blame::Constraint(cat);
                 for (x, placed) in state.placed.iter().enumerate() {
                     let Some(iv) = *placed else { continue };
                     let other = &pb.acts[x];
@@ -234,14 +261,14 @@ pub fn culprits(state: &State<'_>, ex: &Explanation, step_of: &[usize]) -> Vec<C
                         }
                     };
                     if hit {
-                        push(x, name);
+                        push(x, blame);
                     }
                 }
             }
         }
         Some(Phase::Placement) => {
             for r in &ex.reasons {
-                let kind = r.reason.kind();
+                let kind = Blame::Reason(r.reason.kind());
                 match r.reason {
                     Phase2Reason::ForcedSleep { sleep: Some(x) }
                     | Phase2Reason::MinSleep { sleep: x }

@@ -1,34 +1,30 @@
 //! The explainer: why an activity failed and what to change.
 //!
-//! Everything here returns structured values; `text` turns them into sentences.
+//! Everything here returns structured values; `text` is the one place that turns
+//! them into sentences, and `report::explain` into the explanation document.
 //!
-//! **Failure steps in one pass.** The scheduler is greedy and never moves a placed
-//! activity, so the partial schedule after step k is exactly the prefix of the full
-//! run. The explainer replays the run once, and after each step k probes every
-//! failed activity whose failure step is still unknown against that state (with the
-//! spec's inclusion rule for dependencies and requirements). The first k at which a
-//! probe fails is the failure step — exact, with no monotonicity assumption, and
-//! every failed activity is explained in the same replay. Cost: one replay (O(N)
-//! placements) plus, per failed activity f with failure step k_f, k_f + 1 probes;
-//! probes that succeed stop at the first passing start, so the expensive
-//! (exhaustive) probes are one per failed activity.
+//! Failure steps come from one replay of the run (`replay`): per failed activity f
+//! with failure step k_f, at most k_f + 1 probes, each looked at only when a
+//! placement could change its answer. Then per failure: minimal conflicts and
+//! relaxations (`conflicts`), the placed activities to blame (`culprits`), and
+//! verified suggestions (`suggest`).
 
 mod conflicts;
 mod culprits;
+mod replay;
 mod suggest;
 mod text;
 
 use serde::Serialize;
 
 pub use conflicts::{Relaxation, minimal_conflicts};
-pub use culprits::{Consumer, energy_consumers, peak_users};
-pub use text::{explanation_notes, format_local, suggestion_line};
+pub use culprits::{Blame, Consumer, energy_consumers, peak_users};
+pub use text::{explain_text, explanation_notes, suggestion_line};
 
 use crate::error::Error;
 use crate::model::Plan;
 use crate::scheduler::{
-    Category, CategoryIntervals, Evaluated, FailurePhase, Outcome, Phase2Reason, Schedule, Scope,
-    State, Step, run_step, schedule,
+    Category, CategoryIntervals, FailurePhase, Outcome, Phase2Reason, Schedule, Step,
 };
 use crate::timeline::IntervalSet;
 
@@ -80,8 +76,8 @@ pub struct Culprit {
     pub activity: usize,
     /// The step that placed it.
     pub step: usize,
-    /// The constraint category or phase-2 reason kind it is blamed for.
-    pub category: &'static str,
+    /// What it is blamed for.
+    pub blame: Blame,
 }
 
 /// A suggested edit in the spec's edit format, verified by rescheduling.
@@ -163,15 +159,15 @@ pub fn explain(
             .map(|s| s.activity)
             .collect(),
     };
-    let step_of = steps_of(sched);
+    let step_of = &sched.problem.step_of;
     // Culprits need the state at the failure step: take it from the replay that
     // finds the step instead of rebuilding it per activity.
     let mut found: Vec<Option<Explanation>> = vec![None; targets.len()];
-    failure_probes(sched, &targets, &step_of, |i, k, record, state| {
+    replay::failure_probes(sched, &targets, |i, k, record, state| {
         let a = targets[i];
         let step = &sched.steps[step_of[a] - 1];
         let mut ex = from_probe(sched, a, step, k, record);
-        ex.culprits = culprits::culprits(state, &ex, &step_of);
+        ex.culprits = culprits::culprits(state, &ex);
         found[i] = Some(ex);
     });
     let mut out = Vec::with_capacity(targets.len());
@@ -182,25 +178,16 @@ pub fn explain(
                 let step = &sched.steps[step_of[a] - 1];
                 let mut ex = from_step(a, step);
                 let state = sched.state_after(step.step - 1);
-                ex.culprits = culprits::culprits(&state, &ex, &step_of);
+                ex.culprits = culprits::culprits(&state, &ex);
                 ex
             }
         };
         if !opts.no_suggestions && ex.failure_step.is_some() {
-            ex.suggestions = suggest::suggestions(plan, sched, &ex, &step_of);
+            ex.suggestions = suggest::suggestions(plan, sched, &ex);
         }
         out.push(ex);
     }
     Ok(out)
-}
-
-/// The step number of every activity.
-fn steps_of(sched: &Schedule) -> Vec<usize> {
-    let mut v = vec![0; sched.problem.acts.len()];
-    for s in &sched.steps {
-        v[s.activity] = s.step;
-    }
-    v
 }
 
 /// The verified suggestions for an explained failure (what [`explain`] adds unless
@@ -211,7 +198,7 @@ pub fn verified_suggestions(plan: &Plan, sched: &Schedule, ex: &Explanation) -> 
     if ex.failure_step.is_none() {
         return Vec::new();
     }
-    suggest::suggestions(plan, sched, ex, &steps_of(sched))
+    suggest::suggestions(plan, sched, ex)
 }
 
 /// The explanation skeleton of a scheduled activity (its own step's record).
@@ -281,436 +268,4 @@ fn from_probe(sched: &Schedule, a: usize, step: &Step, k: usize, record: Step) -
         culprits: Vec::new(),
         suggestions: Vec::new(),
     }
-}
-
-/// The inclusion rule: at step k, a dependency or requirement of `a` counts only
-/// when every activity that could satisfy it and comes before `a` is among steps
-/// 1..k.
-pub fn inclusion_scope(
-    pb: &crate::scheduler::Problem,
-    a: usize,
-    k: usize,
-    step_of: &[usize],
-) -> Scope {
-    Inclusion::new(pb, step_of).thresholds(a).scope_at(k)
-}
-
-/// The inclusion rule precomputed: for each `(state, value)`, the steps of the
-/// activities with an effect setting it, sorted, so that an activity's thresholds
-/// cost O(log N) per requirement instead of a scan of the plan.
-struct Inclusion<'a> {
-    pb: &'a crate::scheduler::Problem,
-    step_of: &'a [usize],
-    setters: std::collections::HashMap<(usize, usize), Vec<usize>>,
-}
-
-/// For one activity: the last step before it of any activity that could satisfy
-/// each dependency / requirement (0 when none). Entry `j` is excluded at step `k`
-/// iff `k < threshold[j]`.
-struct Thresholds {
-    deps: Vec<usize>,
-    reqs: Vec<usize>,
-}
-
-impl<'a> Inclusion<'a> {
-    fn new(pb: &'a crate::scheduler::Problem, step_of: &'a [usize]) -> Self {
-        let mut setters: std::collections::HashMap<(usize, usize), Vec<usize>> =
-            std::collections::HashMap::new();
-        for (x, act) in pb.acts.iter().enumerate() {
-            for e in &act.effects {
-                setters.entry((e.0, e.1)).or_default().push(step_of[x]);
-            }
-        }
-        for v in setters.values_mut() {
-            v.sort_unstable();
-            v.dedup();
-        }
-        Self {
-            pb,
-            step_of,
-            setters,
-        }
-    }
-
-    fn thresholds(&self, a: usize) -> Thresholds {
-        let act = &self.pb.acts[a];
-        let mine = self.step_of[a];
-        let deps = act
-            .after
-            .iter()
-            .map(|d| {
-                let t = self.step_of[d.target];
-                if d.target != a && t < mine { t } else { 0 }
-            })
-            .collect();
-        // The activity's own step is never "before" it, so `< mine` excludes it.
-        let reqs = act
-            .requires
-            .iter()
-            .map(|&(st, v)| {
-                self.setters.get(&(st, v)).map_or(0, |steps| {
-                    let below = steps.partition_point(|&x| x < mine);
-                    if below == 0 { 0 } else { steps[below - 1] }
-                })
-            })
-            .collect();
-        Thresholds { deps, reqs }
-    }
-}
-
-impl Thresholds {
-    fn scope_at(&self, k: usize) -> Scope {
-        let pending = |t: &usize| k < *t;
-        Scope {
-            skip_deps: (0..self.deps.len())
-                .filter(|&j| pending(&self.deps[j]))
-                .collect(),
-            skip_reqs: (0..self.reqs.len())
-                .filter(|&j| pending(&self.reqs[j]))
-                .collect(),
-        }
-    }
-}
-
-/// What applying one scheduled step changes, for deciding which witnesses it can
-/// disturb ([`next_check`]).
-struct Applied {
-    act: usize,
-    /// Footprint `[lo, hi)` of the placement.
-    lo: i64,
-    hi: i64,
-}
-
-/// Per-step effects of the run, precomputed by one replay: what each scheduled step
-/// touches, and running totals of the energy (mJ, absolute) and data (bit) that
-/// steps 1..=k add, so that "the budget left at step k is used up at step j" is a
-/// binary search.
-struct RunEffects {
-    applied: Vec<Option<Applied>>,
-    energy: Vec<i128>,
-    data: Vec<i128>,
-    handover: Vec<i128>,
-    /// Per group, the steps that scheduled a member, ascending.
-    group_steps: Vec<Vec<usize>>,
-    /// How far the wake/sleep and preheat rules can couple two placements: the
-    /// widening of a witness's footprint in [`next_check`].
-    reach: i64,
-}
-
-impl RunEffects {
-    fn new(sched: &Schedule) -> Self {
-        let pb = &sched.problem;
-        let n = sched.steps.len();
-        let mut out = RunEffects {
-            applied: Vec::with_capacity(n + 1),
-            energy: Vec::with_capacity(n + 1),
-            data: Vec::with_capacity(n + 1),
-            handover: Vec::with_capacity(n + 1),
-            group_steps: Vec::new(),
-            reach: {
-                let preheat = pb
-                    .zones
-                    .iter()
-                    .flat_map(|z| z.table.iter().map(|t| t.1))
-                    .max()
-                    .unwrap_or(0);
-                pb.min_sleep.max(1) + pb.wake + pb.shut + pb.min_awake + preheat + 2
-            },
-        };
-        out.applied.push(None);
-        out.energy.push(0);
-        out.data.push(0);
-        out.handover.push(0);
-        let mut state = State::new(pb);
-        for step in &sched.steps {
-            let (mut e, mut d, mut h) = (0, 0, 0);
-            let mut applied = None;
-            if let Some(ev) = state.replay(step) {
-                if let Outcome::Scheduled { start, end } = step.outcome {
-                    let act = &pb.acts[step.activity];
-                    let produced = i128::from(act.data.max(0));
-                    e = ev.energy;
-                    d = produced * i128::from(end - start);
-                    if let Some(ht) = pb.handover_time {
-                        h = produced * overlap((start, end), (pb.h0, ht));
-                    }
-                    let (lo, hi) = ev.footprint(pb);
-                    applied = Some(Applied {
-                        act: step.activity,
-                        lo,
-                        hi,
-                    });
-                    if let Some(g) = act.group {
-                        if out.group_steps.len() <= g {
-                            out.group_steps.resize(g + 1, Vec::new());
-                        }
-                        out.group_steps[g].push(step.step);
-                    }
-                }
-            }
-            out.applied.push(applied);
-            let last = |v: &Vec<i128>| v.last().copied().unwrap_or(0);
-            out.energy.push(last(&out.energy).saturating_add(e));
-            out.data.push(last(&out.data).saturating_add(d));
-            out.handover.push(last(&out.handover).saturating_add(h));
-        }
-        out
-    }
-
-    /// The first step after `k` whose running total exceeds the total at `k` by
-    /// more than `budget` (`len` when none).
-    fn exhausted(sums: &[i128], k: usize, budget: i128) -> usize {
-        let base = sums[k];
-        k + sums[k..].partition_point(|&x| x.saturating_sub(base) <= budget)
-    }
-}
-
-/// A placement known to fit a probe target after step `k`, and the first later
-/// step that could change that.
-struct Witness {
-    start: i64,
-    duration: i64,
-    /// The step it is due to be looked at again (`usize::MAX`: not before its own).
-    due: usize,
-}
-
-/// Whether two activities share a state through effects on one side and effects or
-/// requirements on the other (an effect's reach is not bounded in time).
-fn share_state(pb: &crate::scheduler::Problem, a: usize, b: usize) -> bool {
-    let touches = |x: usize, y: usize| {
-        let (x, y) = (&pb.acts[x], &pb.acts[y]);
-        x.effects
-            .iter()
-            .any(|e| y.requires.iter().any(|r| r.0 == e.0) || y.effects.iter().any(|f| f.0 == e.0))
-    };
-    touches(a, b) || touches(b, a)
-}
-
-/// The first step after `k` that can change whether the witness `ev` of target `a`
-/// (verified against the state after step `k`) still fits; the probe need not look
-/// again before it. Sufficient conditions for "cannot change" (each placement
-/// applied): the footprints, widened by the wake/sleep and preheat reach, are apart
-/// (so every local category, the generated pieces and the peak power are
-/// unchanged); no state is shared; the state of charge, data volume and handover
-/// production move by at most the applied energy / data (capped and floored
-/// integration is 1-Lipschitz) and the witness's margins cover the running total;
-/// no scope threshold and no group member's placement comes first.
-fn next_check(
-    state: &State<'_>,
-    fx: &RunEffects,
-    th: &Thresholds,
-    ev: &Evaluated,
-    k: usize,
-    until: usize,
-) -> usize {
-    let pb = state.pb;
-    let a = ev.placement.act;
-    let act = &pb.acts[a];
-    let (s, d) = (ev.placement.start, ev.placement.duration);
-    let mut due = until.min(RunEffects::exhausted(&fx.energy, k, ev.margin));
-    if let (Some(cap), true) = (pb.data_cap, act.data > 0) {
-        let margin = cap + state.data.check(&[(s, s + d, act.data)], None).min;
-        due = due.min(RunEffects::exhausted(&fx.data, k, margin));
-    }
-    if let (false, Some(ht), Some(max)) = (act.mandatory, pb.handover_time, pb.handover_data) {
-        let margin =
-            max - state.produced - i128::from(act.data.max(0)) * overlap((s, s + d), (pb.h0, ht));
-        due = due.min(RunEffects::exhausted(&fx.handover, k, margin));
-    }
-    for &t in th.deps.iter().chain(&th.reqs) {
-        if t > k {
-            due = due.min(t);
-        }
-    }
-    if let Some(steps) = act.group.and_then(|g| fx.group_steps.get(g)) {
-        if let Some(&j) = steps.iter().find(|&&j| j > k) {
-            due = due.min(j);
-        }
-    }
-    let (lo, hi) = ev.footprint(pb);
-    let (lo, hi) = (lo.saturating_sub(fx.reach), hi.saturating_add(fx.reach));
-    for j in k + 1..due.min(fx.applied.len()) {
-        if let Some(p) = &fx.applied[j] {
-            if (p.lo < hi && lo < p.hi) || share_state(pb, a, p.act) {
-                return j;
-            }
-        }
-    }
-    due
-}
-
-/// Length of the overlap of two half-open intervals.
-fn overlap(a: (i64, i64), b: (i64, i64)) -> i128 {
-    i128::from((a.1.min(b.1) - a.0.max(b.0)).max(0))
-}
-
-/// Calls `on_failure(i, k, record, state)` for each target `i` that fails, with its
-/// failure step `k`, the probe's step record there and the state after step `k`.
-/// Targets that schedule at their own step (scheduled activities) get no call.
-///
-/// Each target is looked at only at the steps that can change its answer: after a
-/// passing probe it keeps the placement found (its witness) and is due again at the
-/// first later step that could disturb it ([`next_check`]); then a quick check of
-/// the witness, and a search only when the witness stopped fitting.
-fn failure_probes(
-    sched: &Schedule,
-    targets: &[usize],
-    step_of: &[usize],
-    mut on_failure: impl FnMut(usize, usize, Step, &State<'_>),
-) {
-    use std::cmp::Reverse;
-    let pb = &sched.problem;
-    let fx = RunEffects::new(sched);
-    let inclusion = Inclusion::new(pb, step_of);
-    let thresholds: Vec<Thresholds> = targets.iter().map(|&a| inclusion.thresholds(a)).collect();
-    let mut witness: Vec<Option<Witness>> = (0..targets.len()).map(|_| None).collect();
-    // (due step, target); a target is in the queue at most once.
-    let mut queue: std::collections::BinaryHeap<Reverse<(usize, usize)>> = targets
-        .iter()
-        .enumerate()
-        .filter(|&(_, &a)| {
-            !matches!(
-                sched.steps[step_of[a] - 1].outcome,
-                Outcome::Scheduled { .. }
-            )
-        })
-        .map(|(i, _)| Reverse((0, i)))
-        .collect();
-    let mut state = State::new(pb);
-    for k in 0..sched.steps.len() {
-        if queue.is_empty() {
-            break;
-        }
-        // Debug builds (the tests) check every skip against a full check.
-        #[cfg(debug_assertions)]
-        for (i, w) in witness.iter().enumerate() {
-            if let Some(w) = w.as_ref().filter(|w| w.due > k && k < step_of[targets[i]]) {
-                let scope = thresholds[i].scope_at(k);
-                debug_assert!(
-                    state.fits(targets[i], w.start, w.duration, &scope),
-                    "a skipped witness stopped fitting"
-                );
-            }
-        }
-        while let Some(&Reverse((due, i))) = queue.peek() {
-            if due > k {
-                break;
-            }
-            queue.pop();
-            if witness[i].as_ref().is_some_and(|w| w.due != due) {
-                continue; // stale entry (not expected: a target is queued once)
-            }
-            let a = targets[i];
-            let until = step_of[a];
-            let scope = thresholds[i].scope_at(k);
-            // A witness that still fits answers the probe without a search (the same
-            // duration as before: a longer one could have become possible, but a
-            // probe only asks whether the activity fails). A group member placed
-            // since skips the activity, which no placement check sees; an unplaced
-            // dependency fails the witness's phase-1 check.
-            let grouped = pb.acts[a]
-                .group
-                .is_some_and(|g| state.group_member[g].is_some());
-            let kept = witness[i]
-                .as_ref()
-                .filter(|_| !grouped)
-                .and_then(|w| state.fitting(a, w.start, w.duration, &scope));
-            let ev = match kept {
-                Some(ev) => ev,
-                None => {
-                    // Whether it fails does not depend on the span phase 1 covers
-                    // (phase 2 only looks inside the windows), so probe within the
-                    // window span, and redo the failing probe over the whole horizon
-                    // only when the relaxations need it (starts outside the windows).
-                    match run_step(&state, a, step_of[a], &scope, true) {
-                        (_, Some(ev)) => ev,
-                        (record, None) => {
-                            let record = if record.outcome
-                                == Outcome::Failed(FailurePhase::ValidIntervals)
-                            {
-                                run_step(&state, a, step_of[a], &scope, false).0
-                            } else {
-                                record
-                            };
-                            on_failure(i, k, record, &state);
-                            witness[i] = None;
-                            continue;
-                        }
-                    }
-                }
-            };
-            let next = next_check(&state, &fx, &thresholds[i], &ev, k, until);
-            witness[i] = Some(Witness {
-                start: ev.placement.start,
-                duration: ev.placement.duration,
-                due: if next < until { next } else { usize::MAX },
-            });
-            if next < until {
-                queue.push(Reverse((next, i)));
-            }
-        }
-        state.replay(&sched.steps[k]);
-    }
-}
-
-/// Reschedules `plan` and reports whether activity `a` is scheduled, with the
-/// activities scheduled in `before` that are not any more.
-pub fn reschedule_outcome(plan: &Plan, a: usize, before: &Schedule) -> Option<Vec<usize>> {
-    let after = schedule(plan).ok()?;
-    after.placement(a)?;
-    Some(
-        before
-            .steps
-            .iter()
-            .filter(|s| {
-                matches!(s.outcome, Outcome::Scheduled { .. })
-                    && after.placement(s.activity).is_none()
-            })
-            .map(|s| s.activity)
-            .collect(),
-    )
-}
-
-/// Valid starts per category of activity `a` against the state after step `k`,
-/// for duration `d` (its shortest duration when `None`): the inspector's view of
-/// any activity at any step.
-pub fn valid_intervals_at(
-    sched: &Schedule,
-    a: usize,
-    k: usize,
-    d: Option<i64>,
-) -> Vec<CategoryIntervals> {
-    let d = d.unwrap_or(sched.problem.acts[a].dur_min);
-    sched.state_after(k).phase1(a, d, &Scope::default())
-}
-
-/// The partial schedule after step `k`.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct PartialSchedule {
-    /// `(activity, start, end)` placed in steps `1..=k`, in step order.
-    pub placed: Vec<(usize, i64, i64)>,
-    /// Activities failed or skipped in steps `1..=k`.
-    pub failed: Vec<usize>,
-    /// Activities of steps after `k`, in step order.
-    pub pending: Vec<usize>,
-    /// Generated activities alive after step `k`.
-    pub generated: Vec<crate::scheduler::Generated>,
-}
-
-/// The partial schedule after step `k` (0 = nothing placed yet).
-pub fn partial_schedule(sched: &Schedule, k: usize) -> PartialSchedule {
-    let mut p = PartialSchedule {
-        placed: Vec::new(),
-        failed: Vec::new(),
-        pending: Vec::new(),
-        generated: sched.generated_after(k).copied().collect(),
-    };
-    for s in &sched.steps {
-        match s.outcome {
-            _ if s.step > k => p.pending.push(s.activity),
-            Outcome::Scheduled { start, end } => p.placed.push((s.activity, start, end)),
-            _ => p.failed.push(s.activity),
-        }
-    }
-    p
 }

@@ -2,28 +2,16 @@
 
 use super::{Explanation, Phase};
 use crate::model::Plan;
-use crate::scheduler::{Category, MJ_PER_WH, MW_PER_W, Phase2Reason, Problem};
+use crate::scheduler::{Category, Phase2Reason, Problem, Schedule};
 use crate::timeline::IntervalSet;
+use crate::units::{format_plan_time, format_watts, format_wh};
 
-/// Local time of day of plan time `t` as `hh:mm:ss`.
-pub fn format_local(pb: &Problem, t: i64) -> String {
-    let tod = pb.tod(t);
-    format!("{:02}:{:02}:{:02}", tod / 3600, (tod / 60) % 60, tod % 60)
+/// Plan time `t` as planners read it: plan seconds and local time.
+fn at(problem: &Problem, t: i64) -> String {
+    format_plan_time(&problem.clock, t)
 }
 
-fn at(pb: &Problem, t: i64) -> String {
-    format!("{t} ({})", format_local(pb, t))
-}
-
-fn wh(mj: i64) -> String {
-    format!("{:.1} Wh", mj as f64 / MJ_PER_WH)
-}
-
-fn watts(mw: i64) -> String {
-    format!("{:.1} W", mw as f64 / MW_PER_W)
-}
-
-fn describe_set(pb: &Problem, set: &IntervalSet) -> String {
+fn describe_set(problem: &Problem, set: &IntervalSet) -> String {
     let ivs = set.intervals();
     if ivs.is_empty() {
         return "no start at all".into();
@@ -33,15 +21,15 @@ fn describe_set(pb: &Problem, set: &IntervalSet) -> String {
         .take(3)
         .map(|iv| {
             if iv.lo == iv.hi {
-                format!("only {}", at(pb, iv.lo))
-            } else if iv.lo <= pb.h0 && iv.hi >= pb.h1 {
+                format!("only {}", at(problem, iv.lo))
+            } else if iv.lo <= problem.h0 && iv.hi >= problem.h1 {
                 "any start".into()
-            } else if iv.lo <= pb.h0 {
-                format!("starts up to {}", at(pb, iv.hi))
-            } else if iv.hi >= pb.h1 {
-                format!("starts from {}", at(pb, iv.lo))
+            } else if iv.lo <= problem.h0 {
+                format!("starts up to {}", at(problem, iv.hi))
+            } else if iv.hi >= problem.h1 {
+                format!("starts from {}", at(problem, iv.lo))
             } else {
-                format!("starts {}–{}", at(pb, iv.lo), at(pb, iv.hi))
+                format!("starts {}–{}", at(problem, iv.lo), at(problem, iv.hi))
             }
         })
         .collect();
@@ -81,7 +69,7 @@ pub fn suggestion_line(plan: &Plan, s: &super::Suggestion) -> String {
 }
 
 /// The plain-language notes of an explanation.
-pub fn explanation_notes(plan: &Plan, pb: &Problem, ex: &Explanation) -> Vec<String> {
+pub fn explanation_notes(plan: &Plan, problem: &Problem, ex: &Explanation) -> Vec<String> {
     let name = |a: usize| plan.activities[a].display_name().to_string();
     let me = name(ex.activity);
     let mut notes = Vec::new();
@@ -120,7 +108,7 @@ pub fn explanation_notes(plan: &Plan, pb: &Problem, ex: &Explanation) -> Vec<Str
                         format!(
                             "{} allow {}",
                             category_phrase(c.category),
-                            describe_set(pb, &c.valid)
+                            describe_set(problem, &c.valid)
                         )
                     })
                     .collect();
@@ -131,7 +119,7 @@ pub fn explanation_notes(plan: &Plan, pb: &Problem, ex: &Explanation) -> Vec<Str
                 notes.push(format!(
                     "Without {} it could start at {}.",
                     cats.join(" and "),
-                    at(pb, r.witness)
+                    at(problem, r.witness)
                 ));
             }
         }
@@ -141,30 +129,31 @@ pub fn explanation_notes(plan: &Plan, pb: &Problem, ex: &Explanation) -> Vec<Str
             ));
             for r in ex.reasons.iter().take(8) {
                 let range = if r.first == r.last {
-                    format!("At {}", at(pb, r.first))
+                    format!("At {}", at(problem, r.first))
                 } else {
-                    format!("For starts {}–{}", at(pb, r.first), at(pb, r.last))
+                    format!(
+                        "For starts {}–{}",
+                        at(problem, r.first),
+                        at(problem, r.last)
+                    )
                 };
                 let why = match &r.reason {
                     Phase2Reason::MinSoc { at: t, soc_mj } => format!(
                         "the battery would fall to {} at {}, below the {} minimum",
-                        wh(*soc_mj),
-                        at(pb, *t),
-                        wh(i64::try_from(pb.min_soc).unwrap_or(i64::MAX))
+                        format_wh(i128::from(*soc_mj)),
+                        at(problem, *t),
+                        format_wh(problem.min_soc)
                     ),
                     Phase2Reason::HandoverSoc { soc_mj } => format!(
                         "the battery at handover would be {}, below the {} handover minimum",
-                        wh(*soc_mj),
-                        wh(pb
-                            .handover_soc
-                            .and_then(|x| i64::try_from(x).ok())
-                            .unwrap_or(0))
+                        format_wh(i128::from(*soc_mj)),
+                        format_wh(problem.handover_soc.unwrap_or(0))
                     ),
                     Phase2Reason::MaxPeakPower { at: t, peak_mw } => format!(
                         "peak power would reach {} at {}, above the {} limit",
-                        watts(*peak_mw),
-                        at(pb, *t),
-                        watts(pb.max_peak.unwrap_or(0))
+                        format_watts(*peak_mw),
+                        at(problem, *t),
+                        format_watts(problem.max_peak.unwrap_or(0))
                     ),
                     Phase2Reason::ForcedSleep { sleep } => match sleep {
                         Some(x) => format!(
@@ -193,16 +182,16 @@ pub fn explanation_notes(plan: &Plan, pb: &Problem, ex: &Explanation) -> Vec<Str
                         preheat_start,
                     } => format!(
                         "the {} preheat would have to start at {}, before the plan begins",
-                        pb.zone_names[*zone],
-                        at(pb, *preheat_start)
+                        problem.zone_names[*zone],
+                        at(problem, *preheat_start)
                     ),
                     Phase2Reason::PreheatOperability {
                         zone,
                         preheat_start,
                     } => format!(
                         "the {} preheat would start at {}, outside the times that zone may be heated",
-                        pb.zone_names[*zone],
-                        at(pb, *preheat_start)
+                        problem.zone_names[*zone],
+                        at(problem, *preheat_start)
                     ),
                 };
                 notes.push(format!("{range}, {why}."));
@@ -220,9 +209,36 @@ pub fn explanation_notes(plan: &Plan, pb: &Problem, ex: &Explanation) -> Vec<Str
             .culprits
             .iter()
             .take(6)
-            .map(|c| format!("{} (step {}, {})", name(c.activity), c.step, c.category))
+            .map(|c| format!("{} (step {}, {})", name(c.activity), c.step, c.blame.name()))
             .collect();
         notes.push(format!("Involved: {}.", names.join(", ")));
     }
     notes
+}
+
+/// Planner-facing text for a set of explanations.
+pub fn explain_text(plan: &Plan, schedule: &Schedule, explanations: &[Explanation]) -> String {
+    let problem = &schedule.problem;
+    let mut out = String::new();
+    for ex in explanations {
+        let a = &plan.activities[ex.activity];
+        out.push_str(&format!(
+            "== {} ({}), step {}\n",
+            a.display_name(),
+            a.id,
+            ex.step
+        ));
+        for n in explanation_notes(plan, problem, ex) {
+            out.push_str(&format!("  {n}\n"));
+        }
+        for (i, s) in ex.suggestions.iter().enumerate() {
+            out.push_str(&format!(
+                "  suggestion {}: {}\n",
+                i + 1,
+                suggestion_line(plan, s)
+            ));
+        }
+        out.push('\n');
+    }
+    out
 }

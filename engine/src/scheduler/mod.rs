@@ -5,15 +5,25 @@
 //! runs the exact phase-2 search (`search.rs`) window by window; the first window
 //! with a passing start wins, at the passing start nearest its preferred time.
 
+mod cells;
+mod inspect;
+mod phase1;
+mod phase2;
 mod problem;
-mod search;
+mod profiles;
 mod state;
 mod trace;
 
-pub use problem::{Act, BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, Problem};
-pub use search::Evaluated;
+pub use inspect::{PartialSchedule, partial_schedule, valid_intervals_at};
+pub(crate) use phase2::Evaluated;
+pub use problem::{Act, Problem};
+pub use profiles::Profiles;
 pub use state::{Placement, State};
-pub use trace::*;
+pub use trace::{
+    Category, CategoryIntervals, FailurePhase, Generated, GeneratedKind, Outcome, Phase2Reason,
+    ReasonKind, Step, Try,
+};
+use trace::{merge_tries, merge_tries_with};
 
 use crate::error::Error;
 use crate::model::{AwakeMode, Plan};
@@ -43,18 +53,13 @@ pub struct Schedule {
 impl Schedule {
     /// Where activity `act` was placed, if it was.
     pub fn placement(&self, act: usize) -> Option<(i64, i64)> {
-        self.steps
-            .iter()
-            .find(|s| s.activity == act)
-            .and_then(|s| match s.outcome {
-                Outcome::Scheduled { start, end } => Some((start, end)),
-                _ => None,
-            })
+        self.step_of(act)?.outcome.placement()
     }
 
-    /// The step of activity `act`.
+    /// The step of activity `act` (through the problem's activity -> step index).
     pub fn step_of(&self, act: usize) -> Option<&Step> {
-        self.steps.iter().find(|s| s.activity == act)
+        let k = *self.problem.step_of.get(act)?;
+        self.steps.get(k.checked_sub(1)?)
     }
 
     /// Rebuilds the state of every timeline after step `k` (0 = before step 1) by
@@ -208,7 +213,7 @@ pub(crate) fn run_step(
     step_no: usize,
     scope: &Scope,
     clip: bool,
-) -> (Step, Option<search::Evaluated>) {
+) -> (Step, Option<Evaluated>) {
     let pb = state.pb;
     let act = &pb.acts[a];
     let mut step = Step {
@@ -337,7 +342,7 @@ pub(crate) fn run_step(
 struct Tried {
     categories: Vec<CategoryIntervals>,
     union: IntervalSet,
-    found: Option<search::Evaluated>,
+    found: Option<Evaluated>,
     tries: Vec<(Try, Option<i64>)>,
 }
 

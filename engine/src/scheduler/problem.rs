@@ -3,25 +3,8 @@
 use std::collections::BTreeMap;
 
 use crate::error::Error;
-use crate::model::{AwakeMode, Duration, EffectAt, Plan};
-
-/// mW per W.
-pub const MW_PER_W: f64 = 1_000.0;
-/// mJ per Wh.
-pub const MJ_PER_WH: f64 = 3_600_000.0;
-/// bit per Mbit (and bit/s per Mbit/s).
-pub const BIT_PER_MBIT: f64 = 1_000_000.0;
-
-/// Rounds `x * scale` to the nearest integer (half away from zero).
-pub fn to_fixed(x: f64, scale: f64) -> i64 {
-    let v = (x * scale).round();
-    if v.is_finite() {
-        // Validation bounds every quantity far inside the i64 range.
-        v.clamp(i64::MIN as f64, i64::MAX as f64) as i64
-    } else {
-        0
-    }
-}
+use crate::model::{AwakeMode, Duration, EffectAt, LocalTime, Plan};
+use crate::units::{BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, to_fixed};
 
 /// A window in compiled form.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -113,10 +96,8 @@ pub struct Problem {
     pub h0: i64,
     /// Horizon end.
     pub h1: i64,
-    /// Sol length.
-    pub sol: i64,
-    /// Local-time offset.
-    pub offset: i64,
+    /// Local time of day (sol length and offset).
+    pub clock: LocalTime,
     /// Battery capacity (mJ).
     pub capacity: i128,
     /// Initial state of charge (mJ).
@@ -163,6 +144,8 @@ pub struct Problem {
     pub acts: Vec<Act>,
     /// Step order: `order[k - 1]` is the activity of step k.
     pub order: Vec<usize>,
+    /// The inverse of `order`: `step_of[a]` is the step (1-based) of activity `a`.
+    pub step_of: Vec<usize>,
 }
 
 impl Problem {
@@ -173,6 +156,7 @@ impl Problem {
         let plan_wide = |p: &Problem| Problem {
             acts: Vec::new(),
             order: Vec::new(),
+            step_of: Vec::new(),
             zones: p.zones.clone(),
             zone_names: p.zone_names.clone(),
             state_initial: p.state_initial.clone(),
@@ -188,14 +172,9 @@ impl Problem {
             .count()
     }
 
-    /// Local time of day of plan time `t`.
-    pub fn tod(&self, t: i64) -> i64 {
-        (self.offset + t).rem_euclid(self.sol)
-    }
-
     /// Preheat duration of zone `z` for an activity starting at `s`.
     pub fn preheat_duration(&self, z: usize, s: i64) -> i64 {
-        let tod = self.tod(s);
+        let tod = self.clock.time_of_day(s);
         let table = &self.zones[z].table;
         let i = table.partition_point(|e| e.0 <= tod);
         i.checked_sub(1).map_or(0, |i| table[i].1)
@@ -203,7 +182,7 @@ impl Problem {
 
     /// Whether a preheat of zone `z` may start at plan time `t`.
     pub fn operable(&self, z: usize, t: i64) -> bool {
-        let tod = self.tod(t);
+        let tod = self.clock.time_of_day(t);
         self.zones[z].operable.as_ref().is_none_or(|periods| {
             periods.iter().any(|&(from, to)| {
                 if from <= to {
@@ -387,8 +366,7 @@ impl Problem {
         Ok(Problem {
             h0: horizon.start,
             h1: horizon.end,
-            sol: plan.local_time.sol_length.max(1),
-            offset: plan.local_time.offset,
+            clock: plan.local_time,
             capacity: wh(plan.battery.capacity),
             soc0: wh(plan.battery.initial),
             min_soc: wh(plan.battery.min_soc),
@@ -411,7 +389,17 @@ impl Problem {
             zone_names,
             resource_count: resources.len(),
             acts,
+            step_of: step_numbers(&order),
             order,
         })
     }
+}
+
+/// The step (1-based) of each activity, from the step order.
+fn step_numbers(order: &[usize]) -> Vec<usize> {
+    let mut step_of = vec![0; order.len()];
+    for (k, &a) in order.iter().enumerate() {
+        step_of[a] = k + 1;
+    }
+    step_of
 }

@@ -115,18 +115,56 @@ pub enum Phase2Reason {
     },
 }
 
-impl Phase2Reason {
-    /// The spec's reason kind.
-    pub fn kind(&self) -> &'static str {
+/// The kind of a phase-2 reason, without its numbers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ReasonKind {
+    /// [`Phase2Reason::ForcedSleep`].
+    ForcedSleep,
+    /// [`Phase2Reason::MinSleep`].
+    MinSleep,
+    /// [`Phase2Reason::MinAwake`].
+    MinAwake,
+    /// [`Phase2Reason::PreheatOutsidePlan`].
+    PreheatOutsidePlan,
+    /// [`Phase2Reason::PreheatOperability`].
+    PreheatOperability,
+    /// [`Phase2Reason::MaxPeakPower`].
+    MaxPeakPower,
+    /// [`Phase2Reason::MinSoc`].
+    MinSoc,
+    /// [`Phase2Reason::HandoverSoc`].
+    HandoverSoc,
+}
+
+impl ReasonKind {
+    /// The spec's name.
+    pub fn name(self) -> &'static str {
         match self {
-            Phase2Reason::ForcedSleep { .. } => "forced_sleep",
-            Phase2Reason::MinSleep { .. } => "min_sleep",
-            Phase2Reason::MinAwake { .. } => "min_awake",
-            Phase2Reason::PreheatOutsidePlan { .. } => "preheat_outside_plan",
-            Phase2Reason::PreheatOperability { .. } => "preheat_operability",
-            Phase2Reason::MaxPeakPower { .. } => "max_peak_power",
-            Phase2Reason::MinSoc { .. } => "min_soc",
-            Phase2Reason::HandoverSoc { .. } => "handover_soc",
+            ReasonKind::ForcedSleep => "forced_sleep",
+            ReasonKind::MinSleep => "min_sleep",
+            ReasonKind::MinAwake => "min_awake",
+            ReasonKind::PreheatOutsidePlan => "preheat_outside_plan",
+            ReasonKind::PreheatOperability => "preheat_operability",
+            ReasonKind::MaxPeakPower => "max_peak_power",
+            ReasonKind::MinSoc => "min_soc",
+            ReasonKind::HandoverSoc => "handover_soc",
+        }
+    }
+}
+
+impl Phase2Reason {
+    /// The reason's kind.
+    pub fn kind(&self) -> ReasonKind {
+        match self {
+            Phase2Reason::ForcedSleep { .. } => ReasonKind::ForcedSleep,
+            Phase2Reason::MinSleep { .. } => ReasonKind::MinSleep,
+            Phase2Reason::MinAwake { .. } => ReasonKind::MinAwake,
+            Phase2Reason::PreheatOutsidePlan { .. } => ReasonKind::PreheatOutsidePlan,
+            Phase2Reason::PreheatOperability { .. } => ReasonKind::PreheatOperability,
+            Phase2Reason::MaxPeakPower { .. } => ReasonKind::MaxPeakPower,
+            Phase2Reason::MinSoc { .. } => ReasonKind::MinSoc,
+            Phase2Reason::HandoverSoc { .. } => ReasonKind::HandoverSoc,
         }
     }
 }
@@ -276,6 +314,25 @@ pub enum Outcome {
         /// The scheduled member (activity index).
         by: usize,
     },
+}
+
+impl Outcome {
+    /// `[start, end)` when scheduled.
+    pub fn placement(&self) -> Option<(i64, i64)> {
+        match *self {
+            Outcome::Scheduled { start, end } => Some((start, end)),
+            Outcome::Failed(_) | Outcome::Skipped { .. } => None,
+        }
+    }
+
+    /// The spec's status name: `scheduled`, `failed` or `skipped`.
+    pub fn status(&self) -> &'static str {
+        match self {
+            Outcome::Scheduled { .. } => "scheduled",
+            Outcome::Failed(_) => "failed",
+            Outcome::Skipped { .. } => "skipped",
+        }
+    }
 }
 
 /// Phase-1 valid starts of one category for one duration.

@@ -1,0 +1,367 @@
+//! Failure steps in one replay of the run.
+//!
+//! The scheduler is greedy and never moves a placed activity, so the partial
+//! schedule after step k is exactly the prefix of the full run. The replay probes
+//! every failed activity whose failure step is still unknown against the state
+//! after each step k (with the spec's inclusion rule for dependencies and
+//! requirements); the first k at which a probe fails is the failure step — exact,
+//! with no monotonicity assumption. The replay is event-driven: after a passing
+//! probe a target keeps its placement (the witness) and is looked at again only at
+//! the first step that could disturb it ([`next_check`]).
+
+use crate::scheduler::{
+    Evaluated, FailurePhase, Outcome, Problem, Schedule, Scope, State, Step, run_step,
+};
+
+/// The inclusion rule precomputed: for each `(state, value)`, the steps of the
+/// activities with an effect setting it, sorted, so that an activity's thresholds
+/// cost O(log N) per requirement instead of a scan of the plan.
+struct Inclusion<'a> {
+    pb: &'a Problem,
+    setters: std::collections::HashMap<(usize, usize), Vec<usize>>,
+}
+
+/// For one activity: the last step before it of any activity that could satisfy
+/// each dependency / requirement (0 when none). Entry `j` is excluded at step `k`
+/// iff `k < threshold[j]`.
+struct Thresholds {
+    deps: Vec<usize>,
+    reqs: Vec<usize>,
+}
+
+impl<'a> Inclusion<'a> {
+    fn new(pb: &'a Problem) -> Self {
+        let mut setters: std::collections::HashMap<(usize, usize), Vec<usize>> =
+            std::collections::HashMap::new();
+        for (x, act) in pb.acts.iter().enumerate() {
+            for e in &act.effects {
+                setters.entry((e.0, e.1)).or_default().push(pb.step_of[x]);
+            }
+        }
+        for v in setters.values_mut() {
+            v.sort_unstable();
+            v.dedup();
+        }
+        Self { pb, setters }
+    }
+
+    fn thresholds(&self, a: usize) -> Thresholds {
+        let act = &self.pb.acts[a];
+        let mine = self.pb.step_of[a];
+        let deps = act
+            .after
+            .iter()
+            .map(|d| {
+                let t = self.pb.step_of[d.target];
+                if d.target != a && t < mine { t } else { 0 }
+            })
+            .collect();
+        // The activity's own step is never "before" it, so `< mine` excludes it.
+        let reqs = act
+            .requires
+            .iter()
+            .map(|&(st, v)| {
+                self.setters.get(&(st, v)).map_or(0, |steps| {
+                    let below = steps.partition_point(|&x| x < mine);
+                    if below == 0 { 0 } else { steps[below - 1] }
+                })
+            })
+            .collect();
+        Thresholds { deps, reqs }
+    }
+}
+
+impl Thresholds {
+    fn scope_at(&self, k: usize) -> Scope {
+        let pending = |t: &usize| k < *t;
+        Scope {
+            skip_deps: (0..self.deps.len())
+                .filter(|&j| pending(&self.deps[j]))
+                .collect(),
+            skip_reqs: (0..self.reqs.len())
+                .filter(|&j| pending(&self.reqs[j]))
+                .collect(),
+        }
+    }
+}
+
+/// What applying one scheduled step changes, for deciding which witnesses it can
+/// disturb ([`next_check`]).
+struct Applied {
+    act: usize,
+    /// Footprint `[lo, hi)` of the placement.
+    lo: i64,
+    hi: i64,
+}
+
+/// Per-step effects of the run, precomputed by one replay: what each scheduled step
+/// touches, and running totals of the energy (mJ, absolute) and data (bit) that
+/// steps 1..=k add, so that "the budget left at step k is used up at step j" is a
+/// binary search.
+struct RunEffects {
+    applied: Vec<Option<Applied>>,
+    energy: Vec<i128>,
+    data: Vec<i128>,
+    handover: Vec<i128>,
+    /// Per group, the steps that scheduled a member, ascending.
+    group_steps: Vec<Vec<usize>>,
+    /// How far the wake/sleep and preheat rules can couple two placements: the
+    /// widening of a witness's footprint in [`next_check`].
+    reach: i64,
+}
+
+impl RunEffects {
+    fn new(sched: &Schedule) -> Self {
+        let pb = &sched.problem;
+        let n = sched.steps.len();
+        let mut out = RunEffects {
+            applied: Vec::with_capacity(n + 1),
+            energy: Vec::with_capacity(n + 1),
+            data: Vec::with_capacity(n + 1),
+            handover: Vec::with_capacity(n + 1),
+            group_steps: Vec::new(),
+            reach: {
+                let preheat = pb
+                    .zones
+                    .iter()
+                    .flat_map(|z| z.table.iter().map(|t| t.1))
+                    .max()
+                    .unwrap_or(0);
+                pb.min_sleep.max(1) + pb.wake + pb.shut + pb.min_awake + preheat + 2
+            },
+        };
+        out.applied.push(None);
+        out.energy.push(0);
+        out.data.push(0);
+        out.handover.push(0);
+        let mut state = State::new(pb);
+        for step in &sched.steps {
+            let (mut e, mut d, mut h) = (0, 0, 0);
+            let mut applied = None;
+            if let Some(ev) = state.replay(step) {
+                if let Outcome::Scheduled { start, end } = step.outcome {
+                    let act = &pb.acts[step.activity];
+                    let produced = i128::from(act.data.max(0));
+                    e = ev.energy;
+                    d = produced * i128::from(end - start);
+                    if let Some(ht) = pb.handover_time {
+                        h = produced * overlap((start, end), (pb.h0, ht));
+                    }
+                    let (lo, hi) = ev.footprint(pb);
+                    applied = Some(Applied {
+                        act: step.activity,
+                        lo,
+                        hi,
+                    });
+                    if let Some(g) = act.group {
+                        if out.group_steps.len() <= g {
+                            out.group_steps.resize(g + 1, Vec::new());
+                        }
+                        out.group_steps[g].push(step.step);
+                    }
+                }
+            }
+            out.applied.push(applied);
+            let last = |v: &Vec<i128>| v.last().copied().unwrap_or(0);
+            out.energy.push(last(&out.energy).saturating_add(e));
+            out.data.push(last(&out.data).saturating_add(d));
+            out.handover.push(last(&out.handover).saturating_add(h));
+        }
+        out
+    }
+
+    /// The first step after `k` whose running total exceeds the total at `k` by
+    /// more than `budget` (`len` when none).
+    fn exhausted(sums: &[i128], k: usize, budget: i128) -> usize {
+        let base = sums[k];
+        k + sums[k..].partition_point(|&x| x.saturating_sub(base) <= budget)
+    }
+}
+
+/// A placement known to fit a probe target after step `k`, and the first later
+/// step that could change that.
+struct Witness {
+    start: i64,
+    duration: i64,
+    /// The step it is due to be looked at again (`usize::MAX`: not before its own).
+    due: usize,
+}
+
+/// Whether two activities share a state through effects on one side and effects or
+/// requirements on the other (an effect's reach is not bounded in time).
+fn share_state(pb: &Problem, a: usize, b: usize) -> bool {
+    let touches = |x: usize, y: usize| {
+        let (x, y) = (&pb.acts[x], &pb.acts[y]);
+        x.effects
+            .iter()
+            .any(|e| y.requires.iter().any(|r| r.0 == e.0) || y.effects.iter().any(|f| f.0 == e.0))
+    };
+    touches(a, b) || touches(b, a)
+}
+
+/// The first step after `k` that can change whether the witness `ev` of target `a`
+/// (verified against the state after step `k`) still fits; the probe need not look
+/// again before it. Sufficient conditions for "cannot change" (each placement
+/// applied): the footprints, widened by the wake/sleep and preheat reach, are apart
+/// (so every local category, the generated pieces and the peak power are
+/// unchanged); no state is shared; the state of charge, data volume and handover
+/// production move by at most the applied energy / data (capped and floored
+/// integration is 1-Lipschitz) and the witness's margins cover the running total;
+/// no scope threshold and no group member's placement comes first.
+fn next_check(
+    state: &State<'_>,
+    fx: &RunEffects,
+    th: &Thresholds,
+    ev: &Evaluated,
+    k: usize,
+    until: usize,
+) -> usize {
+    let pb = state.pb;
+    let a = ev.placement.act;
+    let act = &pb.acts[a];
+    let (s, d) = (ev.placement.start, ev.placement.duration);
+    let mut due = until.min(RunEffects::exhausted(&fx.energy, k, ev.margin));
+    if let (Some(cap), true) = (pb.data_cap, act.data > 0) {
+        let margin = cap + state.data.check(&[(s, s + d, act.data)], None).min;
+        due = due.min(RunEffects::exhausted(&fx.data, k, margin));
+    }
+    if let (false, Some(ht), Some(max)) = (act.mandatory, pb.handover_time, pb.handover_data) {
+        let margin =
+            max - state.produced - i128::from(act.data.max(0)) * overlap((s, s + d), (pb.h0, ht));
+        due = due.min(RunEffects::exhausted(&fx.handover, k, margin));
+    }
+    for &t in th.deps.iter().chain(&th.reqs) {
+        if t > k {
+            due = due.min(t);
+        }
+    }
+    if let Some(steps) = act.group.and_then(|g| fx.group_steps.get(g)) {
+        if let Some(&j) = steps.iter().find(|&&j| j > k) {
+            due = due.min(j);
+        }
+    }
+    let (lo, hi) = ev.footprint(pb);
+    let (lo, hi) = (lo.saturating_sub(fx.reach), hi.saturating_add(fx.reach));
+    for j in k + 1..due.min(fx.applied.len()) {
+        if let Some(p) = &fx.applied[j] {
+            if (p.lo < hi && lo < p.hi) || share_state(pb, a, p.act) {
+                return j;
+            }
+        }
+    }
+    due
+}
+
+/// Length of the overlap of two half-open intervals.
+fn overlap(a: (i64, i64), b: (i64, i64)) -> i128 {
+    i128::from((a.1.min(b.1) - a.0.max(b.0)).max(0))
+}
+
+/// Calls `on_failure(i, k, record, state)` for each target `i` that fails, with its
+/// failure step `k`, the probe's step record there and the state after step `k`.
+/// Targets that schedule at their own step (scheduled activities) get no call.
+///
+/// Each target is looked at only at the steps that can change its answer: after a
+/// passing probe it keeps the placement found (its witness) and is due again at the
+/// first later step that could disturb it ([`next_check`]); then a quick check of
+/// the witness, and a search only when the witness stopped fitting.
+pub(super) fn failure_probes(
+    sched: &Schedule,
+    targets: &[usize],
+    mut on_failure: impl FnMut(usize, usize, Step, &State<'_>),
+) {
+    use std::cmp::Reverse;
+    let pb = &sched.problem;
+    let step_of = &pb.step_of;
+    let fx = RunEffects::new(sched);
+    let inclusion = Inclusion::new(pb);
+    let thresholds: Vec<Thresholds> = targets.iter().map(|&a| inclusion.thresholds(a)).collect();
+    let mut witness: Vec<Option<Witness>> = (0..targets.len()).map(|_| None).collect();
+    // (due step, target); a target is in the queue at most once.
+    let mut queue: std::collections::BinaryHeap<Reverse<(usize, usize)>> = targets
+        .iter()
+        .enumerate()
+        .filter(|&(_, &a)| {
+            !matches!(
+                sched.steps[step_of[a] - 1].outcome,
+                Outcome::Scheduled { .. }
+            )
+        })
+        .map(|(i, _)| Reverse((0, i)))
+        .collect();
+    let mut state = State::new(pb);
+    for k in 0..sched.steps.len() {
+        if queue.is_empty() {
+            break;
+        }
+        // Debug builds (the tests) check every skip against a full check.
+        #[cfg(debug_assertions)]
+        for (i, w) in witness.iter().enumerate() {
+            if let Some(w) = w.as_ref().filter(|w| w.due > k && k < step_of[targets[i]]) {
+                let scope = thresholds[i].scope_at(k);
+                debug_assert!(
+                    state.fits(targets[i], w.start, w.duration, &scope),
+                    "a skipped witness stopped fitting"
+                );
+            }
+        }
+        while let Some(&Reverse((due, i))) = queue.peek() {
+            if due > k {
+                break;
+            }
+            queue.pop();
+            if witness[i].as_ref().is_some_and(|w| w.due != due) {
+                continue; // stale entry (not expected: a target is queued once)
+            }
+            let a = targets[i];
+            let until = step_of[a];
+            let scope = thresholds[i].scope_at(k);
+            // A witness that still fits answers the probe without a search (the same
+            // duration as before: a longer one could have become possible, but a
+            // probe only asks whether the activity fails). A group member placed
+            // since skips the activity, which no placement check sees; an unplaced
+            // dependency fails the witness's phase-1 check.
+            let grouped = pb.acts[a]
+                .group
+                .is_some_and(|g| state.group_member[g].is_some());
+            let kept = witness[i]
+                .as_ref()
+                .filter(|_| !grouped)
+                .and_then(|w| state.fitting(a, w.start, w.duration, &scope));
+            let ev = match kept {
+                Some(ev) => ev,
+                None => {
+                    // Whether it fails does not depend on the span phase 1 covers
+                    // (phase 2 only looks inside the windows), so probe within the
+                    // window span, and redo the failing probe over the whole horizon
+                    // only when the relaxations need it (starts outside the windows).
+                    match run_step(&state, a, step_of[a], &scope, true) {
+                        (_, Some(ev)) => ev,
+                        (record, None) => {
+                            let record = if record.outcome
+                                == Outcome::Failed(FailurePhase::ValidIntervals)
+                            {
+                                run_step(&state, a, step_of[a], &scope, false).0
+                            } else {
+                                record
+                            };
+                            on_failure(i, k, record, &state);
+                            witness[i] = None;
+                            continue;
+                        }
+                    }
+                }
+            };
+            let next = next_check(&state, &fx, &thresholds[i], &ev, k, until);
+            witness[i] = Some(Witness {
+                start: ev.placement.start,
+                duration: ev.placement.duration,
+                due: if next < until { next } else { usize::MAX },
+            });
+            if next < until {
+                queue.push(Reverse((next, i)));
+            }
+        }
+        state.replay(&sched.steps[k]);
+    }
+}

@@ -1,0 +1,149 @@
+//! Suggestions: concrete edits in the spec's edit format, each verified by
+//! rescheduling the edited plan, ranked by least disruption.
+//!
+//! One candidate builder per failure kind (`group` and `dependency` phases,
+//! each minimal relaxation of a `valid_intervals` failure, each phase-2 reason of
+//! a `placement` failure), plus re-prioritising around the culprits for every
+//! kind; `verify` keeps the candidates that make the activity schedule.
+
+mod intervals;
+mod placement;
+mod verify;
+
+use serde_json::{Map, Value, json};
+
+use super::{Explanation, Phase, Suggestion};
+use crate::model::{Activity, Plan};
+use crate::scheduler::Schedule;
+
+/// A candidate edit before verification.
+struct Candidate {
+    description: String,
+    target: String,
+    set: Map<String, Value>,
+}
+
+impl Candidate {
+    /// An edit of one top-level field of the plan.
+    fn plan(description: String, key: &str, value: Value) -> Self {
+        Self {
+            description,
+            target: "plan".into(),
+            set: set1(key, value),
+        }
+    }
+
+    /// An edit of one field of an activity.
+    fn activity(activity: &Activity, description: String, key: &str, value: Value) -> Self {
+        Self {
+            description,
+            target: format!("activity:{}", activity.id),
+            set: set1(key, value),
+        }
+    }
+}
+
+fn set1(key: &str, value: Value) -> Map<String, Value> {
+    let mut m = Map::new();
+    m.insert(key.to_string(), value);
+    m
+}
+
+/// Verified suggestions for one explanation.
+pub fn suggestions(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec<Suggestion> {
+    let activity = &plan.activities[ex.activity];
+    let mut candidates = match ex.phase {
+        Some(Phase::Group) => vec![leave_group(activity)],
+        Some(Phase::Dependency) => drop_failed_dependency(plan, ex).into_iter().collect(),
+        Some(Phase::ValidIntervals) => intervals::candidates(plan, sched, ex),
+        Some(Phase::Placement) => placement::candidates(plan, sched, ex),
+        None => Vec::new(),
+    };
+    candidates.extend(reprioritise(plan, ex));
+    verify::verified(plan, sched, ex.activity, candidates)
+}
+
+/// Phase `group`: leave the group.
+fn leave_group(activity: &Activity) -> Candidate {
+    Candidate::activity(
+        activity,
+        format!(
+            "Take {} out of its group so it no longer excludes or is excluded",
+            activity.id
+        ),
+        "group",
+        Value::Null,
+    )
+}
+
+/// Phase `dependency`: drop the dependency on the target that did not schedule.
+fn drop_failed_dependency(plan: &Plan, ex: &Explanation) -> Option<Candidate> {
+    let activity = &plan.activities[ex.activity];
+    let other = &plan.activities[ex.blocked_by?].id;
+    let after: Vec<Value> = activity
+        .after
+        .iter()
+        .filter(|d| &d.activity != other)
+        .filter_map(|d| serde_json::to_value(d).ok())
+        .collect();
+    Some(Candidate::activity(
+        activity,
+        format!(
+            "Drop the dependency of {} on {other} (which did not schedule)",
+            activity.id
+        ),
+        "after",
+        Value::Array(after),
+    ))
+}
+
+/// Every kind: schedule a blocking culprit (placed at an earlier step) after the
+/// activity, or the activity before the first of them, by priority.
+fn reprioritise(plan: &Plan, ex: &Explanation) -> Vec<Candidate> {
+    let activity = &plan.activities[ex.activity];
+    let id = &activity.id;
+    let mut blockers: Vec<(i64, usize)> = ex
+        .culprits
+        .iter()
+        .filter(|c| c.step < ex.step)
+        .map(|c| (plan.activities[c.activity].priority, c.activity))
+        .collect();
+    blockers.sort_unstable();
+    blockers.dedup();
+    let mine = activity.priority;
+    let mut out = Vec::new();
+    for &(_, x) in blockers.iter().take(3) {
+        let blocker = &plan.activities[x];
+        out.push(Candidate::activity(
+            blocker,
+            format!(
+                "Schedule {} after {id} by giving it priority {}",
+                blocker.id,
+                mine.saturating_add(1)
+            ),
+            "priority",
+            json!(mine.saturating_add(1)),
+        ));
+    }
+    if let Some(&(p, x)) = blockers.first() {
+        out.push(Candidate::activity(
+            activity,
+            format!(
+                "Schedule {id} before {} by giving it priority {}",
+                plan.activities[x].id,
+                p.saturating_sub(1)
+            ),
+            "priority",
+            json!(p.saturating_sub(1)),
+        ));
+    }
+    out
+}
+
+fn round3(x: f64) -> f64 {
+    (x * 1000.0).round() / 1000.0
+}
+
+fn floor3(x: f64) -> f64 {
+    (x * 1000.0).floor() / 1000.0
+}

@@ -1,0 +1,171 @@
+//! Candidates for a `placement` failure: one builder per phase-2 reason kind that
+//! a plan limit or a field can relax, from the numbers of the start that came
+//! closest to passing.
+
+use serde_json::{Value, json};
+
+use super::verify::tune_limit;
+use super::{Candidate, floor3};
+use crate::explain::Explanation;
+use crate::model::Plan;
+use crate::scheduler::{Phase2Reason, Schedule};
+use crate::units::{format_local, watts, wh};
+
+/// The closest numbers per reason kind over every failing range of starts.
+#[derive(Default)]
+struct Closest {
+    /// Highest lowest state of charge (mJ).
+    soc: Option<i64>,
+    /// Highest state of charge at handover (mJ).
+    handover_soc: Option<i64>,
+    /// Lowest peak power (mW).
+    peak: Option<i64>,
+    /// The first preheat outside its zone's operable periods: zone, start.
+    operability: Option<(usize, i64)>,
+}
+
+impl Closest {
+    fn of(ex: &Explanation) -> Self {
+        let mut c = Closest::default();
+        for r in &ex.reasons {
+            match r.reason {
+                Phase2Reason::MinSoc { soc_mj, .. } => c.soc = c.soc.max(Some(soc_mj)),
+                Phase2Reason::HandoverSoc { soc_mj } => {
+                    c.handover_soc = c.handover_soc.max(Some(soc_mj))
+                }
+                Phase2Reason::MaxPeakPower { peak_mw, .. } => {
+                    c.peak = Some(c.peak.map_or(peak_mw, |p| p.min(peak_mw)))
+                }
+                Phase2Reason::PreheatOperability {
+                    zone,
+                    preheat_start,
+                } => {
+                    c.operability.get_or_insert((zone, preheat_start));
+                }
+                _ => {}
+            }
+        }
+        c
+    }
+}
+
+/// The candidates of every reason kind present, in a fixed order: state of
+/// charge, handover state of charge, peak power, operability.
+pub(super) fn candidates(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec<Candidate> {
+    let closest = Closest::of(ex);
+    let mut out = Vec::new();
+    if let Some(mj) = closest.soc {
+        out.extend(lower_min_soc(plan, ex.activity, mj));
+    }
+    if let Some(mj) = closest.handover_soc {
+        out.extend(handover_soc(plan, ex.activity, mj));
+    }
+    if let Some(mw) = closest.peak {
+        out.extend(raise_max_peak(plan, ex.activity, mw));
+    }
+    if let Some((zone, preheat_start)) = closest.operability {
+        out.extend(extend_operable(plan, sched, zone, preheat_start));
+    }
+    out
+}
+
+/// `min_soc`: the least lowering of `battery.min_soc` that makes it schedule.
+fn lower_min_soc(plan: &Plan, a: usize, soc_mj: i64) -> Option<Candidate> {
+    let make = |wh: f64| {
+        let mut battery = serde_json::to_value(plan.battery).unwrap_or(Value::Null);
+        battery["min_soc"] = json!(wh);
+        Candidate::plan(
+            format!("Lower the minimum state of charge to {wh} Wh"),
+            "battery",
+            battery,
+        )
+    };
+    let needed = floor3(wh(i128::from(soc_mj))).max(0.0);
+    tune_limit(plan, a, &make, plan.battery.min_soc, needed, 0.0)
+}
+
+/// `handover_soc`: the least lowering of `handover.min_soc`, or making the
+/// activity mandatory (handover limits bind only optional activities).
+fn handover_soc(plan: &Plan, a: usize, soc_mj: i64) -> Vec<Candidate> {
+    let Some(h) = plan.handover else {
+        return Vec::new();
+    };
+    let activity = &plan.activities[a];
+    let make = |wh: f64| {
+        let mut handover = serde_json::to_value(h).unwrap_or(Value::Null);
+        handover["min_soc"] = json!(wh);
+        Candidate::plan(
+            format!("Lower the handover state of charge to {wh} Wh"),
+            "handover",
+            handover,
+        )
+    };
+    let needed = floor3(wh(i128::from(soc_mj))).max(0.0);
+    let current = h.min_soc.unwrap_or(0.0);
+    let mut out: Vec<Candidate> = tune_limit(plan, a, &make, current, needed, 0.0)
+        .into_iter()
+        .collect();
+    out.push(Candidate::activity(
+        activity,
+        format!(
+            "Make {} mandatory (handover limits bind only optional activities)",
+            activity.id
+        ),
+        "mandatory",
+        json!(true),
+    ));
+    out
+}
+
+/// `max_peak_power`: the least raise of `power.max_peak`.
+fn raise_max_peak(plan: &Plan, a: usize, peak_mw: i64) -> Option<Candidate> {
+    let make = |w: f64| {
+        let mut power = serde_json::to_value(plan.power).unwrap_or(Value::Null);
+        power["max_peak"] = json!(w);
+        Candidate::plan(
+            format!("Raise the peak power limit to {w} W"),
+            "power",
+            power,
+        )
+    };
+    let needed = watts(peak_mw).ceil();
+    let current = plan.power.max_peak.unwrap_or(needed);
+    tune_limit(plan, a, &make, current, needed, 1e6)
+}
+
+/// `preheat_operability`: extend the zone's operable period that starts nearest
+/// after the preheat back to the preheat's start.
+fn extend_operable(
+    plan: &Plan,
+    sched: &Schedule,
+    zone: usize,
+    preheat_start: i64,
+) -> Option<Candidate> {
+    let problem = &sched.problem;
+    let name = &problem.zone_names[zone];
+    let thermal = plan.thermal_zones.get(name)?;
+    let tod = problem.clock.time_of_day(preheat_start);
+    let mut zones = serde_json::to_value(&plan.thermal_zones).unwrap_or(Value::Null);
+    let mut periods: Vec<Value> = thermal
+        .operable
+        .iter()
+        .flatten()
+        .filter_map(|p| serde_json::to_value(p).ok())
+        .collect();
+    let (i, next) = thermal
+        .operable
+        .iter()
+        .flatten()
+        .enumerate()
+        .min_by_key(|(_, p)| (p.from - tod).rem_euclid(problem.clock.sol_length))?;
+    periods[i] = json!({ "from": tod, "to": next.to });
+    zones[name]["operable"] = Value::Array(periods);
+    Some(Candidate::plan(
+        format!(
+            "Allow {name} heating from {} local time",
+            format_local(&problem.clock, preheat_start)
+        ),
+        "thermal_zones",
+        zones,
+    ))
+}

@@ -1,0 +1,123 @@
+//! The search's numeric building blocks: cells between critical points, and the
+//! feasible part of a concave function on a cell.
+
+use crate::timeline::{Interval, IntervalSet};
+
+/// Splits `set` at every point of `points` that falls strictly inside one of its
+/// intervals: the cells `[a, b]` between consecutive critical points.
+pub(super) fn cells(set: &IntervalSet, mut points: Vec<i64>) -> Vec<(i64, i64)> {
+    points.sort_unstable();
+    points.dedup();
+    let mut out = Vec::new();
+    for iv in set.intervals() {
+        let mut a = iv.lo;
+        let from = points.partition_point(|&p| p <= iv.lo);
+        for &p in &points[from..] {
+            if p > iv.hi {
+                break;
+            }
+            out.push((a, p - 1));
+            a = p;
+        }
+        out.push((a, iv.hi));
+    }
+    out
+}
+
+/// For a concave integer function `g` on `[a, b]`: the interval where `g >= 0`
+/// (if any), and the start of the highest value (a probe for reporting).
+pub(super) fn concave_feasible(a: i64, b: i64, g: &dyn Fn(i64) -> i128) -> (Option<Interval>, i64) {
+    let (ga, gb) = (g(a), g(b));
+    // Largest x in [from, to] with g(x) >= 0, given g(from) >= 0 and the feasible set
+    // an interval.
+    let last_ok = |from: i64, to: i64| {
+        let (mut ok, mut bad) = (from, to + 1);
+        while bad - ok > 1 {
+            let mid = ok + (bad - ok) / 2;
+            if g(mid) >= 0 { ok = mid } else { bad = mid }
+        }
+        ok
+    };
+    let first_ok = |from: i64, to: i64| {
+        let (mut bad, mut ok) = (from - 1, to);
+        while ok - bad > 1 {
+            let mid = bad + (ok - bad) / 2;
+            if g(mid) >= 0 { ok = mid } else { bad = mid }
+        }
+        ok
+    };
+    if ga >= 0 && gb >= 0 {
+        return (Some(Interval::new(a, b)), a);
+    }
+    if ga >= 0 {
+        return (Some(Interval::new(a, last_ok(a, b - 1))), a);
+    }
+    if gb >= 0 {
+        return (Some(Interval::new(first_ok(a + 1, b), b)), b);
+    }
+    // Both ends fail. If g does not rise right after a (or does not fall right
+    // before b), concavity puts the maximum at that end: nothing passes.
+    if a == b || g(a + 1) <= ga {
+        return (None, a);
+    }
+    if g(b - 1) <= gb {
+        return (None, b);
+    }
+    // Otherwise find the maximum (first s with g(s + 1) <= g(s)).
+    let (mut l, mut r) = (a, b);
+    while l < r {
+        let mid = l + (r - l) / 2;
+        if g(mid + 1) > g(mid) {
+            l = mid + 1
+        } else {
+            r = mid
+        }
+    }
+    if g(l) < 0 {
+        return (None, l);
+    }
+    (
+        Some(Interval::new(first_ok(a + 1, l), last_ok(l, b - 1))),
+        l,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn concave_search_finds_exact_boundaries() {
+        // Tent function peaking at 40: feasible where g >= 0.
+        for (peak, width) in [(40i64, 5i64), (40, 0), (0, 3), (100, 200), (40, -1)] {
+            let g = move |s: i64| i128::from(width - (s - peak).abs());
+            let (iv, _) = concave_feasible(0, 100, &g);
+            let brute: Vec<i64> = (0..=100).filter(|&s| g(s) >= 0).collect();
+            match iv {
+                None => assert!(brute.is_empty(), "{peak} {width}"),
+                Some(iv) => {
+                    assert_eq!(
+                        (iv.lo, iv.hi),
+                        (brute[0], *brute.last().unwrap()),
+                        "{peak} {width}"
+                    )
+                }
+            }
+        }
+        // Plateau at the maximum.
+        let g = |s: i64| i128::from((s.min(60) - s.max(30)).min(0) + 1 - i64::from(s > 90) * 100);
+        let (iv, _) = concave_feasible(0, 100, &g);
+        assert!(iv.is_some());
+    }
+
+    #[test]
+    fn cells_split_at_points() {
+        let set: IntervalSet = [Interval::new(0, 10), Interval::new(20, 30)]
+            .into_iter()
+            .collect();
+        assert_eq!(
+            cells(&set, vec![5, 0, 21, 40, 10]),
+            vec![(0, 4), (5, 9), (10, 10), (20, 20), (21, 30)]
+        );
+    }
+}

@@ -1,0 +1,278 @@
+//! Phase 1 of a scheduling step: the valid starts of each constraint category
+//! (execution, dependency, unit resources, sequence engines, state requirements and
+//! effects, data volume, UHF) as interval sets, and the point version of the same
+//! checks for one start.
+
+use super::Scope;
+use super::cells::{cells, concave_feasible};
+use super::problem::{Dep, Win};
+use super::state::State;
+use super::trace::{Category, CategoryIntervals};
+use crate::model::{AwakeMode, EffectAt};
+use crate::timeline::{Interval, IntervalSet, atomic_valid, claimable_valid, cumulative_valid};
+
+impl State<'_> {
+    /// Valid starts of every phase-1 category for activity `a` with duration `d`.
+    pub fn phase1(&self, a: usize, d: i64, scope: &Scope) -> Vec<CategoryIntervals> {
+        self.phase1_in(a, d, scope, self.pb.h0, self.pb.h1)
+    }
+
+    /// Whether start `s` with duration `d` satisfies every phase-1 category but
+    /// execution: the point version of [`State::phase1_in`] (which debug builds
+    /// check it against), stopping at the first category that fails.
+    pub(super) fn phase1_point(&self, a: usize, s: i64, d: i64, scope: &Scope) -> bool {
+        let ok = self.phase1_point_unchecked(a, s, d, scope);
+        debug_assert_eq!(
+            ok,
+            self.phase1_in(a, d, scope, s, s)
+                .iter()
+                .filter(|c| c.category != Category::Execution)
+                .all(|c| c.valid.contains(s)),
+            "phase1_point disagrees with phase1_in at {s}"
+        );
+        ok
+    }
+
+    fn phase1_point_unchecked(&self, a: usize, s: i64, d: i64, scope: &Scope) -> bool {
+        let pb = self.pb;
+        let act = &pb.acts[a];
+        let e = s.saturating_add(d);
+        let overlaps = |x: i64, y: i64| x < e && s < y;
+        // dependency
+        let in_range = |x: &Dep| {
+            self.dependency_range(x)
+                .is_some_and(|(lo, hi)| lo <= s && s <= hi)
+        };
+        if !act
+            .after
+            .iter()
+            .enumerate()
+            .all(|(k, x)| scope.skip_deps.contains(&k) || in_range(x))
+        {
+            return false;
+        }
+        // unit_resource
+        if act
+            .resources
+            .iter()
+            .any(|&r| self.busy[r].iter().any(|&(x, y)| overlaps(x, y)))
+        {
+            return false;
+        }
+        // sequence_engines
+        if let (Some(cap), true) = (pb.engines, act.engines > 0) {
+            if self
+                .engines
+                .max_on(s, e)
+                .is_some_and(|(v, _)| v > cap - act.engines)
+            {
+                return false;
+            }
+        }
+        // uhf
+        if self.uhf_busy(a).any(|(x, y)| overlaps(x, y)) {
+            return false;
+        }
+        // state_requirement, state_effect, data_volume: as phase 1 does them.
+        self.phase1_states_data(a, d, scope, s, s)
+            .iter()
+            .all(|c| c.1.contains(s))
+    }
+
+    /// Phase 1 restricted to starts in `[lo, hi]`.
+    pub(crate) fn phase1_in(
+        &self,
+        a: usize,
+        d: i64,
+        scope: &Scope,
+        lo: i64,
+        hi: i64,
+    ) -> Vec<CategoryIntervals> {
+        let pb = self.pb;
+        let act = &pb.acts[a];
+        let all = || IntervalSet::single(lo, hi);
+        let mut out = Vec::with_capacity(8);
+        // execution
+        let exec: IntervalSet = act
+            .windows
+            .iter()
+            .map(|w| self.window_range(a, w, d))
+            .collect();
+        out.push((Category::Execution, exec));
+        // dependency
+        let mut dep = all();
+        for (_, x) in act
+            .after
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| !scope.skip_deps.contains(k))
+        {
+            match self.dependency_range(x) {
+                Some((lo, hi)) => dep = dep.clip(lo, hi),
+                None => dep = IntervalSet::empty(),
+            }
+        }
+        out.push((Category::Dependency, dep));
+        // unit_resource
+        let mut res = all();
+        for &r in &act.resources {
+            res = res.intersect(&atomic_valid(&self.busy[r], d, lo, hi));
+        }
+        out.push((Category::UnitResource, res));
+        // sequence_engines
+        let eng = match pb.engines {
+            Some(cap) if act.engines > 0 => {
+                claimable_valid(&self.engines, cap - act.engines, d, lo, hi)
+            }
+            _ => all(),
+        };
+        out.push((Category::SequenceEngines, eng));
+        out.extend(self.phase1_states_data(a, d, scope, lo, hi));
+        // uhf
+        let busy: Vec<(i64, i64)> = self.uhf_busy(a).collect();
+        out.push((Category::Uhf, atomic_valid(&busy, d, lo, hi)));
+        out.into_iter()
+            .map(|(category, valid)| CategoryIntervals { category, valid })
+            .collect()
+    }
+
+    /// The starts a dependency allows, `[target end + min_delay, target end +
+    /// max_delay]`; `None` while its target is not placed.
+    fn dependency_range(&self, x: &Dep) -> Option<(i64, i64)> {
+        let (_, end) = self.placed[x.target]?;
+        let lo = end.saturating_add(x.min_delay);
+        let hi = x.max_delay.map_or(i64::MAX, |m| end.saturating_add(m));
+        Some((lo, hi))
+    }
+
+    /// The placed intervals activity `a` may not overlap on UHF grounds: comm
+    /// activities of a kind it does not allow, and, for a comm activity, activities
+    /// that do not allow its kind.
+    fn uhf_busy(&self, a: usize) -> impl Iterator<Item = (i64, i64)> + '_ {
+        let pb = self.pb;
+        let act = &pb.acts[a];
+        let comms = self
+            .comms
+            .iter()
+            .filter(move |c| !act.allows(c.2))
+            .map(|c| (c.0, c.1));
+        let restricted = act.comm.into_iter().flat_map(move |kind| {
+            self.restricted
+                .iter()
+                .filter(move |r| !pb.acts[r.2].allows(kind))
+                .map(|r| (r.0, r.1))
+        });
+        comms.chain(restricted)
+    }
+
+    /// The state_requirement, state_effect and data_volume categories of phase 1
+    /// over starts in `[lo, hi]`.
+    fn phase1_states_data(
+        &self,
+        a: usize,
+        d: i64,
+        scope: &Scope,
+        lo: i64,
+        hi: i64,
+    ) -> [(Category, IntervalSet); 3] {
+        let pb = self.pb;
+        let act = &pb.acts[a];
+        let all = || IntervalSet::single(lo, hi);
+        // state_requirement
+        let mut req = all();
+        for (_, &(st, v)) in act
+            .requires
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| !scope.skip_reqs.contains(k))
+        {
+            req = req.intersect(&self.states[st].requirement_valid(v, d, lo, hi));
+        }
+        // state_effect
+        let mut eff = all();
+        let mut states: Vec<usize> = act.effects.iter().map(|e| e.0).collect();
+        states.sort_unstable();
+        states.dedup();
+        for st in states {
+            let mut own: Vec<(i64, usize)> = act
+                .effects
+                .iter()
+                .filter(|e| e.0 == st)
+                .map(|e| (if e.2 == EffectAt::Start { 0 } else { d }, e.1))
+                .collect();
+            own.sort_unstable();
+            eff = eff.intersect(&self.states[st].effect_valid(&own, lo, hi));
+        }
+        // data_volume
+        let mut data = all();
+        if let (true, Some(cap)) = (act.data > 0, pb.data_cap) {
+            data = self.data_valid(act.data, d, cap, lo, hi);
+        }
+        // The handover limit binds every optional activity, even one producing
+        // nothing, once the placed activities have exceeded it.
+        if let (false, Some(ht), Some(max)) = (act.mandatory, pb.handover_time, pb.handover_data) {
+            let range = (pb.h0, ht);
+            data = data.intersect(&cumulative_valid(
+                self.produced,
+                max,
+                act.data,
+                d,
+                range,
+                (lo, hi),
+            ));
+        }
+        [
+            (Category::StateRequirement, req),
+            (Category::StateEffect, eff),
+            (Category::DataVolume, data),
+        ]
+    }
+
+    /// The execution range of window `w` of activity `a` for duration `d`: the
+    /// window, its cutoff, the plan bounds, and for an activity that needs the rover
+    /// awake room for the wakeup before and the shutdown after it.
+    pub fn window_range(&self, a: usize, w: &Win, d: i64) -> Interval {
+        let pb = self.pb;
+        let (wake, shut) = if pb.acts[a].awake == AwakeMode::Required {
+            (pb.wake, pb.shut)
+        } else {
+            (0, 0)
+        };
+        let lo = w.start.max(pb.h0.saturating_add(wake));
+        let mut hi = w.end.min(pb.h1.saturating_sub(d).saturating_sub(shut));
+        if let Some(c) = w.cutoff {
+            hi = hi.min(c.saturating_sub(d));
+        }
+        Interval::new(lo, hi)
+    }
+
+    /// Starts where adding `rate` bit/s over `[s, s + d)` keeps the volume <= `cap`.
+    fn data_valid(&self, rate: i64, d: i64, cap: i128, lo: i64, hi: i64) -> IntervalSet {
+        let margin = |s: i64| self.data.check(&[(s, s + d, rate)], None).min + cap;
+        if lo == hi {
+            return if margin(lo) >= 0 {
+                IntervalSet::single(lo, lo)
+            } else {
+                IntervalSet::empty()
+            };
+        }
+        // Only breakpoints that a piece starting in [lo, hi] can reach split cells
+        // (the breakpoints are sorted).
+        let all = self.data.breakpoints();
+        let near =
+            &all[all.partition_point(|&x| x < lo)..all.partition_point(|&x| x <= hi + d + 1)];
+        let mut points: Vec<i64> = Vec::with_capacity(near.len() * 4);
+        for &x in near {
+            for o in [0, d] {
+                points.extend([x - o, x - o + 1]);
+            }
+        }
+        let mut feasible = Vec::new();
+        for (a, b) in cells(&IntervalSet::single(lo, hi), points) {
+            if let Some(iv) = concave_feasible(a, b, &margin).0 {
+                feasible.push(iv);
+            }
+        }
+        IntervalSet::from_intervals(feasible)
+    }
+}
