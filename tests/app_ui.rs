@@ -181,10 +181,7 @@ fn unsaved_edits_are_guarded_on_open() {
     h.run_steps(3);
     assert!(h.state().doc.dirty);
     let edited = h.state().doc.plan.clone();
-    let other = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/assets/examples/pitfall.json"
-    );
+    let other = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/examples/pitfall.json");
     h.state_mut().push(Command::Open(other.into()));
     h.run_steps(3);
     assert!(h.query_by_label("Unsaved changes").is_some());

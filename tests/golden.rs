@@ -37,7 +37,10 @@ const ALL: Commands = &[
 /// plan, issue 10): the explanation without suggestions.
 const NO_SUGGESTIONS: Commands = &[
     (&["schedule"], "schedule.json"),
-    (&["explain", "--no-suggestions"], "explain-no-suggestions.json"),
+    (
+        &["explain", "--no-suggestions"],
+        "explain-no-suggestions.json",
+    ),
     (
         &["explain", "--text", "--no-suggestions"],
         "explain-no-suggestions.txt",
