@@ -1,16 +1,109 @@
 //! Commands: what the UI asks for. Views only read the model and push commands;
 //! `SolscopeApp::apply` carries them out after the frame, so nothing changes
 //! mid-draw.
+//!
+//! As in rerun's `UICommand`, the commands a user gives by name ([`UiCommand`]:
+//! menu items, toolbar buttons, keys) carry no payload and own their label and
+//! keyboard shortcut, so a button and its key cannot drift apart. Everything else
+//! is a [`Command`] with its payload.
 
 use std::path::PathBuf;
 
+use eframe::egui::{Key, KeyboardShortcut, Modifiers};
 use serde_json::{Map, Value};
 
 use super::time_axis::TimeAxis;
 
+/// A command the user gives by name: its label is the button's text (and
+/// accessibility label), its shortcut the key that does the same.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UiCommand {
+    /// Choose a plan file to open (guarded when there are unsaved changes).
+    Open,
+    /// Save to the current file (or ask where).
+    Save,
+    /// Save to a new file (asks where).
+    SaveAs,
+    /// Write the schedule JSON (asks where).
+    ExportSchedule,
+    /// Write the current view as PNG (asks where; the host renders it).
+    ExportPng,
+    /// Quit (guarded when there are unsaved changes).
+    Quit,
+    /// Undo the last edit.
+    Undo,
+    /// Redo the last undone edit.
+    Redo,
+    /// Show the state before step 1.
+    FirstStep,
+    /// Show the previous step.
+    PreviousStep,
+    /// Show the next step.
+    NextStep,
+    /// Show the last step.
+    LastStep,
+}
+
+impl UiCommand {
+    /// Commands with a modifier shortcut, in the order the keyboard handling checks
+    /// them (Redo before Undo: Cmd+Shift+Z also matches Cmd+Z logically).
+    pub const WITH_MODIFIERS: [Self; 4] = [Self::Redo, Self::Undo, Self::Save, Self::Open];
+
+    /// Commands on plain keys (stepping), taken only when no text field has focus.
+    pub const PLAIN_KEYS: [Self; 4] = [
+        Self::PreviousStep,
+        Self::NextStep,
+        Self::FirstStep,
+        Self::LastStep,
+    ];
+
+    /// The text of its button or menu item (also its accessibility label).
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Open => "Open…",
+            Self::Save => "Save",
+            Self::SaveAs => "Save as…",
+            Self::ExportSchedule => "Export schedule JSON…",
+            Self::ExportPng => "Export view as PNG…",
+            Self::Quit => "Quit",
+            Self::Undo => "Undo",
+            Self::Redo => "Redo",
+            Self::FirstStep => "|< First",
+            Self::PreviousStep => "< Previous",
+            Self::NextStep => "Next >",
+            Self::LastStep => "Last >|",
+        }
+    }
+
+    /// Its keyboard shortcut, if any.
+    pub fn kb_shortcut(self) -> Option<KeyboardShortcut> {
+        let cmd = |key| Some(KeyboardShortcut::new(Modifiers::COMMAND, key));
+        let plain = |key| Some(KeyboardShortcut::new(Modifiers::NONE, key));
+        match self {
+            Self::Open => cmd(Key::O),
+            Self::Save => cmd(Key::S),
+            Self::Undo => cmd(Key::Z),
+            Self::Redo => Some(KeyboardShortcut::new(
+                Modifiers {
+                    shift: true,
+                    ..Modifiers::COMMAND
+                },
+                Key::Z,
+            )),
+            Self::FirstStep => plain(Key::Home),
+            Self::PreviousStep => plain(Key::ArrowLeft),
+            Self::NextStep => plain(Key::ArrowRight),
+            Self::LastStep => plain(Key::End),
+            Self::SaveAs | Self::ExportSchedule | Self::ExportPng | Self::Quit => None,
+        }
+    }
+}
+
 /// A request from the UI.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Command {
+    /// A command given by name (button, menu item or key).
+    Ui(UiCommand),
     /// Show the state after this step.
     SetStep(usize),
     /// Start or stop stepping automatically.
@@ -34,34 +127,31 @@ pub enum Command {
         /// For the banner and undo.
         description: String,
     },
-    /// Undo the last edit.
-    Undo,
-    /// Redo the last undone edit.
-    Redo,
     /// Open a plan file (guarded when there are unsaved changes).
     Open(PathBuf),
-    /// Choose a plan file to open.
-    OpenDialog,
-    /// Save to the current file (or ask where).
-    Save,
-    /// Save to a new file (`None`: ask where).
-    SaveAs(Option<PathBuf>),
-    /// Write the schedule JSON (`None`: ask where).
-    ExportSchedule(Option<PathBuf>),
-    /// Write the current view as PNG (`None`: ask where).
-    ExportPng(Option<PathBuf>),
+    /// Save the plan to this file (the host sends it once a file is chosen).
+    SaveTo(PathBuf),
+    /// Write the schedule JSON to this file (the host sends it once a file is
+    /// chosen).
+    ExportScheduleTo(PathBuf),
     /// Dark (true) or light theme.
     SetDark(bool),
     /// Gantt rows per unit resource (true) or packed lanes.
     GroupByResource(bool),
     /// Filter activities by id or name.
     SetFilter(String),
+    /// Show an error message (bad input in a view, a failed write in the host).
+    ShowError(String),
     /// Hide the outcome banner.
     DismissBanner,
     /// Hide the error message.
     DismissError,
     /// Answer the unsaved-changes question (true: discard and go on).
     ConfirmDiscard(bool),
-    /// Quit (guarded when there are unsaved changes).
-    Quit,
+}
+
+impl From<UiCommand> for Command {
+    fn from(cmd: UiCommand) -> Self {
+        Self::Ui(cmd)
+    }
 }

@@ -97,11 +97,6 @@ impl Document {
         !self.redo.is_empty()
     }
 
-    /// The plan as pretty JSON (what Save writes).
-    pub fn to_json(&self) -> String {
-        serde_json::to_string_pretty(&self.plan).unwrap_or_default() + "\n"
-    }
-
     fn refresh_warnings(&mut self) {
         self.warnings = solscope_engine::validate(&self.plan).unwrap_or_default();
     }

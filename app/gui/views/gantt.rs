@@ -6,9 +6,9 @@
 use eframe::egui::{self, Align2, Color32, FontId, Pos2, Rect, Sense, Stroke, StrokeKind};
 use solscope_engine::GeneratedKind;
 
-use super::{Model, Status};
+use super::{Model, Status, ViewCache};
+use crate::gui::commands::Command;
 use crate::gui::theme::{LABEL_MIN_WIDTH, LABEL_WIDTH, LANE_GAP, LANE_HEIGHT};
-use crate::gui::{Command, UiState};
 
 /// One bar.
 #[derive(Clone, Debug)]
@@ -231,10 +231,10 @@ pub struct GanttRows {
 }
 
 /// The Gantt chart.
-pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
-    let k = st.step;
+pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &mut Vec<Command>) {
+    let k = m.nav.step;
     let key = (m.revision, k, m.persisted.by_resource, m.theme.scheduled);
-    let rows = match st.gantt.take() {
+    let rows = match cache.gantt.take() {
         Some(cached) if cached.key == key => cached.rows,
         _ => rows(m, k),
     };
@@ -247,13 +247,13 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut V
         response.on_hover_text("Click a bar to inspect it; drag to pan; Ctrl+wheel to zoom");
     response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, "Gantt chart"));
     // Share the plots' data area (last frame) so one time is one x everywhere.
-    let (left, right) = st
+    let (left, right) = cache
         .plot_x
         .filter(|(l, r)| *l > rect.left() && *r <= rect.right() + 1.0 && r > l)
         .unwrap_or((rect.left() + LABEL_WIDTH, rect.right()));
     let timeline = Rect::from_min_max(Pos2::new(left, rect.top()), Pos2::new(right, rect.bottom()));
     let painter = ui.painter_at(rect);
-    let axis = st.axis;
+    let axis = m.nav.axis;
     let bounds = (
         m.doc.plan.horizon.start as f64,
         m.doc.plan.horizon.end as f64,
@@ -295,8 +295,8 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut V
             }
             let x0 = axis.x(bar.start, timeline).max(f64::from(timeline.left()));
             let x1 = axis.x(bar.end, timeline).min(f64::from(timeline.right()));
-            let marked =
-                bar.activity.is_some() && (bar.activity == current || bar.activity == st.selected);
+            let marked = bar.activity.is_some()
+                && (bar.activity == current || bar.activity == m.nav.selected);
             let (lo, hi, color) = painted;
             if bar.color == color && lo <= x0 && x1 <= hi && !marked {
                 continue;
@@ -323,7 +323,7 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut V
             );
             painter.rect_filled(r, 2.0, bar.color);
             let is_current = bar.activity.is_some() && bar.activity == current;
-            let is_selected = bar.activity.is_some() && bar.activity == st.selected;
+            let is_selected = bar.activity.is_some() && bar.activity == m.nav.selected;
             if is_current {
                 painter.rect_stroke(
                     r,
@@ -367,7 +367,7 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut V
         flush(merged);
     }
     // The current time probe.
-    if let Some(t) = st.probe {
+    if let Some(t) = m.nav.probe {
         let x = axis.x(t as f64, timeline) as f32;
         painter.vline(x, timeline.y_range(), Stroke::new(1.0, m.theme.current));
     }
@@ -395,12 +395,14 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut V
             }
         }
     }
-    st.gantt = Some(GanttRows { key, rows });
+    cache.gantt = Some(GanttRows { key, rows });
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    // The tests drive the whole app (test code only: the views themselves never
+    // reach up into it).
     use crate::gui::SolscopeApp;
 
     fn model(app: &SolscopeApp) -> Model<'_> {
@@ -414,6 +416,9 @@ mod tests {
             revision: app.revision,
             explanation: None,
             valid: None,
+            nav: app.ui.navigation(),
+            filter: &app.ui.filter,
+            messages: app.ui.messages(),
         }
     }
 
@@ -456,7 +461,7 @@ mod tests {
         let check = |app: &mut SolscopeApp| {
             let mut out = ctx.run_ui(egui::RawInput::default(), |ui| app.frame_ui(ui));
             out.textures_delta.clear();
-            let cached = app.ui.gantt.clone().expect("rows kept");
+            let cached = app.view_cache.gantt.clone().expect("rows kept");
             assert_eq!(shape(&cached.rows), shape(&rows(&model(app), app.ui.step)));
         };
         check(&mut app);

@@ -6,13 +6,19 @@ use serde_json::{Map, Value};
 use solscope_engine::{CategoryIntervals, Phase, Phase2Reason, explanation_notes, suggestion_line};
 
 use super::{Model, Status};
+use crate::gui::commands::Command;
+use crate::gui::state::TextBuffers;
 use crate::gui::theme::LABEL_WIDTH;
-use crate::gui::{Command, UiState};
 
 /// The right-hand panel.
-pub fn inspector_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
+pub fn inspector_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    st: &mut TextBuffers<'_>,
+    cmds: &mut Vec<Command>,
+) {
     ui.heading("Inspector");
-    match st.selected {
+    match m.nav.selected {
         None => {
             ui.label("Select an activity in the list or on the Gantt chart.");
         }
@@ -29,7 +35,7 @@ pub fn inspector_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &m
 fn activity_ui(
     ui: &mut egui::Ui,
     m: &Model<'_>,
-    st: &mut UiState,
+    st: &mut TextBuffers<'_>,
     a: usize,
     cmds: &mut Vec<Command>,
 ) {
@@ -37,7 +43,7 @@ fn activity_ui(
     let step = m.analysis.schedule.step_of(a);
     ui.label(RichText::new(m.label(a)).strong());
     let own_step = step.map_or(0, |s| s.step);
-    let status = match m.status(a, st.step) {
+    let status = match m.status(a, m.nav.step) {
         Status::Scheduled(s, e) => format!("scheduled {} – {}", m.time(s), m.time(e)),
         Status::Failed => "failed".into(),
         Status::Skipped => "skipped".into(),
@@ -71,7 +77,7 @@ fn activity_ui(
             ))
             .strong(),
         );
-        intervals_ui(ui, m, st, &cats);
+        intervals_ui(ui, m, &cats);
     }
 
     if let Some(ex) = m.explanation {
@@ -189,7 +195,7 @@ fn activity_ui(
 }
 
 /// One row per category with its valid starts, then their intersection.
-fn intervals_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &UiState, cats: &[CategoryIntervals]) {
+fn intervals_ui(ui: &mut egui::Ui, m: &Model<'_>, cats: &[CategoryIntervals]) {
     let row_h = 10.0;
     let n = cats.len() + 1;
     let (rect, _) = ui.allocate_exact_size(
@@ -199,7 +205,7 @@ fn intervals_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &UiState, cats: &[Category
     let painter = ui.painter_at(rect);
     let label_w = LABEL_WIDTH.min(rect.width() / 3.0);
     let track = Rect::from_min_max(Pos2::new(rect.left() + label_w, rect.top()), rect.max);
-    let axis = st.axis;
+    let axis = m.nav.axis;
     let font = egui::FontId::proportional(9.0);
     let mut inter =
         solscope_engine::IntervalSet::single(m.doc.plan.horizon.start, m.doc.plan.horizon.end);
@@ -244,7 +250,7 @@ fn intervals_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &UiState, cats: &[Category
 fn json_field_ui(
     ui: &mut egui::Ui,
     m: &Model<'_>,
-    st: &mut UiState,
+    st: &mut TextBuffers<'_>,
     target: &str,
     key: &str,
     current: Option<&Value>,
@@ -318,17 +324,17 @@ const ACTIVITY_FIELDS: [&str; 18] = [
     "group",
 ];
 
-fn reset_buffers_if_stale(st: &mut UiState, key: (Option<usize>, u64)) {
-    if st.editor_for != Some(key) {
+fn reset_buffers_if_stale(st: &mut TextBuffers<'_>, key: (Option<usize>, u64)) {
+    if *st.editor_for != Some(key) {
         st.editor.clear();
-        st.editor_for = Some(key);
+        *st.editor_for = Some(key);
     }
 }
 
 fn activity_editor_ui(
     ui: &mut egui::Ui,
     m: &Model<'_>,
-    st: &mut UiState,
+    st: &mut TextBuffers<'_>,
     a: usize,
     cmds: &mut Vec<Command>,
 ) {
@@ -345,8 +351,13 @@ fn activity_editor_ui(
         });
 }
 
-fn plan_editor_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
-    if st.selected.is_none() {
+fn plan_editor_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    st: &mut TextBuffers<'_>,
+    cmds: &mut Vec<Command>,
+) {
+    if m.nav.selected.is_none() {
         reset_buffers_if_stale(st, (None, m.revision));
     }
     let value = serde_json::to_value(&m.doc.plan).unwrap_or(Value::Null);

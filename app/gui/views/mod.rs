@@ -1,5 +1,10 @@
-//! The views. Each `*_ui` function reads the model and pushes commands; only
-//! widget state in [`UiState`] is written while drawing.
+//! The views. Each `*_ui` function reads the [`Model`] and pushes commands; the
+//! only state written while drawing is widget state ([`Widgets`]: text buffers and
+//! what the views keep between frames).
+//!
+//! The views see the app only through this interface: they import the lower
+//! modules (`commands`, `document`, `state`, `theme`, `time_axis`), never the app,
+//! its derived-value cache or the host.
 
 mod gantt;
 pub use gantt::GanttRows;
@@ -9,11 +14,11 @@ mod plots;
 use eframe::egui::{self, RichText};
 use solscope_engine::{Outcome, Suggestion};
 
-use super::{
-    Analysis, Command, Derived, Document, Pending, Persisted, SolscopeApp, StepView, Theme,
-    TimeAxis, UiState,
-};
-use crate::gui::theme::INSPECTOR_WIDTH;
+use crate::gui::commands::{Command, UiCommand};
+use crate::gui::document::{Analysis, Document};
+use crate::gui::state::{Messages, Navigation, Pending, Persisted, StepView, TextBuffers};
+use crate::gui::theme::{INSPECTOR_WIDTH, Theme};
+use crate::gui::time_axis::TimeAxis;
 
 /// Read-only view of the app for one frame.
 pub struct Model<'a> {
@@ -35,6 +40,31 @@ pub struct Model<'a> {
     pub explanation: Option<&'a solscope_engine::Explanation>,
     /// Valid intervals of the selected activity at its own step (full horizon).
     pub valid: Option<&'a [solscope_engine::CategoryIntervals]>,
+    /// Where the user is: step, selection, visible range, probe.
+    pub nav: Navigation,
+    /// Activity filter text.
+    pub filter: &'a str,
+    /// The outcome banner, the error and the unsaved-changes question.
+    pub messages: Messages<'a>,
+}
+
+/// What the views keep between frames (their own, not the app's).
+#[derive(Clone, Debug, Default)]
+pub struct ViewCache {
+    /// Screen x range of the plots' data area last frame: the Gantt's timeline
+    /// uses the same, so one time maps to one x everywhere.
+    pub plot_x: Option<(f32, f32)>,
+    /// The Gantt rows last built, with what they were built for.
+    pub gantt: Option<GanttRows>,
+}
+
+/// The state the views write while drawing, for one frame.
+#[derive(Debug)]
+pub struct Widgets<'a> {
+    /// Text buffers of the range fields and the editor.
+    pub text: TextBuffers<'a>,
+    /// What the views keep between frames.
+    pub cache: &'a mut ViewCache,
 }
 
 /// Status of activity `a` as of step `k`.
@@ -85,57 +115,55 @@ impl Model<'_> {
     }
 }
 
-const UNDO: egui::KeyboardShortcut =
-    egui::KeyboardShortcut::new(egui::Modifiers::COMMAND, egui::Key::Z);
-const REDO: egui::KeyboardShortcut = egui::KeyboardShortcut::new(
-    egui::Modifiers {
-        shift: true,
-        ..egui::Modifiers::COMMAND
-    },
-    egui::Key::Z,
-);
-const SAVE: egui::KeyboardShortcut =
-    egui::KeyboardShortcut::new(egui::Modifiers::COMMAND, egui::Key::S);
-const OPEN: egui::KeyboardShortcut =
-    egui::KeyboardShortcut::new(egui::Modifiers::COMMAND, egui::Key::O);
-
-/// Keyboard: undo/redo, save/open, and stepping (Left/Right, Home/End) when no
-/// text field has focus.
-pub fn shortcuts(ui: &mut egui::Ui, app: &SolscopeApp, cmds: &mut Vec<Command>) {
-    if ui.input_mut(|i| i.consume_shortcut(&REDO)) {
-        cmds.push(Command::Redo);
-    } else if ui.input_mut(|i| i.consume_shortcut(&UNDO)) {
-        cmds.push(Command::Undo);
-    }
-    if ui.input_mut(|i| i.consume_shortcut(&SAVE)) {
-        cmds.push(Command::Save);
-    }
-    if ui.input_mut(|i| i.consume_shortcut(&OPEN)) {
-        cmds.push(Command::OpenDialog);
+/// Keyboard: the shortcuts of the [`UiCommand`]s (undo/redo, save/open), and
+/// stepping (Left/Right, Home/End) when no text field has focus.
+pub fn shortcuts(ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+    let mut undo_redo = false;
+    for cmd in UiCommand::WITH_MODIFIERS {
+        let Some(shortcut) = cmd.kb_shortcut() else {
+            continue;
+        };
+        // One of undo and redo per frame (redo is checked first).
+        let is_undo_redo = matches!(cmd, UiCommand::Undo | UiCommand::Redo);
+        if is_undo_redo && undo_redo {
+            continue;
+        }
+        if ui.input_mut(|i| i.consume_shortcut(&shortcut)) {
+            undo_redo |= is_undo_redo;
+            cmds.push(cmd.into());
+        }
     }
     if ui.ctx().egui_wants_keyboard_input() {
         return;
     }
-    let (k, n) = (app.ui.step, app.analysis.steps());
-    let (left, right, home, end) = ui.input(|i| {
-        (
-            i.key_pressed(egui::Key::ArrowLeft),
-            i.key_pressed(egui::Key::ArrowRight),
-            i.key_pressed(egui::Key::Home),
-            i.key_pressed(egui::Key::End),
-        )
-    });
-    if left && k > 0 {
-        cmds.push(Command::SetStep(k - 1));
+    for cmd in UiCommand::PLAIN_KEYS {
+        if let Some(shortcut) = cmd.kb_shortcut() {
+            if ui.input(|i| i.key_pressed(shortcut.logical_key)) {
+                cmds.push(cmd.into());
+            }
+        }
     }
-    if right && k < n {
-        cmds.push(Command::SetStep(k + 1));
+}
+
+/// A button that gives `cmd` (its label is the command's).
+fn command_button(ui: &mut egui::Ui, cmd: UiCommand, enabled: bool, cmds: &mut Vec<Command>) {
+    if ui
+        .add_enabled(enabled, egui::Button::new(cmd.label()))
+        .clicked()
+    {
+        cmds.push(cmd.into());
     }
-    if home {
-        cmds.push(Command::SetStep(0));
+}
+
+/// A File menu item that gives `cmd`; its shortcut, if any, is its tooltip (the
+/// label stays the command's alone).
+fn menu_item(ui: &mut egui::Ui, cmd: UiCommand, cmds: &mut Vec<Command>) {
+    let mut resp = ui.button(cmd.label());
+    if let Some(shortcut) = cmd.kb_shortcut() {
+        resp = resp.on_hover_text(ui.ctx().format_shortcut(&shortcut));
     }
-    if end {
-        cmds.push(Command::SetStep(n));
+    if resp.clicked() {
+        cmds.push(cmd.into());
     }
 }
 
@@ -148,38 +176,17 @@ pub fn dropped_files(ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
 }
 
 /// The whole window.
-pub fn layout_ui(ui: &mut egui::Ui, app: &mut SolscopeApp, cmds: &mut Vec<Command>) {
-    // Field by field (the UI state is borrowed mutably below): only what was
-    // derived for the selected activity at this revision.
-    let (selected, revision) = (app.ui.selected, app.revision);
-    let m = Model {
-        doc: &app.doc,
-        analysis: &app.analysis,
-        theme: app.theme,
-        step_view: &app.step_view,
-        persisted: &app.persisted,
-        suggestions: selected
-            .and_then(|a| Derived::get(&app.suggestions, a, revision))
-            .map(Vec::as_slice),
-        revision,
-        explanation: selected
-            .and_then(|a| Derived::get(&app.explanation, a, revision))
-            .and_then(Option::as_ref),
-        valid: selected
-            .and_then(|a| Derived::get(&app.valid, a, revision))
-            .map(Vec::as_slice),
-    };
-    let st = &mut app.ui;
+pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &mut Vec<Command>) {
     egui::Panel::top("toolbar").show(ui, |ui| {
-        toolbar_ui(ui, &m, st, cmds);
-        steps_ui(ui, &m, st, cmds);
-        banner_ui(ui, &m, st, cmds);
+        toolbar_ui(ui, m, cmds);
+        steps_ui(ui, m, cmds);
+        banner_ui(ui, m, cmds);
     });
     egui::Panel::left("activities")
         .resizable(true)
         .default_size(230.0)
         .show(ui, |ui| {
-            activities_ui(ui, &m, st, cmds);
+            activities_ui(ui, m, cmds);
         });
     egui::Panel::right("inspector")
         .resizable(false)
@@ -188,39 +195,33 @@ pub fn layout_ui(ui: &mut egui::Ui, app: &mut SolscopeApp, cmds: &mut Vec<Comman
             egui::ScrollArea::vertical()
                 .auto_shrink([false; 2])
                 .show(ui, |ui| {
-                    inspector::inspector_ui(ui, &m, st, cmds);
+                    inspector::inspector_ui(ui, m, &mut w.text, cmds);
                 });
         });
     egui::CentralPanel::default().show(ui, |ui| {
-        axis_ui(ui, &m, st, cmds);
+        axis_ui(ui, m, w.text.range_text, cmds);
         egui::ScrollArea::vertical()
             .auto_shrink([false; 2])
             .show(ui, |ui| {
-                gantt::gantt_ui(ui, &m, st, cmds);
-                plots::plots_ui(ui, &m, st, cmds);
+                gantt::gantt_ui(ui, m, w.cache, cmds);
+                plots::plots_ui(ui, m, w.cache, cmds);
             });
     });
-    confirm_ui(ui, st, cmds);
+    confirm_ui(ui, m, cmds);
 }
 
 /// File actions, undo/redo, theme, search.
-fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
+fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
     ui.horizontal_wrapped(|ui| {
         ui.menu_button("File", |ui| {
-            if ui.button("Open…").clicked() {
-                cmds.push(Command::OpenDialog);
-            }
-            if ui.button("Save").clicked() {
-                cmds.push(Command::Save);
-            }
-            if ui.button("Save as…").clicked() {
-                cmds.push(Command::SaveAs(None));
-            }
-            if ui.button("Export schedule JSON…").clicked() {
-                cmds.push(Command::ExportSchedule(None));
-            }
-            if ui.button("Export view as PNG…").clicked() {
-                cmds.push(Command::ExportPng(None));
+            for cmd in [
+                UiCommand::Open,
+                UiCommand::Save,
+                UiCommand::SaveAs,
+                UiCommand::ExportSchedule,
+                UiCommand::ExportPng,
+            ] {
+                menu_item(ui, cmd, cmds);
             }
             if !m.persisted.recent.is_empty() {
                 ui.separator();
@@ -232,22 +233,10 @@ fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec
                 }
             }
             ui.separator();
-            if ui.button("Quit").clicked() {
-                cmds.push(Command::Quit);
-            }
+            menu_item(ui, UiCommand::Quit, cmds);
         });
-        if ui
-            .add_enabled(m.doc.can_undo(), egui::Button::new("Undo"))
-            .clicked()
-        {
-            cmds.push(Command::Undo);
-        }
-        if ui
-            .add_enabled(m.doc.can_redo(), egui::Button::new("Redo"))
-            .clicked()
-        {
-            cmds.push(Command::Redo);
-        }
+        command_button(ui, UiCommand::Undo, m.doc.can_undo(), cmds);
+        command_button(ui, UiCommand::Redo, m.doc.can_redo(), cmds);
         let dark = !m.persisted.light;
         if ui
             .button(if dark { "Light theme" } else { "Dark theme" })
@@ -271,54 +260,47 @@ fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec
         ui.label(format!("{} of {n} scheduled, {failed} not", n - failed));
         ui.separator();
         let label = ui.label("Search");
-        let mut filter = st.filter.clone();
+        let mut filter = m.filter.to_owned();
         if ui
             .add(egui::TextEdit::singleline(&mut filter).desired_width(140.0))
             .labelled_by(label.id)
             .changed()
         {
-            st.filter = filter;
+            cmds.push(Command::SetFilter(filter));
         }
     });
 }
 
 /// The step slider and its buttons.
-fn steps_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
+fn steps_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
     let n = m.analysis.steps();
+    let nav = m.nav;
     ui.horizontal_wrapped(|ui| {
-        if ui.button("|< First").clicked() {
-            cmds.push(Command::SetStep(0));
-        }
-        if ui.button("< Previous").clicked() && st.step > 0 {
-            cmds.push(Command::SetStep(st.step - 1));
-        }
+        command_button(ui, UiCommand::FirstStep, true, cmds);
+        command_button(ui, UiCommand::PreviousStep, true, cmds);
         if ui
-            .button(if st.playing { "Pause" } else { "Play" })
+            .button(if nav.playing { "Pause" } else { "Play" })
             .clicked()
         {
-            cmds.push(Command::Play(!st.playing));
+            cmds.push(Command::Play(!nav.playing));
         }
-        if ui.button("Next >").clicked() && st.step < n {
-            cmds.push(Command::SetStep(st.step + 1));
-        }
-        if ui.button("Last >|").clicked() {
-            cmds.push(Command::SetStep(n));
-        }
-        let mut k = st.step;
+        command_button(ui, UiCommand::NextStep, true, cmds);
+        command_button(ui, UiCommand::LastStep, true, cmds);
+        let mut k = nav.step;
         let slider = egui::Slider::new(&mut k, 0..=n).text("Step");
         if ui.add(slider).changed() {
             cmds.push(Command::SetStep(k));
         }
-        let what = match m.activity_of_step(st.step) {
+        let what = match m.activity_of_step(nav.step) {
             None => "before step 1: nothing placed".to_string(),
             Some(a) => {
-                let outcome = match m.status(a, st.step) {
+                let outcome = match m.status(a, nav.step) {
                     Status::Scheduled(s, e) => format!("scheduled {}–{}", m.time(s), m.time(e)),
                     Status::Failed => "failed".into(),
                     Status::Skipped => "skipped".into(),
                     Status::Pending => String::new(),
                 };
-                format!("step {}: {} — {outcome}", st.step, m.label(a))
+                format!("step {}: {} — {outcome}", nav.step, m.label(a))
             }
         };
         ui.label(what);
@@ -326,8 +308,8 @@ fn steps_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<C
 }
 
 /// The outcome of the last edit, and the last error.
-fn banner_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
-    if let Some(diff) = &st.banner {
+fn banner_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
+    if let Some(diff) = m.messages.banner {
         egui::Frame::new()
             .fill(m.theme.banner)
             .inner_margin(4.0)
@@ -340,7 +322,7 @@ fn banner_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<
                 });
             });
     }
-    if let Some(err) = &st.error {
+    if let Some(err) = m.messages.error {
         ui.horizontal_wrapped(|ui| {
             ui.label(RichText::new(err).color(m.theme.error));
             if ui.button("Dismiss error").clicked() {
@@ -351,9 +333,9 @@ fn banner_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<
 }
 
 /// The activity list: search, status as of the current step, click to select.
-fn activities_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
+fn activities_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
     ui.heading("Activities");
-    let needle = st.filter.to_lowercase();
+    let needle = m.filter.to_lowercase();
     let shown: Vec<&solscope_engine::Step> = m
         .analysis
         .schedule
@@ -374,7 +356,7 @@ fn activities_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut 
             for step in &shown[rows] {
                 let a = step.activity;
                 let act = &m.doc.plan.activities[a];
-                let (mark, color) = match m.status(a, st.step) {
+                let (mark, color) = match m.status(a, m.nav.step) {
                     Status::Scheduled(..) => ("+", m.theme.scheduled),
                     Status::Failed => ("x", m.theme.failed),
                     Status::Skipped => ("-", m.theme.skipped),
@@ -384,7 +366,7 @@ fn activities_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut 
                     RichText::new(format!("{mark} {:>3} {}", step.step, act.id)).color(color);
                 let resp = ui.add(
                     egui::Button::new(text)
-                        .selected(st.selected == Some(a))
+                        .selected(m.nav.selected == Some(a))
                         .frame(false),
                 );
                 if resp.clicked() {
@@ -395,7 +377,13 @@ fn activities_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut 
 }
 
 /// Zoom/pan controls and the exact range.
-fn axis_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
+fn axis_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    range_text: &mut [String; 2],
+    cmds: &mut Vec<Command>,
+) {
+    let axis = m.nav.axis;
     let bounds = (
         m.doc.plan.horizon.start as f64,
         m.doc.plan.horizon.end as f64,
@@ -404,32 +392,31 @@ fn axis_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Co
         ui.label("Time range (plan s)");
         let l0 = ui.label("from");
         let r0 = ui
-            .add(egui::TextEdit::singleline(&mut st.range_text[0]).desired_width(80.0))
+            .add(egui::TextEdit::singleline(&mut range_text[0]).desired_width(80.0))
             .labelled_by(l0.id);
         let l1 = ui.label("to");
         let r1 = ui
-            .add(egui::TextEdit::singleline(&mut st.range_text[1]).desired_width(80.0))
+            .add(egui::TextEdit::singleline(&mut range_text[1]).desired_width(80.0))
             .labelled_by(l1.id);
         let enter = ui.input(|i| i.key_pressed(egui::Key::Enter));
         if (r0.lost_focus() || r1.lost_focus()) && enter || ui.button("Apply range").clicked() {
             match (
-                st.range_text[0].trim().parse::<f64>(),
-                st.range_text[1].trim().parse::<f64>(),
+                range_text[0].trim().parse::<f64>(),
+                range_text[1].trim().parse::<f64>(),
             ) {
                 (Ok(a), Ok(b)) if a < b => cmds.push(Command::SetAxis(TimeAxis::new(a, b))),
-                _ => {
-                    st.error =
-                        Some("Time range: enter two numbers, start < end (plan seconds)".into())
-                }
+                _ => cmds.push(Command::ShowError(
+                    "Time range: enter two numbers, start < end (plan seconds)".into(),
+                )),
             }
         }
         if ui.button("Zoom in").clicked() {
-            let mut axis = st.axis;
+            let mut axis = axis;
             axis.zoom_about((axis.start + axis.end) / 2.0, 2.0, bounds);
             cmds.push(Command::SetAxis(axis));
         }
         if ui.button("Zoom out").clicked() {
-            let mut axis = st.axis;
+            let mut axis = axis;
             axis.zoom_about((axis.start + axis.end) / 2.0, 0.5, bounds);
             cmds.push(Command::SetAxis(axis));
         }
@@ -438,15 +425,17 @@ fn axis_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Co
         }
         ui.label(format!(
             "{} – {}",
-            m.doc.plan.local_time.format_hms(st.axis.start as i64),
-            m.doc.plan.local_time.format_hms(st.axis.end as i64)
+            m.doc.plan.local_time.format_hms(axis.start as i64),
+            m.doc.plan.local_time.format_hms(axis.end as i64)
         ));
     });
 }
 
 /// "Discard unsaved changes?"
-fn confirm_ui(ui: &mut egui::Ui, st: &mut UiState, cmds: &mut Vec<Command>) {
-    let Some(pending) = &st.confirm else { return };
+fn confirm_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
+    let Some(pending) = m.messages.confirm else {
+        return;
+    };
     let what = match pending {
         Pending::Open(p) => format!("open {}", p.display()),
         Pending::Quit => "quit".into(),

@@ -5,14 +5,14 @@ use eframe::egui::{self, RichText};
 use egui_plot::{HLine, Line, Plot, PlotPoints, VLine};
 use solscope_engine::{Consumer, MJ_PER_WH, MW_PER_W, energy_consumers, peak_users};
 
-use super::Model;
+use super::{Model, ViewCache};
+use crate::gui::commands::Command;
 use crate::gui::theme::{LABEL_WIDTH, PLOT_HEIGHT};
-use crate::gui::{Command, UiState};
 
 fn plot_ui(
     ui: &mut egui::Ui,
     m: &Model<'_>,
-    st: &mut UiState,
+    cache: &mut ViewCache,
     id: &str,
     series: &[[f64; 2]],
     limits: &[(&str, f64)],
@@ -20,9 +20,9 @@ fn plot_ui(
 ) {
     let color = m.theme.scheduled;
     let limit_color = m.theme.limit;
-    let axis = st.axis;
-    let probe = st.probe;
-    let width = st
+    let axis = m.nav.axis;
+    let probe = m.nav.probe;
+    let width = cache
         .plot_x
         .map_or(f64::from(ui.available_width()), |(l, r)| f64::from(r - l));
     let points: PlotPoints = decimate(series, axis.start, axis.end, width)
@@ -56,7 +56,7 @@ fn plot_ui(
             plot_ui.pointer_coordinate()
         });
     let frame = resp.transform.frame();
-    st.plot_x = Some((frame.left(), frame.right()));
+    cache.plot_x = Some((frame.left(), frame.right()));
     if resp.response.clicked() {
         if let Some(p) = resp.inner {
             cmds.push(Command::ProbePlot(Some(p.x.round() as i64)));
@@ -110,7 +110,7 @@ pub fn decimate(series: &[[f64; 2]], start: f64, end: f64, width: f64) -> Vec<[f
 }
 
 /// The three plots and the consumers at the probed time.
-pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut Vec<Command>) {
+pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &mut Vec<Command>) {
     let plan = &m.doc.plan;
     let sv = m.step_view;
     let mut soc_limits = vec![
@@ -124,7 +124,7 @@ pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut V
     plot_ui(
         ui,
         m,
-        st,
+        cache,
         "State of charge (Wh)",
         &sv.soc,
         &soc_limits,
@@ -137,7 +137,7 @@ pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut V
         .map(|p| ("max_peak", p))
         .into_iter()
         .collect();
-    plot_ui(ui, m, st, "Peak power (W)", &sv.peak, &peak_limits, cmds);
+    plot_ui(ui, m, cache, "Peak power (W)", &sv.peak, &peak_limits, cmds);
     ui.label(RichText::new("Data volume (Mbit)").strong());
     let data_limits: Vec<(&str, f64)> = plan
         .data
@@ -148,20 +148,20 @@ pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut V
     plot_ui(
         ui,
         m,
-        st,
+        cache,
         "Data volume (Mbit)",
         &sv.data,
         &data_limits,
         cmds,
     );
 
-    let Some(t) = st.probe else {
+    let Some(t) = m.nav.probe else {
         ui.label("Click a plot to list the energy and peak-power users at that time.");
         return;
     };
     ui.horizontal(|ui| {
         ui.label(RichText::new(format!("At {}", m.time(t))).strong());
-        let mut since = st.since_full;
+        let mut since = m.nav.since_full;
         if ui.checkbox(&mut since, "since last full battery").changed() {
             cmds.push(Command::SetSinceFull(since));
         }
@@ -169,7 +169,7 @@ pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut UiState, cmds: &mut V
             cmds.push(Command::ProbePlot(None));
         }
     });
-    let (from, energy) = energy_consumers(&m.analysis.schedule, sv.step, t, st.since_full);
+    let (from, energy) = energy_consumers(&m.analysis.schedule, sv.step, t, m.nav.since_full);
     let peak = peak_users(&m.analysis.schedule, sv.step, t);
     let energy = merge_by_who(m, &energy);
     let peak = merge_by_who(m, &peak);

@@ -1,0 +1,552 @@
+//! The app: the open plan, its analysis, the UI state and the command queue; the
+//! frame loop ([`SolscopeApp::frame_ui`]) and the one place that changes any of it
+//! ([`SolscopeApp::apply`]).
+
+use std::path::{Path, PathBuf};
+
+use eframe::egui;
+use solscope_engine::{Plan, Suggestion};
+
+use super::commands::{Command, UiCommand};
+use super::derived::{DerivedCache, step_view};
+use super::document::{Analysis, Document, OutcomeDiff};
+use super::state::{Messages, Pending, Persisted, StepView, TextBuffers, UiState};
+use super::theme::Theme;
+use super::time_axis::TimeAxis;
+use super::views::{self, Model, ViewCache, Widgets};
+
+/// The plan the app opens without arguments.
+pub const DEFAULT_PLAN: &str = include_str!("../../assets/default-plan.json");
+
+/// A file dialog the host is asked to show after the frame: the app never blocks
+/// on one (headless, nobody shows it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dialog {
+    /// Choose a plan to open.
+    Open,
+    /// Choose where to save the plan.
+    SaveAs,
+    /// Choose where to write the schedule JSON.
+    ExportSchedule,
+    /// Choose where to write the view as PNG.
+    ExportPng,
+}
+
+/// The app: document, derived analysis, UI state, and the command queue.
+pub struct SolscopeApp {
+    /// The open plan.
+    pub doc: Document,
+    /// Its schedule and explanations.
+    pub analysis: Analysis,
+    /// UI state (not persisted).
+    pub ui: UiState,
+    /// Persisted settings.
+    pub persisted: Persisted,
+    /// The palette.
+    pub theme: Theme,
+    /// Profiles as of the current step.
+    pub step_view: StepView,
+    /// Verify suggestions on a worker thread (the desktop app); headless renders
+    /// and tests compute them in the frame so that what they draw is settled.
+    pub background: bool,
+    /// Bumped on every accepted change of the plan.
+    pub revision: u64,
+    /// Explanation, valid intervals and suggestions of the selected activity.
+    derived: DerivedCache,
+    /// What the views keep between frames (built rows, the plots' x range).
+    pub(crate) view_cache: ViewCache,
+    /// Time of the last automatic step.
+    last_tick: f64,
+    /// A file dialog for the host to show.
+    dialog: Option<Dialog>,
+    /// Quit was confirmed.
+    quit_now: bool,
+    commands: Vec<Command>,
+}
+
+impl std::fmt::Debug for SolscopeApp {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SolscopeApp")
+            .field("plan", &self.doc.title())
+            .field("step", &self.ui.step)
+            .finish()
+    }
+}
+
+impl SolscopeApp {
+    /// Opens a plan from JSON text.
+    pub fn from_text(text: &str, path: Option<PathBuf>) -> Result<Self, solscope_engine::Error> {
+        let doc = Document::from_text(text, path)?;
+        let analysis = Analysis::of(&doc.plan)?;
+        let axis = TimeAxis::new(doc.plan.horizon.start as f64, doc.plan.horizon.end as f64);
+        let steps = analysis.steps();
+        let step_view = step_view(&analysis, steps);
+        Ok(Self {
+            doc,
+            analysis,
+            ui: UiState::new(steps, axis),
+            persisted: Persisted::default(),
+            theme: Theme::new(true),
+            step_view,
+            background: false,
+            revision: 0,
+            derived: DerivedCache::default(),
+            view_cache: ViewCache::default(),
+            last_tick: 0.0,
+            dialog: None,
+            quit_now: false,
+            commands: Vec::new(),
+        })
+    }
+
+    /// The app on the bundled default plan.
+    pub fn with_default_plan() -> Result<Self, solscope_engine::Error> {
+        Self::from_text(DEFAULT_PLAN, None)
+    }
+
+    /// Opens `path`, or the default plan when it cannot be read; the error, if any,
+    /// is shown in the app.
+    pub fn open_or_default(path: Option<&Path>) -> Result<Self, solscope_engine::Error> {
+        let mut app = Self::with_default_plan()?;
+        if let Some(p) = path {
+            // The same path as File > Open: a bad file keeps the default plan and
+            // shows its path-named error.
+            app.open_now(p);
+        }
+        Ok(app)
+    }
+
+    /// Queues a command, carried out after the next frame.
+    pub fn push(&mut self, cmd: Command) {
+        self.commands.push(cmd);
+    }
+
+    /// Draws one frame and applies the commands it produced.
+    pub fn frame_ui(&mut self, ui: &mut egui::Ui) {
+        // Plan files may hold any text: draw a box for a missing glyph, never panic.
+        ui.ctx()
+            .set_missing_glyph_policy(egui::epaint::text::MissingGlyphPolicy::Tofu);
+        ui.ctx().set_theme(if self.persisted.light {
+            egui::Theme::Light
+        } else {
+            egui::Theme::Dark
+        });
+        self.theme = Theme::new(!self.persisted.light);
+        let mut cmds = std::mem::take(&mut self.commands);
+        views::shortcuts(ui, &mut cmds);
+        views::dropped_files(ui, &mut cmds);
+        if self.ui.playing {
+            let now = ui.input(|i| i.time);
+            if now - self.last_tick > 0.15 {
+                self.last_tick = now;
+                if self.ui.step < self.analysis.steps() {
+                    cmds.push(Command::SetStep(self.ui.step + 1));
+                } else {
+                    cmds.push(Command::Play(false));
+                }
+            }
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_millis(150));
+        }
+        if let Some(a) = self.ui.selected {
+            // Derived data, computed before drawing (never mid-draw).
+            self.explanation_for(a);
+            self.suggestions_for(a);
+            self.derived.valid_for(&self.analysis, self.revision, a);
+        }
+        self.reap_worker();
+        if self.verifying().is_some() {
+            // Poll the worker until its result is in.
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_millis(50));
+        }
+        let (m, mut w) = self.model_and_widgets();
+        views::layout_ui(ui, &m, &mut w, &mut cmds);
+        for cmd in cmds {
+            self.apply(cmd);
+        }
+    }
+
+    /// The read-only model the views draw and the widget state they may write,
+    /// for one frame (only what was derived for the selected activity at this
+    /// revision).
+    fn model_and_widgets(&mut self) -> (Model<'_>, Widgets<'_>) {
+        let (selected, revision) = (self.ui.selected, self.revision);
+        let derived = &self.derived;
+        let m = Model {
+            doc: &self.doc,
+            analysis: &self.analysis,
+            theme: self.theme,
+            step_view: &self.step_view,
+            persisted: &self.persisted,
+            suggestions: selected.and_then(|a| derived.suggestions(a, revision)),
+            revision,
+            explanation: selected.and_then(|a| derived.explanation(a, revision)),
+            valid: selected.and_then(|a| derived.valid(a, revision)),
+            nav: self.ui.navigation(),
+            filter: &self.ui.filter,
+            messages: Messages {
+                banner: self.ui.banner.as_ref(),
+                error: self.ui.error.as_deref(),
+                confirm: self.ui.confirm.as_ref(),
+            },
+        };
+        let w = Widgets {
+            text: TextBuffers {
+                range_text: &mut self.ui.range_text,
+                editor: &mut self.ui.editor,
+                editor_for: &mut self.ui.editor_for,
+            },
+            cache: &mut self.view_cache,
+        };
+        (m, w)
+    }
+
+    /// Carries out one command.
+    pub fn apply(&mut self, cmd: Command) {
+        let steps = self.analysis.steps();
+        match cmd {
+            Command::Ui(cmd) => self.run(cmd),
+            Command::SetStep(k) => self.set_step(k),
+            Command::Play(on) => {
+                if on && self.ui.step >= steps {
+                    self.set_step(0);
+                }
+                self.ui.playing = on;
+            }
+            Command::Select(a) => self.ui.selected = a,
+            Command::GoToFailureStep(a) => {
+                self.ui.selected = Some(a);
+                if let Some(k) = self.explanation_for(a).and_then(|e| e.failure_step) {
+                    self.set_step(k);
+                }
+            }
+            Command::SetAxis(axis) => {
+                self.ui.axis = axis;
+                self.ui.axis.clamp(self.bounds());
+                self.ui.sync_range_text();
+            }
+            Command::ProbePlot(t) => self.ui.probe = t,
+            Command::SetSinceFull(on) => self.ui.since_full = on,
+            Command::Edit {
+                target,
+                set,
+                description,
+            } => match solscope_engine::apply_edit(&self.doc.plan, &target, &set) {
+                Ok(plan) => self.accept_plan(plan, &description),
+                Err(e) => self.ui.error = Some(format!("{description}: not applied: {e}")),
+            },
+            Command::Open(path) => {
+                if self.doc.dirty {
+                    self.ui.confirm = Some(Pending::Open(path));
+                } else {
+                    self.open_now(&path);
+                }
+            }
+            Command::SaveTo(path) => self.save_to(&path),
+            Command::ExportScheduleTo(path) => self.export_schedule_to(&path),
+            Command::SetDark(dark) => self.persisted.light = !dark,
+            Command::GroupByResource(on) => self.persisted.by_resource = on,
+            Command::SetFilter(f) => self.ui.filter = f,
+            Command::ShowError(e) => self.ui.error = Some(e),
+            Command::DismissBanner => self.ui.banner = None,
+            Command::DismissError => self.ui.error = None,
+            Command::ConfirmDiscard(yes) => {
+                let pending = self.ui.confirm.take();
+                if yes {
+                    match pending {
+                        Some(Pending::Open(p)) => self.open_now(&p),
+                        Some(Pending::Quit) => self.quit_now = true,
+                        None => {}
+                    }
+                }
+            }
+        }
+    }
+
+    /// Carries out a command given by name.
+    fn run(&mut self, cmd: UiCommand) {
+        let (k, steps) = (self.ui.step, self.analysis.steps());
+        match cmd {
+            UiCommand::Open => self.dialog = Some(Dialog::Open),
+            UiCommand::Save => match self.doc.path.clone() {
+                Some(p) => self.save_to(&p),
+                None => self.dialog = Some(Dialog::SaveAs),
+            },
+            UiCommand::SaveAs => self.dialog = Some(Dialog::SaveAs),
+            UiCommand::ExportSchedule => self.dialog = Some(Dialog::ExportSchedule),
+            UiCommand::ExportPng => self.dialog = Some(Dialog::ExportPng),
+            UiCommand::Quit => {
+                if self.doc.dirty {
+                    self.ui.confirm = Some(Pending::Quit);
+                } else {
+                    self.quit_now = true;
+                }
+            }
+            UiCommand::Undo => {
+                let before = self.doc.plan.clone();
+                if self.doc.undo() {
+                    self.reanalyse(before, "Undo");
+                }
+            }
+            UiCommand::Redo => {
+                let before = self.doc.plan.clone();
+                if self.doc.redo() {
+                    self.reanalyse(before, "Redo");
+                }
+            }
+            UiCommand::FirstStep => self.set_step(0),
+            UiCommand::PreviousStep => {
+                if k > 0 {
+                    self.set_step(k - 1);
+                }
+            }
+            UiCommand::NextStep => {
+                if k < steps {
+                    self.set_step(k + 1);
+                }
+            }
+            UiCommand::LastStep => self.set_step(steps),
+        }
+    }
+
+    /// The file dialog asked for since the last call, for the host to show.
+    pub fn take_dialog(&mut self) -> Option<Dialog> {
+        self.dialog.take()
+    }
+
+    /// Quit was asked for (and confirmed if there were unsaved changes).
+    pub fn quit_confirmed(&self) -> bool {
+        self.quit_now
+    }
+
+    /// Plan bounds as `f64`.
+    pub fn bounds(&self) -> (f64, f64) {
+        (
+            self.doc.plan.horizon.start as f64,
+            self.doc.plan.horizon.end as f64,
+        )
+    }
+
+    /// Verified suggestions for activity `a`, computed once per plan revision from
+    /// its explanation: in the frame, or with `background` on a worker thread (then
+    /// `None` until they arrive; a result for an older revision is dropped).
+    pub fn suggestions_for(&mut self, a: usize) -> Option<&[Suggestion]> {
+        if self.background {
+            self.reap_worker();
+        }
+        self.derived.request_suggestions(
+            &self.doc.plan,
+            &self.analysis,
+            self.revision,
+            a,
+            self.background,
+        );
+        self.derived.suggestions(a, self.revision)
+    }
+
+    /// Takes a finished worker's result; a worker lost without one is shown as an
+    /// error.
+    fn reap_worker(&mut self) {
+        if let Err(e) = self.derived.reap_worker(self.revision) {
+            self.ui.error = Some(e);
+        }
+    }
+
+    /// The activity whose suggestions a worker is verifying, if any.
+    pub fn verifying(&self) -> Option<usize> {
+        self.derived.verifying()
+    }
+
+    /// The explanation of activity `a` if it did not schedule (computed once per
+    /// plan revision).
+    pub fn explanation_for(&mut self, a: usize) -> Option<&solscope_engine::Explanation> {
+        self.derived
+            .explanation_for(&self.doc.plan, &self.analysis, self.revision, a)
+    }
+
+    /// Cached suggestions, if computed for this revision (views read these).
+    pub fn cached_suggestions(&self, a: usize) -> Option<&[Suggestion]> {
+        self.derived.suggestions(a, self.revision)
+    }
+
+    fn set_step(&mut self, k: usize) {
+        self.ui.step = k.min(self.analysis.steps());
+        self.step_view = step_view(&self.analysis, self.ui.step);
+    }
+
+    fn accept_plan(&mut self, plan: Plan, description: &str) {
+        let before = self.doc.plan.clone();
+        self.doc.replace(plan);
+        self.reanalyse(before, description);
+    }
+
+    /// Reschedules the current plan and shows the outcome diff against `before`.
+    fn reanalyse(&mut self, before: Plan, description: &str) {
+        match self.analysis.rerun(&self.doc.plan) {
+            Ok(analysis) => {
+                let old = std::mem::replace(&mut self.analysis, analysis);
+                self.ui.banner = Some(OutcomeDiff::between(
+                    description,
+                    (&before, &old),
+                    (&self.doc.plan, &self.analysis),
+                ));
+                self.ui.error = None;
+                self.revision += 1;
+                let mut k = self.ui.step.min(self.analysis.steps());
+                if k == old.steps() {
+                    k = self.analysis.steps();
+                }
+                self.set_step(k);
+            }
+            Err(e) => self.ui.error = Some(format!("{description}: {e}")),
+        }
+    }
+
+    fn open_now(&mut self, path: &Path) {
+        let text = match std::fs::read_to_string(path) {
+            Ok(t) => t,
+            Err(e) => {
+                self.ui.error = Some(format!("Could not open {}: {e}", path.display()));
+                return;
+            }
+        };
+        match Self::from_text(&text, Some(path.to_path_buf())) {
+            Ok(mut fresh) => {
+                fresh.persisted = std::mem::take(&mut self.persisted);
+                fresh.background = self.background;
+                fresh.persisted.remember(path);
+                *self = fresh;
+            }
+            Err(e) => {
+                // Keep the current plan; say what is wrong with the file.
+                self.ui.error = Some(format!("Could not open {}: {e}", path.display()));
+            }
+        }
+    }
+
+    fn save_to(&mut self, path: &Path) {
+        match write_json(&self.doc.plan, path) {
+            Ok(()) => {
+                self.doc.path = Some(path.to_path_buf());
+                self.doc.dirty = false;
+                self.persisted.remember(path);
+            }
+            Err(e) => self.ui.error = Some(format!("Could not save {}: {e}", path.display())),
+        }
+    }
+
+    fn export_schedule_to(&mut self, path: &Path) {
+        let loaded = solscope_engine::LoadedPlan {
+            plan: self.doc.plan.clone(),
+            warnings: self.doc.warnings.clone(),
+        };
+        let doc =
+            solscope_engine::schedule_document(&loaded, &self.analysis.schedule, &self.doc.title());
+        if let Err(e) = write_json(&doc, path) {
+            self.ui.error = Some(format!("Could not write {}: {e}", path.display()));
+        }
+    }
+}
+
+/// Writes `value` as pretty JSON (with a final newline) to `path`. Nothing is
+/// written when it cannot be serialised.
+fn write_json<T: serde::Serialize>(value: &T, path: &Path) -> Result<(), String> {
+    let text =
+        serde_json::to_string_pretty(value).map_err(|e| format!("cannot serialise it: {e}"))?;
+    std::fs::write(path, text + "\n").map_err(|e| e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn opening_at_start_up_falls_back_to_the_default_plan_with_the_error() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let good = root.join("assets/examples/pitfall.json");
+        let app = SolscopeApp::open_or_default(Some(&good)).expect("app");
+        assert_eq!(app.doc.plan.activities.len(), 2);
+        assert_eq!(app.doc.path.as_deref(), Some(good.as_path()));
+        assert!(app.ui.error.is_none());
+        let bad = root.join("tests/malformed/window-end-before-start.json");
+        let app = SolscopeApp::open_or_default(Some(&bad)).expect("app");
+        assert_eq!(
+            app.doc.plan,
+            SolscopeApp::with_default_plan().expect("default").doc.plan
+        );
+        let err = app.ui.error.expect("error shown");
+        assert!(err.contains("windows[0].end"), "{err}");
+    }
+
+    #[test]
+    fn step_view_series_are_monotone_in_time() {
+        let app = SolscopeApp::with_default_plan().expect("default plan");
+        for series in [&app.step_view.soc, &app.step_view.peak, &app.step_view.data] {
+            assert!(
+                series.windows(2).all(|w| w[0][0] <= w[1][0]),
+                "time goes backwards"
+            );
+        }
+        // A step function: consecutive pairs share x or y.
+        assert!(
+            app.step_view
+                .peak
+                .windows(2)
+                .all(|w| w[0][0] == w[1][0] || w[0][1] == w[1][1])
+        );
+    }
+
+    /// A directory that does not exist, in a fresh temporary directory.
+    fn missing_dir(name: &str) -> PathBuf {
+        std::env::temp_dir()
+            .join(format!("solscope-{name}-{}", std::process::id()))
+            .join("missing")
+    }
+
+    #[test]
+    fn a_failed_schedule_export_is_shown_and_writes_nothing() {
+        let mut app = SolscopeApp::with_default_plan().expect("default plan");
+        let path = missing_dir("export").join("schedule.json");
+        app.apply(Command::ExportScheduleTo(path.clone()));
+        let err = app.ui.error.clone().expect("error shown");
+        assert!(err.starts_with("Could not write "), "{err}");
+        assert!(err.contains("schedule.json"), "{err}");
+        assert!(!path.exists());
+    }
+
+    #[test]
+    fn a_failed_save_is_shown_and_keeps_the_plan_unsaved() {
+        let mut app = SolscopeApp::with_default_plan().expect("default plan");
+        app.doc.dirty = true;
+        let path = missing_dir("save").join("plan.json");
+        app.apply(Command::SaveTo(path.clone()));
+        let err = app.ui.error.clone().expect("error shown");
+        assert!(err.starts_with("Could not save "), "{err}");
+        assert!(app.doc.dirty);
+        assert!(app.doc.path.is_none());
+        assert!(!path.exists());
+    }
+
+    #[test]
+    fn what_cannot_be_serialised_is_an_error_and_no_file() {
+        // JSON object keys must be strings: serialising this map fails.
+        let value: std::collections::BTreeMap<(u8, u8), u8> = [((1, 2), 3)].into();
+        let dir = std::env::temp_dir().join(format!("solscope-ser-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        let path = dir.join("out.json");
+        let err = write_json(&value, &path).expect_err("not serialisable");
+        assert!(err.starts_with("cannot serialise it"), "{err}");
+        assert!(!path.exists(), "no empty file");
+        std::fs::remove_dir_all(&dir).expect("clean up");
+    }
+
+    #[test]
+    fn an_error_from_a_view_is_a_command() {
+        let mut app = SolscopeApp::with_default_plan().expect("default plan");
+        app.apply(Command::ShowError("Time range: bad".into()));
+        assert_eq!(app.ui.error.as_deref(), Some("Time range: bad"));
+        app.apply(Command::DismissError);
+        assert!(app.ui.error.is_none());
+    }
+}

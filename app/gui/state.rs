@@ -1,0 +1,189 @@
+//! The state types: what survives restarts ([`Persisted`]) apart from what lives
+//! for one session ([`UiState`]), and the read-only snapshot of it the views get
+//! ([`Navigation`]). Nothing here depends on the views or the app.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use super::document::OutcomeDiff;
+use super::time_axis::TimeAxis;
+
+/// What survives restarts (saved through eframe storage).
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Persisted {
+    /// Recently opened files, newest first.
+    pub recent: Vec<PathBuf>,
+    /// Light theme instead of dark.
+    pub light: bool,
+    /// Gantt: scheduled activities in one row per unit resource instead of packed
+    /// lanes.
+    #[serde(default)]
+    pub by_resource: bool,
+}
+
+impl Persisted {
+    /// Puts `path` first in the recent files (at most ten).
+    pub fn remember(&mut self, path: &std::path::Path) {
+        self.recent.retain(|p| p != path);
+        self.recent.insert(0, path.to_path_buf());
+        self.recent.truncate(10);
+    }
+}
+
+/// An action waiting for "discard unsaved changes?".
+#[derive(Clone, Debug, PartialEq)]
+pub enum Pending {
+    /// Open this file.
+    Open(PathBuf),
+    /// Quit.
+    Quit,
+}
+
+/// Profiles as of one step (derived: rebuilt when the step or plan changes).
+#[derive(Clone, Debug, Default)]
+pub struct StepView {
+    /// The step.
+    pub step: usize,
+    /// State of charge `[t, Wh]`.
+    pub soc: Vec<[f64; 2]>,
+    /// Peak power `[t, W]` (step function, given as pairs of points).
+    pub peak: Vec<[f64; 2]>,
+    /// Data volume `[t, Mbit]`.
+    pub data: Vec<[f64; 2]>,
+}
+
+/// Editor text buffers: field key (`target/key`) → (text, error).
+pub type EditorBuffers = BTreeMap<String, (String, Option<String>)>;
+
+/// Session state of the UI (not persisted), in three groups:
+///
+/// - navigation (`step` … `filter`): where the user is; changed only by commands,
+///   read by the views through [`Navigation`];
+/// - messages (`banner`, `error`, `confirm`): changed only by commands;
+/// - text buffers (`range_text`, `editor`, `editor_for`): widget state the views
+///   edit in place while drawing.
+///
+/// The groups are kept as flat fields because the tests read them as
+/// `app.ui.step`, `app.ui.error`, `app.ui.editor` …
+#[derive(Clone, Debug)]
+pub struct UiState {
+    /// The step shown (0..=N).
+    pub step: usize,
+    /// Stepping automatically.
+    pub playing: bool,
+    /// The selected activity.
+    pub selected: Option<usize>,
+    /// The visible time range.
+    pub axis: TimeAxis,
+    /// Where the plots were clicked.
+    pub probe: Option<i64>,
+    /// Energy consumers since the last full battery.
+    pub since_full: bool,
+    /// Activity filter text.
+    pub filter: String,
+
+    /// The outcome of the last edit.
+    pub banner: Option<OutcomeDiff>,
+    /// The last error (bad file, bad edit, failed write).
+    pub error: Option<String>,
+    /// Waiting for "discard unsaved changes?".
+    pub confirm: Option<Pending>,
+
+    /// Range text fields (start, end).
+    pub range_text: [String; 2],
+    /// Editor text buffers.
+    pub editor: EditorBuffers,
+    /// The activity and plan revision the editor buffers belong to.
+    pub editor_for: Option<(Option<usize>, u64)>,
+}
+
+impl UiState {
+    /// The state of a freshly opened plan: its last step over `axis`.
+    pub fn new(step: usize, axis: TimeAxis) -> Self {
+        let mut ui = Self {
+            step,
+            playing: false,
+            selected: None,
+            axis,
+            probe: None,
+            since_full: false,
+            filter: String::new(),
+            banner: None,
+            error: None,
+            confirm: None,
+            range_text: [String::new(), String::new()],
+            editor: EditorBuffers::new(),
+            editor_for: None,
+        };
+        ui.sync_range_text();
+        ui
+    }
+
+    /// The navigation part, as the views read it.
+    pub fn navigation(&self) -> Navigation {
+        Navigation {
+            step: self.step,
+            playing: self.playing,
+            selected: self.selected,
+            axis: self.axis,
+            probe: self.probe,
+            since_full: self.since_full,
+        }
+    }
+
+    /// The messages, read-only.
+    pub fn messages(&self) -> Messages<'_> {
+        Messages {
+            banner: self.banner.as_ref(),
+            error: self.error.as_deref(),
+            confirm: self.confirm.as_ref(),
+        }
+    }
+
+    /// Puts the visible range into the range text fields.
+    pub fn sync_range_text(&mut self) {
+        self.range_text = [
+            format!("{:.0}", self.axis.start),
+            format!("{:.0}", self.axis.end),
+        ];
+    }
+}
+
+/// Where the user is (a copy for one frame; the views change it through commands).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Navigation {
+    /// The step shown (0..=N).
+    pub step: usize,
+    /// Stepping automatically.
+    pub playing: bool,
+    /// The selected activity.
+    pub selected: Option<usize>,
+    /// The visible time range.
+    pub axis: TimeAxis,
+    /// Where the plots were clicked.
+    pub probe: Option<i64>,
+    /// Energy consumers since the last full battery.
+    pub since_full: bool,
+}
+
+/// The messages shown, read-only (dismissed through commands).
+#[derive(Clone, Copy, Debug)]
+pub struct Messages<'a> {
+    /// The outcome of the last edit.
+    pub banner: Option<&'a OutcomeDiff>,
+    /// The last error.
+    pub error: Option<&'a str>,
+    /// Waiting for "discard unsaved changes?".
+    pub confirm: Option<&'a Pending>,
+}
+
+/// The text buffers, borrowed for one frame: the only UI state the views write.
+#[derive(Debug)]
+pub struct TextBuffers<'a> {
+    /// Range text fields (start, end).
+    pub range_text: &'a mut [String; 2],
+    /// Editor text buffers.
+    pub editor: &'a mut EditorBuffers,
+    /// The activity and plan revision the editor buffers belong to.
+    pub editor_for: &'a mut Option<(Option<usize>, u64)>,
+}
