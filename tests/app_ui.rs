@@ -50,15 +50,15 @@ fn stepping_moves_activities_between_lanes() {
     assert!(h.query_by_label(&format!(".   1 {id}")).is_some());
     h.get_by_label("Next >").click();
     h.run_steps(3);
-    assert_eq!(h.state().ui.step, 1);
+    assert_eq!(h.state().ui.nav.step, 1);
     assert!(h.query_by_label(&format!("+   1 {id}")).is_some());
     // Keyboard: End goes to the last step, Home back to 0.
     h.key_press(eframe::egui::Key::End);
     h.run_steps(3);
-    assert_eq!(h.state().ui.step, h.state().analysis.steps());
+    assert_eq!(h.state().ui.nav.step, h.state().analysis.steps());
     h.key_press(eframe::egui::Key::Home);
     h.run_steps(3);
-    assert_eq!(h.state().ui.step, 0);
+    assert_eq!(h.state().ui.nav.step, 0);
 }
 
 #[test]
@@ -69,7 +69,7 @@ fn clicking_a_failed_activity_shows_its_explanation() {
     h.get_by_label(&format!("x {step:>3} sky_flats_mast_busy"))
         .click();
     h.run_steps(3);
-    assert_eq!(h.state().ui.selected, Some(a));
+    assert_eq!(h.state().ui.nav.selected, Some(a));
     assert!(h.query_by_label("Why it did not schedule").is_some());
     assert!(
         h.query_by_label_contains("Conflict: execution + unit_resource")
@@ -90,7 +90,13 @@ fn applying_a_suggestion_makes_it_schedule_and_undo_restores() {
         h.state().analysis.placement(a).is_some(),
         "the suggestion schedules it"
     );
-    let banner = h.state().ui.banner.clone().expect("outcome banner");
+    let banner = h
+        .state()
+        .ui
+        .messages
+        .banner
+        .clone()
+        .expect("outcome banner");
     assert!(
         banner
             .newly_scheduled
@@ -126,9 +132,10 @@ fn editing_a_window_reruns_and_updates_the_banner() {
         "the widened window fits: editor {:?}, error {:?}",
         h.state()
             .ui
+            .text
             .editor
             .get("activity:sky_flats_mast_busy/windows"),
-        h.state().ui.error
+        h.state().ui.messages.error
     );
     assert!(h.state().doc.dirty);
     assert!(

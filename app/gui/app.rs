@@ -10,7 +10,7 @@ use solscope_engine::{Plan, Suggestion};
 use super::commands::{Command, UiCommand};
 use super::derived::{DerivedCache, step_view};
 use super::document::{Analysis, Document, OutcomeDiff};
-use super::state::{Messages, Pending, Persisted, StepView, TextBuffers, UiState};
+use super::state::{Pending, Persisted, StepView, UiState};
 use super::theme::Theme;
 use super::time_axis::TimeAxis;
 use super::views::{self, Model, ViewCache, Widgets};
@@ -68,7 +68,7 @@ impl std::fmt::Debug for SolscopeApp {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("SolscopeApp")
             .field("plan", &self.doc.title())
-            .field("step", &self.ui.step)
+            .field("step", &self.ui.nav.step)
             .finish()
     }
 }
@@ -135,12 +135,12 @@ impl SolscopeApp {
         let mut cmds = std::mem::take(&mut self.commands);
         views::shortcuts(ui, &mut cmds);
         views::dropped_files(ui, &mut cmds);
-        if self.ui.playing {
+        if self.ui.nav.playing {
             let now = ui.input(|i| i.time);
             if now - self.last_tick > 0.15 {
                 self.last_tick = now;
-                if self.ui.step < self.analysis.steps() {
-                    cmds.push(Command::SetStep(self.ui.step + 1));
+                if self.ui.nav.step < self.analysis.steps() {
+                    cmds.push(Command::SetStep(self.ui.nav.step + 1));
                 } else {
                     cmds.push(Command::Play(false));
                 }
@@ -148,7 +148,7 @@ impl SolscopeApp {
             ui.ctx()
                 .request_repaint_after(std::time::Duration::from_millis(150));
         }
-        if let Some(a) = self.ui.selected {
+        if let Some(a) = self.ui.nav.selected {
             // Derived data, computed before drawing (never mid-draw).
             self.explanation_for(a);
             self.suggestions_for(a);
@@ -171,7 +171,7 @@ impl SolscopeApp {
     /// for one frame (only what was derived for the selected activity at this
     /// revision).
     fn model_and_widgets(&mut self) -> (Model<'_>, Widgets<'_>) {
-        let (selected, revision) = (self.ui.selected, self.revision);
+        let (selected, revision) = (self.ui.nav.selected, self.revision);
         let derived = &self.derived;
         let m = Model {
             doc: &self.doc,
@@ -183,20 +183,11 @@ impl SolscopeApp {
             revision,
             explanation: selected.and_then(|a| derived.explanation(a, revision)),
             valid: selected.and_then(|a| derived.valid(a, revision)),
-            nav: self.ui.navigation(),
-            filter: &self.ui.filter,
-            messages: Messages {
-                banner: self.ui.banner.as_ref(),
-                error: self.ui.error.as_deref(),
-                confirm: self.ui.confirm.as_ref(),
-            },
+            nav: &self.ui.nav,
+            messages: &self.ui.messages,
         };
         let w = Widgets {
-            text: TextBuffers {
-                range_text: &mut self.ui.range_text,
-                editor: &mut self.ui.editor,
-                editor_for: &mut self.ui.editor_for,
-            },
+            text: &mut self.ui.text,
             cache: &mut self.view_cache,
         };
         (m, w)
@@ -209,36 +200,36 @@ impl SolscopeApp {
             Command::Ui(cmd) => self.run(cmd),
             Command::SetStep(k) => self.set_step(k),
             Command::Play(on) => {
-                if on && self.ui.step >= steps {
+                if on && self.ui.nav.step >= steps {
                     self.set_step(0);
                 }
-                self.ui.playing = on;
+                self.ui.nav.playing = on;
             }
-            Command::Select(a) => self.ui.selected = a,
+            Command::Select(a) => self.ui.nav.selected = a,
             Command::GoToFailureStep(a) => {
-                self.ui.selected = Some(a);
+                self.ui.nav.selected = Some(a);
                 if let Some(k) = self.explanation_for(a).and_then(|e| e.failure_step) {
                     self.set_step(k);
                 }
             }
             Command::SetAxis(axis) => {
-                self.ui.axis = axis;
-                self.ui.axis.clamp(self.bounds());
+                self.ui.nav.axis = axis;
+                self.ui.nav.axis.clamp(self.bounds());
                 self.ui.sync_range_text();
             }
-            Command::ProbePlot(t) => self.ui.probe = t,
-            Command::SetSinceFull(on) => self.ui.since_full = on,
+            Command::ProbePlot(t) => self.ui.nav.probe = t,
+            Command::SetSinceFull(on) => self.ui.nav.since_full = on,
             Command::Edit {
                 target,
                 set,
                 description,
             } => match solscope_engine::apply_edit(&self.doc.plan, &target, &set) {
                 Ok(plan) => self.accept_plan(plan, &description),
-                Err(e) => self.ui.error = Some(format!("{description}: not applied: {e}")),
+                Err(e) => self.ui.messages.error = Some(format!("{description}: not applied: {e}")),
             },
             Command::Open(path) => {
                 if self.doc.dirty {
-                    self.ui.confirm = Some(Pending::Open(path));
+                    self.ui.messages.confirm = Some(Pending::Open(path));
                 } else {
                     self.open_now(&path);
                 }
@@ -247,12 +238,12 @@ impl SolscopeApp {
             Command::ExportScheduleTo(path) => self.export_schedule_to(&path),
             Command::SetDark(dark) => self.persisted.light = !dark,
             Command::GroupByResource(on) => self.persisted.by_resource = on,
-            Command::SetFilter(f) => self.ui.filter = f,
-            Command::ShowError(e) => self.ui.error = Some(e),
-            Command::DismissBanner => self.ui.banner = None,
-            Command::DismissError => self.ui.error = None,
+            Command::SetFilter(f) => self.ui.nav.filter = f,
+            Command::ShowError(e) => self.ui.messages.error = Some(e),
+            Command::DismissBanner => self.ui.messages.banner = None,
+            Command::DismissError => self.ui.messages.error = None,
             Command::ConfirmDiscard(yes) => {
-                let pending = self.ui.confirm.take();
+                let pending = self.ui.messages.confirm.take();
                 if yes {
                     match pending {
                         Some(Pending::Open(p)) => self.open_now(&p),
@@ -266,7 +257,7 @@ impl SolscopeApp {
 
     /// Carries out a command given by name.
     fn run(&mut self, cmd: UiCommand) {
-        let (k, steps) = (self.ui.step, self.analysis.steps());
+        let (k, steps) = (self.ui.nav.step, self.analysis.steps());
         match cmd {
             UiCommand::Open => self.dialog = Some(Dialog::Open),
             UiCommand::Save => match self.doc.path.clone() {
@@ -278,7 +269,7 @@ impl SolscopeApp {
             UiCommand::ExportPng => self.dialog = Some(Dialog::ExportPng),
             UiCommand::Quit => {
                 if self.doc.dirty {
-                    self.ui.confirm = Some(Pending::Quit);
+                    self.ui.messages.confirm = Some(Pending::Quit);
                 } else {
                     self.quit_now = true;
                 }
@@ -349,7 +340,7 @@ impl SolscopeApp {
     /// error.
     fn reap_worker(&mut self) {
         if let Err(e) = self.derived.reap_worker(self.revision) {
-            self.ui.error = Some(e);
+            self.ui.messages.error = Some(e);
         }
     }
 
@@ -371,8 +362,8 @@ impl SolscopeApp {
     }
 
     fn set_step(&mut self, k: usize) {
-        self.ui.step = k.min(self.analysis.steps());
-        self.step_view = step_view(&self.analysis, self.ui.step);
+        self.ui.nav.step = k.min(self.analysis.steps());
+        self.step_view = step_view(&self.analysis, self.ui.nav.step);
     }
 
     fn accept_plan(&mut self, plan: Plan, description: &str) {
@@ -386,20 +377,20 @@ impl SolscopeApp {
         match self.analysis.rerun(&self.doc.plan) {
             Ok(analysis) => {
                 let old = std::mem::replace(&mut self.analysis, analysis);
-                self.ui.banner = Some(OutcomeDiff::between(
+                self.ui.messages.banner = Some(OutcomeDiff::between(
                     description,
                     (&before, &old),
                     (&self.doc.plan, &self.analysis),
                 ));
-                self.ui.error = None;
+                self.ui.messages.error = None;
                 self.revision += 1;
-                let mut k = self.ui.step.min(self.analysis.steps());
+                let mut k = self.ui.nav.step.min(self.analysis.steps());
                 if k == old.steps() {
                     k = self.analysis.steps();
                 }
                 self.set_step(k);
             }
-            Err(e) => self.ui.error = Some(format!("{description}: {e}")),
+            Err(e) => self.ui.messages.error = Some(format!("{description}: {e}")),
         }
     }
 
@@ -407,7 +398,7 @@ impl SolscopeApp {
         let text = match std::fs::read_to_string(path) {
             Ok(t) => t,
             Err(e) => {
-                self.ui.error = Some(format!("Could not open {}: {e}", path.display()));
+                self.ui.messages.error = Some(format!("Could not open {}: {e}", path.display()));
                 return;
             }
         };
@@ -420,7 +411,7 @@ impl SolscopeApp {
             }
             Err(e) => {
                 // Keep the current plan; say what is wrong with the file.
-                self.ui.error = Some(format!("Could not open {}: {e}", path.display()));
+                self.ui.messages.error = Some(format!("Could not open {}: {e}", path.display()));
             }
         }
     }
@@ -432,7 +423,9 @@ impl SolscopeApp {
                 self.doc.dirty = false;
                 self.persisted.remember(path);
             }
-            Err(e) => self.ui.error = Some(format!("Could not save {}: {e}", path.display())),
+            Err(e) => {
+                self.ui.messages.error = Some(format!("Could not save {}: {e}", path.display()))
+            }
         }
     }
 
@@ -444,7 +437,7 @@ impl SolscopeApp {
         let doc =
             solscope_engine::schedule_document(&loaded, &self.analysis.schedule, &self.doc.title());
         if let Err(e) = write_json(&doc, path) {
-            self.ui.error = Some(format!("Could not write {}: {e}", path.display()));
+            self.ui.messages.error = Some(format!("Could not write {}: {e}", path.display()));
         }
     }
 }
@@ -468,14 +461,14 @@ mod tests {
         let app = SolscopeApp::open_or_default(Some(&good)).expect("app");
         assert_eq!(app.doc.plan.activities.len(), 2);
         assert_eq!(app.doc.path.as_deref(), Some(good.as_path()));
-        assert!(app.ui.error.is_none());
+        assert!(app.ui.messages.error.is_none());
         let bad = root.join("tests/malformed/window-end-before-start.json");
         let app = SolscopeApp::open_or_default(Some(&bad)).expect("app");
         assert_eq!(
             app.doc.plan,
             SolscopeApp::with_default_plan().expect("default").doc.plan
         );
-        let err = app.ui.error.expect("error shown");
+        let err = app.ui.messages.error.expect("error shown");
         assert!(err.contains("windows[0].end"), "{err}");
     }
 
@@ -509,7 +502,7 @@ mod tests {
         let mut app = SolscopeApp::with_default_plan().expect("default plan");
         let path = missing_dir("export").join("schedule.json");
         app.apply(Command::ExportScheduleTo(path.clone()));
-        let err = app.ui.error.clone().expect("error shown");
+        let err = app.ui.messages.error.clone().expect("error shown");
         assert!(err.starts_with("Could not write "), "{err}");
         assert!(err.contains("schedule.json"), "{err}");
         assert!(!path.exists());
@@ -521,7 +514,7 @@ mod tests {
         app.doc.dirty = true;
         let path = missing_dir("save").join("plan.json");
         app.apply(Command::SaveTo(path.clone()));
-        let err = app.ui.error.clone().expect("error shown");
+        let err = app.ui.messages.error.clone().expect("error shown");
         assert!(err.starts_with("Could not save "), "{err}");
         assert!(app.doc.dirty);
         assert!(app.doc.path.is_none());
@@ -545,8 +538,8 @@ mod tests {
     fn an_error_from_a_view_is_a_command() {
         let mut app = SolscopeApp::with_default_plan().expect("default plan");
         app.apply(Command::ShowError("Time range: bad".into()));
-        assert_eq!(app.ui.error.as_deref(), Some("Time range: bad"));
+        assert_eq!(app.ui.messages.error.as_deref(), Some("Time range: bad"));
         app.apply(Command::DismissError);
-        assert!(app.ui.error.is_none());
+        assert!(app.ui.messages.error.is_none());
     }
 }

@@ -179,34 +179,23 @@ impl DerivedCache {
     }
 }
 
-/// The profiles as of step `k`.
+/// The profiles as of step `k`, as plot points.
 pub fn step_view(analysis: &Analysis, k: usize) -> StepView {
-    let state = analysis.schedule.state_after(k);
-    let wh = solscope_engine::MJ_PER_WH;
-    let soc = state
-        .soc
-        .profile()
-        .into_iter()
-        .map(|(t, l)| [t as f64, l as f64 / wh])
+    let profiles = analysis.schedule.profiles_after(k);
+    let points = |series: &[(i64, f64)]| -> Vec<[f64; 2]> {
+        series.iter().map(|&(t, v)| [t as f64, v]).collect()
+    };
+    // Peak power holds from each breakpoint to the next (the last one is the
+    // horizon end): two points per segment draw it as steps.
+    let peak = profiles
+        .peak_power
+        .windows(2)
+        .flat_map(|w| [[w[0].0 as f64, w[0].1], [w[1].0 as f64, w[0].1]])
         .collect();
-    let data = state
-        .data
-        .profile()
-        .into_iter()
-        .map(|(t, l)| [t as f64, -(l as f64) / solscope_engine::BIT_PER_MBIT])
-        .collect();
-    let mut peak = Vec::new();
-    let pts = state.peak.points();
-    for (i, &(t, v)) in pts.iter().enumerate() {
-        let end = pts.get(i + 1).map_or(state.peak.end(), |p| p.0);
-        let w = v as f64 / solscope_engine::MW_PER_W;
-        peak.push([t as f64, w]);
-        peak.push([end as f64, w]);
-    }
     StepView {
         step: k,
-        soc,
+        soc: points(&profiles.soc),
         peak,
-        data,
+        data: points(&profiles.data_volume),
     }
 }

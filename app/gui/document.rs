@@ -6,8 +6,8 @@
 use std::path::PathBuf;
 
 use solscope_engine::{
-    Error, ExplainOptions, Explanation, Outcome, Plan, Schedule, Warning, explain, load_plan,
-    reschedule, schedule,
+    Error, ExplainOptions, Explanation, Plan, Schedule, Warning, explain, load_plan, reschedule,
+    schedule,
 };
 
 /// The open plan.
@@ -109,38 +109,23 @@ impl Document {
 pub struct Analysis {
     /// The run (shared with the worker that verifies suggestions).
     pub schedule: std::sync::Arc<Schedule>,
-    /// Index into `schedule.steps` of each activity's step.
-    step_index: Vec<usize>,
 }
 
 impl Analysis {
     /// Schedules a plan.
     pub fn of(plan: &Plan) -> Result<Self, Error> {
-        Ok(Self::indexed(schedule(plan)?, plan))
+        Ok(Self::from(schedule(plan)?))
     }
 
     /// Schedules an edited plan, reusing the steps of this analysis that the edit
     /// cannot change (the engine's `reschedule`; same result as [`Analysis::of`]).
     pub fn rerun(&self, plan: &Plan) -> Result<Self, Error> {
-        Ok(Self::indexed(reschedule(&self.schedule, plan)?, plan))
+        Ok(Self::from(reschedule(&self.schedule, plan)?))
     }
 
-    fn indexed(schedule: Schedule, plan: &Plan) -> Self {
-        let mut step_index = vec![0; plan.activities.len()];
-        for (i, st) in schedule.steps.iter().enumerate() {
-            step_index[st.activity] = i;
-        }
-        Self {
-            schedule: std::sync::Arc::new(schedule),
-            step_index,
-        }
-    }
-
-    /// The step record of activity `a` (O(1)).
+    /// The step record of activity `a` (O(1): the schedule's own index).
     pub fn step(&self, a: usize) -> Option<&solscope_engine::Step> {
-        self.step_index
-            .get(a)
-            .and_then(|&i| self.schedule.steps.get(i))
+        self.schedule.step_of(a)
     }
 
     /// Explains activity `a` (without suggestions) if it did not schedule.
@@ -160,16 +145,13 @@ impl Analysis {
         self.schedule
             .steps
             .iter()
-            .filter(|s| !matches!(s.outcome, Outcome::Scheduled { .. }))
+            .filter(|s| s.outcome.placement().is_none())
             .count()
     }
 
     /// `(start, end)` of activity `a` if scheduled.
     pub fn placement(&self, a: usize) -> Option<(i64, i64)> {
-        match self.step(a)?.outcome {
-            Outcome::Scheduled { start, end } => Some((start, end)),
-            _ => None,
-        }
+        self.step(a)?.outcome.placement()
     }
 
     /// Number of steps.
@@ -210,10 +192,7 @@ impl OutcomeDiff {
                 .iter()
                 .position(|a| &a.id == id)
                 .and_then(|i| before.1.placement(i));
-            let new = match st.outcome {
-                Outcome::Scheduled { start, end } => Some((start, end)),
-                _ => None,
-            };
+            let new = st.outcome.placement();
             match (old, new) {
                 (None, Some(_)) => diff.newly_scheduled.push(id.clone()),
                 (Some(_), None) => diff.newly_failed.push(id.clone()),
@@ -248,5 +227,13 @@ impl OutcomeDiff {
                     .join(", ")
             }
         )
+    }
+}
+
+impl From<Schedule> for Analysis {
+    fn from(schedule: Schedule) -> Self {
+        Self {
+            schedule: std::sync::Arc::new(schedule),
+        }
     }
 }

@@ -55,18 +55,50 @@ pub struct StepView {
 /// Editor text buffers: field key (`target/key`) → (text, error).
 pub type EditorBuffers = BTreeMap<String, (String, Option<String>)>;
 
-/// Session state of the UI (not persisted), in three groups:
-///
-/// - navigation (`step` … `filter`): where the user is; changed only by commands,
-///   read by the views through [`Navigation`];
-/// - messages (`banner`, `error`, `confirm`): changed only by commands;
-/// - text buffers (`range_text`, `editor`, `editor_for`): widget state the views
-///   edit in place while drawing.
-///
-/// The groups are kept as flat fields because the tests read them as
-/// `app.ui.step`, `app.ui.error`, `app.ui.editor` …
+/// Session state of the UI (not persisted), in three parts that change in
+/// different ways.
 #[derive(Clone, Debug)]
 pub struct UiState {
+    /// Where the user is; changed only by commands.
+    pub nav: Navigation,
+    /// What the app tells the user; changed only by commands.
+    pub messages: Messages,
+    /// Widget state the views edit in place while drawing.
+    pub text: TextBuffers,
+}
+
+impl UiState {
+    /// The state of a freshly opened plan: its last step over `axis`.
+    pub fn new(step: usize, axis: TimeAxis) -> Self {
+        let mut ui = Self {
+            nav: Navigation {
+                step,
+                playing: false,
+                selected: None,
+                axis,
+                probe: None,
+                since_full: false,
+                filter: String::new(),
+            },
+            messages: Messages::default(),
+            text: TextBuffers::default(),
+        };
+        ui.sync_range_text();
+        ui
+    }
+
+    /// Puts the visible range into the range text fields.
+    pub fn sync_range_text(&mut self) {
+        self.text.range_text = [
+            format!("{:.0}", self.nav.axis.start),
+            format!("{:.0}", self.nav.axis.end),
+        ];
+    }
+}
+
+/// Where the user is: step, selection, visible range, probe, filter.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Navigation {
     /// The step shown (0..=N).
     pub step: usize,
     /// Stepping automatically.
@@ -81,109 +113,26 @@ pub struct UiState {
     pub since_full: bool,
     /// Activity filter text.
     pub filter: String,
+}
 
+/// The messages shown (dismissed through commands).
+#[derive(Clone, Debug, Default)]
+pub struct Messages {
     /// The outcome of the last edit.
     pub banner: Option<OutcomeDiff>,
     /// The last error (bad file, bad edit, failed write).
     pub error: Option<String>,
     /// Waiting for "discard unsaved changes?".
     pub confirm: Option<Pending>,
+}
 
+/// The text buffers: the only UI state the views write.
+#[derive(Clone, Debug, Default)]
+pub struct TextBuffers {
     /// Range text fields (start, end).
     pub range_text: [String; 2],
     /// Editor text buffers.
     pub editor: EditorBuffers,
     /// The activity and plan revision the editor buffers belong to.
     pub editor_for: Option<(Option<usize>, u64)>,
-}
-
-impl UiState {
-    /// The state of a freshly opened plan: its last step over `axis`.
-    pub fn new(step: usize, axis: TimeAxis) -> Self {
-        let mut ui = Self {
-            step,
-            playing: false,
-            selected: None,
-            axis,
-            probe: None,
-            since_full: false,
-            filter: String::new(),
-            banner: None,
-            error: None,
-            confirm: None,
-            range_text: [String::new(), String::new()],
-            editor: EditorBuffers::new(),
-            editor_for: None,
-        };
-        ui.sync_range_text();
-        ui
-    }
-
-    /// The navigation part, as the views read it.
-    pub fn navigation(&self) -> Navigation {
-        Navigation {
-            step: self.step,
-            playing: self.playing,
-            selected: self.selected,
-            axis: self.axis,
-            probe: self.probe,
-            since_full: self.since_full,
-        }
-    }
-
-    /// The messages, read-only.
-    pub fn messages(&self) -> Messages<'_> {
-        Messages {
-            banner: self.banner.as_ref(),
-            error: self.error.as_deref(),
-            confirm: self.confirm.as_ref(),
-        }
-    }
-
-    /// Puts the visible range into the range text fields.
-    pub fn sync_range_text(&mut self) {
-        self.range_text = [
-            format!("{:.0}", self.axis.start),
-            format!("{:.0}", self.axis.end),
-        ];
-    }
-}
-
-/// Where the user is (a copy for one frame; the views change it through commands).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Navigation {
-    /// The step shown (0..=N).
-    pub step: usize,
-    /// Stepping automatically.
-    pub playing: bool,
-    /// The selected activity.
-    pub selected: Option<usize>,
-    /// The visible time range.
-    pub axis: TimeAxis,
-    /// Where the plots were clicked.
-    pub probe: Option<i64>,
-    /// Energy consumers since the last full battery.
-    pub since_full: bool,
-}
-
-/// The messages shown, read-only (dismissed through commands).
-#[derive(Clone, Copy, Debug)]
-pub struct Messages<'a> {
-    /// The outcome of the last edit.
-    pub banner: Option<&'a OutcomeDiff>,
-    /// The last error.
-    pub error: Option<&'a str>,
-    /// Waiting for "discard unsaved changes?".
-    pub confirm: Option<&'a Pending>,
-}
-
-/// The text buffers, borrowed for one frame: the only UI state the views write.
-#[derive(Debug)]
-pub struct TextBuffers<'a> {
-    /// Range text fields (start, end).
-    pub range_text: &'a mut [String; 2],
-    /// Editor text buffers.
-    pub editor: &'a mut EditorBuffers,
-    /// The activity and plan revision the editor buffers belong to.
-    pub editor_for: &'a mut Option<(Option<usize>, u64)>,
 }

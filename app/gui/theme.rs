@@ -55,6 +55,34 @@ pub const PLOT_HEIGHT: f32 = 120.0;
 pub const INSPECTOR_WIDTH: f32 = 380.0;
 /// Minimum bar width (points) for drawing a label inside it.
 pub const LABEL_MIN_WIDTH: f32 = 40.0;
+/// Width of the activity list side panel.
+pub const LIST_WIDTH: f32 = 230.0;
+/// Text size of labels inside Gantt bars and rows.
+pub const BAR_FONT_SIZE: f32 = 11.0;
+/// Corner radius of Gantt bars.
+pub const BAR_ROUNDING: f32 = 2.0;
+/// Outline width of the bar of the current step's activity.
+pub const CURRENT_STROKE: f32 = 2.0;
+/// Outline width of the selected activity's bar.
+pub const SELECTION_STROKE: f32 = 1.5;
+/// Width of the Gantt's line at the time probed on the plots.
+pub const PROBE_LINE_STROKE: f32 = 1.0;
+/// Width of the base line of a valid-intervals track.
+pub const TRACK_LINE_STROKE: f32 = 0.5;
+/// Height of one row of the inspector's valid-intervals tracks.
+pub const TRACK_ROW_HEIGHT: f32 = 10.0;
+/// Gap between two tracks.
+pub const TRACK_ROW_GAP: f32 = 3.0;
+/// Text size of the track labels.
+pub const TRACK_FONT_SIZE: f32 = 9.0;
+/// Width of an editor text field in the inspector.
+pub const FIELD_WIDTH: f32 = 200.0;
+/// Width of the activity filter field.
+pub const FILTER_WIDTH: f32 = 140.0;
+/// Width of each time range field.
+pub const RANGE_FIELD_WIDTH: f32 = 80.0;
+/// Inner margin of the banner and error frames.
+pub const MESSAGE_MARGIN: f32 = 4.0;
 
 impl Theme {
     /// The palette for dark or light mode.

@@ -27,7 +27,7 @@ pub use error::{Error, Warning};
 pub use explain::{
     Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,
     Suggestion, energy_consumers, explain, explain_text, explanation_notes, minimal_conflicts,
-    peak_users, suggestion_line, verified_suggestions,
+    peak_users, reason_line, suggestion_line, verified_suggestions,
 };
 pub use generate::generate_plan;
 pub use load::{LoadedPlan, MAX_PLAN_BYTES, load_plan, load_plan_file};

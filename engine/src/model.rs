@@ -97,12 +97,6 @@ impl LocalTime {
         let len = self.sol_length.max(1);
         (self.offset.saturating_add(t)).rem_euclid(len)
     }
-
-    /// Formats the local time of day of `t` as `hh:mm:ss`.
-    pub fn format_hms(&self, t: i64) -> String {
-        let tod = self.time_of_day(t);
-        format!("{:02}:{:02}:{:02}", tod / 3600, (tod / 60) % 60, tod % 60)
-    }
 }
 
 /// Battery limits, in Wh.

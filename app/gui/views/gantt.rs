@@ -8,7 +8,10 @@ use solscope_engine::GeneratedKind;
 
 use super::{Model, Status, ViewCache};
 use crate::gui::commands::Command;
-use crate::gui::theme::{LABEL_MIN_WIDTH, LABEL_WIDTH, LANE_GAP, LANE_HEIGHT};
+use crate::gui::theme::{
+    BAR_FONT_SIZE, BAR_ROUNDING, CURRENT_STROKE, LABEL_MIN_WIDTH, LABEL_WIDTH, LANE_GAP,
+    LANE_HEIGHT, PROBE_LINE_STROKE, SELECTION_STROKE,
+};
 
 /// One bar.
 #[derive(Clone, Debug)]
@@ -259,7 +262,7 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
         m.doc.plan.horizon.end as f64,
     );
     let current = m.activity_of_step(k);
-    let font = FontId::proportional(11.0);
+    let font = FontId::proportional(BAR_FONT_SIZE);
     let mut hovered: Option<(usize, String)> = None;
     let pointer = response.hover_pos();
     for (i, row) in rows.iter().enumerate() {
@@ -281,7 +284,7 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
                     Pos2::new(x0 as f32, y),
                     Pos2::new((x1 as f32).max(x0 as f32 + 1.0), y + LANE_HEIGHT),
                 );
-                painter.rect_filled(r, 2.0, c);
+                painter.rect_filled(r, BAR_ROUNDING, c);
             }
         };
         // The contiguous span `[lo, hi]` that the last bars of one colour painted:
@@ -321,22 +324,22 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
                 Pos2::new(x0 as f32, y),
                 Pos2::new(x1 as f32, y + LANE_HEIGHT),
             );
-            painter.rect_filled(r, 2.0, bar.color);
+            painter.rect_filled(r, BAR_ROUNDING, bar.color);
             let is_current = bar.activity.is_some() && bar.activity == current;
             let is_selected = bar.activity.is_some() && bar.activity == m.nav.selected;
             if is_current {
                 painter.rect_stroke(
                     r,
-                    2.0,
-                    Stroke::new(2.0, m.theme.current),
+                    BAR_ROUNDING,
+                    Stroke::new(CURRENT_STROKE, m.theme.current),
                     StrokeKind::Outside,
                 );
             }
             if is_selected {
                 painter.rect_stroke(
                     r,
-                    2.0,
-                    Stroke::new(1.5, m.theme.selection),
+                    BAR_ROUNDING,
+                    Stroke::new(SELECTION_STROKE, m.theme.selection),
                     StrokeKind::Outside,
                 );
             }
@@ -369,7 +372,11 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
     // The current time probe.
     if let Some(t) = m.nav.probe {
         let x = axis.x(t as f64, timeline) as f32;
-        painter.vline(x, timeline.y_range(), Stroke::new(1.0, m.theme.current));
+        painter.vline(
+            x,
+            timeline.y_range(),
+            Stroke::new(PROBE_LINE_STROKE, m.theme.current),
+        );
     }
     if let Some((a, text)) = &hovered {
         response.clone().on_hover_text_at_pointer(text.clone());
@@ -416,9 +423,8 @@ mod tests {
             revision: app.revision,
             explanation: None,
             valid: None,
-            nav: app.ui.navigation(),
-            filter: &app.ui.filter,
-            messages: app.ui.messages(),
+            nav: &app.ui.nav,
+            messages: &app.ui.messages,
         }
     }
 
@@ -462,7 +468,10 @@ mod tests {
             let mut out = ctx.run_ui(egui::RawInput::default(), |ui| app.frame_ui(ui));
             out.textures_delta.clear();
             let cached = app.view_cache.gantt.clone().expect("rows kept");
-            assert_eq!(shape(&cached.rows), shape(&rows(&model(app), app.ui.step)));
+            assert_eq!(
+                shape(&cached.rows),
+                shape(&rows(&model(app), app.ui.nav.step))
+            );
         };
         check(&mut app);
         for k in [0, 10, 35] {

@@ -3,18 +3,20 @@
 
 use eframe::egui::{self, Pos2, Rect, RichText, Sense, Stroke};
 use serde_json::{Map, Value};
-use solscope_engine::{CategoryIntervals, Phase, Phase2Reason, explanation_notes, suggestion_line};
+use solscope_engine::{CategoryIntervals, Phase, explanation_notes, reason_line, suggestion_line};
 
 use super::{Model, Status};
 use crate::gui::commands::Command;
 use crate::gui::state::TextBuffers;
-use crate::gui::theme::LABEL_WIDTH;
+use crate::gui::theme::{
+    FIELD_WIDTH, LABEL_WIDTH, TRACK_FONT_SIZE, TRACK_LINE_STROKE, TRACK_ROW_GAP, TRACK_ROW_HEIGHT,
+};
 
 /// The right-hand panel.
 pub fn inspector_ui(
     ui: &mut egui::Ui,
     m: &Model<'_>,
-    st: &mut TextBuffers<'_>,
+    st: &mut TextBuffers,
     cmds: &mut Vec<Command>,
 ) {
     ui.heading("Inspector");
@@ -35,7 +37,7 @@ pub fn inspector_ui(
 fn activity_ui(
     ui: &mut egui::Ui,
     m: &Model<'_>,
-    st: &mut TextBuffers<'_>,
+    st: &mut TextBuffers,
     a: usize,
     cmds: &mut Vec<Command>,
 ) {
@@ -95,51 +97,7 @@ fn activity_ui(
             }
         }
         for r in ex.reasons.iter().take(4) {
-            let detail = match &r.reason {
-                Phase2Reason::MinSoc { at, soc_mj } => {
-                    format!(
-                        "SOC {:.1} Wh at {}",
-                        *soc_mj as f64 / solscope_engine::MJ_PER_WH,
-                        m.time(*at)
-                    )
-                }
-                Phase2Reason::MaxPeakPower { at, peak_mw } => {
-                    format!(
-                        "peak {:.1} W at {}",
-                        *peak_mw as f64 / solscope_engine::MW_PER_W,
-                        m.time(*at)
-                    )
-                }
-                Phase2Reason::HandoverSoc { soc_mj } => format!(
-                    "SOC {:.1} Wh at handover",
-                    *soc_mj as f64 / solscope_engine::MJ_PER_WH
-                ),
-                Phase2Reason::PreheatOutsidePlan {
-                    zone,
-                    preheat_start,
-                }
-                | Phase2Reason::PreheatOperability {
-                    zone,
-                    preheat_start,
-                } => format!(
-                    "{} preheat from {}",
-                    zone_name(m, *zone),
-                    m.time(*preheat_start)
-                ),
-                Phase2Reason::ForcedSleep { sleep: Some(x) }
-                | Phase2Reason::MinSleep { sleep: x }
-                | Phase2Reason::MinAwake { sleep: Some(x) } => {
-                    format!("manual sleep {}", m.doc.plan.activities[*x].id)
-                }
-                Phase2Reason::ForcedSleep { sleep: None } => "an awake period".to_string(),
-                Phase2Reason::MinAwake { sleep: None } => "the plan bounds".to_string(),
-            };
-            ui.label(format!(
-                "{} for starts {}–{}: {detail}",
-                r.reason.kind().name(),
-                r.first,
-                r.last
-            ));
+            ui.label(reason_line(&m.doc.plan, &m.analysis.schedule.problem, r));
         }
         for note in explanation_notes(&m.doc.plan, &m.analysis.schedule.problem, ex) {
             ui.label(note);
@@ -196,21 +154,21 @@ fn activity_ui(
 
 /// One row per category with its valid starts, then their intersection.
 fn intervals_ui(ui: &mut egui::Ui, m: &Model<'_>, cats: &[CategoryIntervals]) {
-    let row_h = 10.0;
+    let row_h = TRACK_ROW_HEIGHT;
     let n = cats.len() + 1;
     let (rect, _) = ui.allocate_exact_size(
-        egui::vec2(ui.available_width(), n as f32 * (row_h + 3.0)),
+        egui::vec2(ui.available_width(), n as f32 * (row_h + TRACK_ROW_GAP)),
         Sense::hover(),
     );
     let painter = ui.painter_at(rect);
     let label_w = LABEL_WIDTH.min(rect.width() / 3.0);
     let track = Rect::from_min_max(Pos2::new(rect.left() + label_w, rect.top()), rect.max);
     let axis = m.nav.axis;
-    let font = egui::FontId::proportional(9.0);
+    let font = egui::FontId::proportional(TRACK_FONT_SIZE);
     let mut inter =
         solscope_engine::IntervalSet::single(m.doc.plan.horizon.start, m.doc.plan.horizon.end);
     let draw = |i: usize, name: &str, set: &solscope_engine::IntervalSet, color: egui::Color32| {
-        let y = rect.top() + i as f32 * (row_h + 3.0);
+        let y = rect.top() + i as f32 * (row_h + TRACK_ROW_GAP);
         painter.text(
             Pos2::new(rect.left(), y + row_h / 2.0),
             egui::Align2::LEFT_CENTER,
@@ -223,7 +181,7 @@ fn intervals_ui(ui: &mut egui::Ui, m: &Model<'_>, cats: &[CategoryIntervals]) {
                 Pos2::new(track.left(), y + row_h / 2.0),
                 Pos2::new(track.right(), y + row_h / 2.0),
             ],
-            Stroke::new(0.5, m.theme.muted),
+            Stroke::new(TRACK_LINE_STROKE, m.theme.muted),
         );
         for iv in set.intervals() {
             let x0 = axis.x(iv.lo as f64, track).max(f64::from(track.left())) as f32;
@@ -250,7 +208,7 @@ fn intervals_ui(ui: &mut egui::Ui, m: &Model<'_>, cats: &[CategoryIntervals]) {
 fn json_field_ui(
     ui: &mut egui::Ui,
     m: &Model<'_>,
-    st: &mut TextBuffers<'_>,
+    st: &mut TextBuffers,
     target: &str,
     key: &str,
     current: Option<&Value>,
@@ -264,7 +222,7 @@ fn json_field_ui(
         .or_insert_with(|| (shown.clone(), None));
     let lbl = ui.label(key);
     let resp = ui
-        .add(egui::TextEdit::singleline(&mut entry.0).desired_width(200.0))
+        .add(egui::TextEdit::singleline(&mut entry.0).desired_width(FIELD_WIDTH))
         .labelled_by(lbl.id);
     let resp = resp.on_hover_text(format!("{key} as JSON; Enter applies (empty removes it)"));
     let commit = resp.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
@@ -324,17 +282,17 @@ const ACTIVITY_FIELDS: [&str; 18] = [
     "group",
 ];
 
-fn reset_buffers_if_stale(st: &mut TextBuffers<'_>, key: (Option<usize>, u64)) {
-    if *st.editor_for != Some(key) {
+fn reset_buffers_if_stale(st: &mut TextBuffers, key: (Option<usize>, u64)) {
+    if st.editor_for != Some(key) {
         st.editor.clear();
-        *st.editor_for = Some(key);
+        st.editor_for = Some(key);
     }
 }
 
 fn activity_editor_ui(
     ui: &mut egui::Ui,
     m: &Model<'_>,
-    st: &mut TextBuffers<'_>,
+    st: &mut TextBuffers,
     a: usize,
     cmds: &mut Vec<Command>,
 ) {
@@ -351,12 +309,7 @@ fn activity_editor_ui(
         });
 }
 
-fn plan_editor_ui(
-    ui: &mut egui::Ui,
-    m: &Model<'_>,
-    st: &mut TextBuffers<'_>,
-    cmds: &mut Vec<Command>,
-) {
+fn plan_editor_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut TextBuffers, cmds: &mut Vec<Command>) {
     if m.nav.selected.is_none() {
         reset_buffers_if_stale(st, (None, m.revision));
     }
@@ -377,15 +330,4 @@ fn plan_editor_ui(
                 json_field_ui(ui, m, st, "plan", key, value.get(key), cmds);
             }
         });
-}
-
-/// The name of zone `z` (compiled zone index).
-fn zone_name(m: &Model<'_>, z: usize) -> String {
-    m.analysis
-        .schedule
-        .problem
-        .zone_names
-        .get(z)
-        .cloned()
-        .unwrap_or_else(|| format!("zone {z}"))
 }

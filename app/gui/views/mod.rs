@@ -12,12 +12,14 @@ mod inspector;
 mod plots;
 
 use eframe::egui::{self, RichText};
-use solscope_engine::{Outcome, Suggestion};
+use solscope_engine::{Outcome, Suggestion, format_local};
 
 use crate::gui::commands::{Command, UiCommand};
 use crate::gui::document::{Analysis, Document};
 use crate::gui::state::{Messages, Navigation, Pending, Persisted, StepView, TextBuffers};
-use crate::gui::theme::{INSPECTOR_WIDTH, Theme};
+use crate::gui::theme::{
+    FILTER_WIDTH, INSPECTOR_WIDTH, LIST_WIDTH, MESSAGE_MARGIN, RANGE_FIELD_WIDTH, Theme,
+};
 use crate::gui::time_axis::TimeAxis;
 
 /// Read-only view of the app for one frame.
@@ -41,11 +43,9 @@ pub struct Model<'a> {
     /// Valid intervals of the selected activity at its own step (full horizon).
     pub valid: Option<&'a [solscope_engine::CategoryIntervals]>,
     /// Where the user is: step, selection, visible range, probe.
-    pub nav: Navigation,
-    /// Activity filter text.
-    pub filter: &'a str,
+    pub nav: &'a Navigation,
     /// The outcome banner, the error and the unsaved-changes question.
-    pub messages: Messages<'a>,
+    pub messages: &'a Messages,
 }
 
 /// What the views keep between frames (their own, not the app's).
@@ -62,7 +62,7 @@ pub struct ViewCache {
 #[derive(Debug)]
 pub struct Widgets<'a> {
     /// Text buffers of the range fields and the editor.
-    pub text: TextBuffers<'a>,
+    pub text: &'a mut TextBuffers,
     /// What the views keep between frames.
     pub cache: &'a mut ViewCache,
 }
@@ -111,7 +111,7 @@ impl Model<'_> {
 
     /// Plan time as `t (hh:mm:ss)`.
     pub fn time(&self, t: i64) -> String {
-        format!("{t} ({})", self.doc.plan.local_time.format_hms(t))
+        solscope_engine::format_plan_time(&self.doc.plan.local_time, t)
     }
 }
 
@@ -184,7 +184,7 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
     });
     egui::Panel::left("activities")
         .resizable(true)
-        .default_size(230.0)
+        .default_size(LIST_WIDTH)
         .show(ui, |ui| {
             activities_ui(ui, m, cmds);
         });
@@ -195,11 +195,11 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
             egui::ScrollArea::vertical()
                 .auto_shrink([false; 2])
                 .show(ui, |ui| {
-                    inspector::inspector_ui(ui, m, &mut w.text, cmds);
+                    inspector::inspector_ui(ui, m, w.text, cmds);
                 });
         });
     egui::CentralPanel::default().show(ui, |ui| {
-        axis_ui(ui, m, w.text.range_text, cmds);
+        axis_ui(ui, m, &mut w.text.range_text, cmds);
         egui::ScrollArea::vertical()
             .auto_shrink([false; 2])
             .show(ui, |ui| {
@@ -260,9 +260,9 @@ fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
         ui.label(format!("{} of {n} scheduled, {failed} not", n - failed));
         ui.separator();
         let label = ui.label("Search");
-        let mut filter = m.filter.to_owned();
+        let mut filter = m.nav.filter.to_owned();
         if ui
-            .add(egui::TextEdit::singleline(&mut filter).desired_width(140.0))
+            .add(egui::TextEdit::singleline(&mut filter).desired_width(FILTER_WIDTH))
             .labelled_by(label.id)
             .changed()
         {
@@ -309,10 +309,10 @@ fn steps_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
 
 /// The outcome of the last edit, and the last error.
 fn banner_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
-    if let Some(diff) = m.messages.banner {
+    if let Some(diff) = &m.messages.banner {
         egui::Frame::new()
             .fill(m.theme.banner)
-            .inner_margin(4.0)
+            .inner_margin(MESSAGE_MARGIN)
             .show(ui, |ui| {
                 ui.horizontal_wrapped(|ui| {
                     ui.label(diff.summary());
@@ -322,7 +322,7 @@ fn banner_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
                 });
             });
     }
-    if let Some(err) = m.messages.error {
+    if let Some(err) = &m.messages.error {
         ui.horizontal_wrapped(|ui| {
             ui.label(RichText::new(err).color(m.theme.error));
             if ui.button("Dismiss error").clicked() {
@@ -335,7 +335,7 @@ fn banner_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
 /// The activity list: search, status as of the current step, click to select.
 fn activities_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
     ui.heading("Activities");
-    let needle = m.filter.to_lowercase();
+    let needle = m.nav.filter.to_lowercase();
     let shown: Vec<&solscope_engine::Step> = m
         .analysis
         .schedule
@@ -392,11 +392,11 @@ fn axis_ui(
         ui.label("Time range (plan s)");
         let l0 = ui.label("from");
         let r0 = ui
-            .add(egui::TextEdit::singleline(&mut range_text[0]).desired_width(80.0))
+            .add(egui::TextEdit::singleline(&mut range_text[0]).desired_width(RANGE_FIELD_WIDTH))
             .labelled_by(l0.id);
         let l1 = ui.label("to");
         let r1 = ui
-            .add(egui::TextEdit::singleline(&mut range_text[1]).desired_width(80.0))
+            .add(egui::TextEdit::singleline(&mut range_text[1]).desired_width(RANGE_FIELD_WIDTH))
             .labelled_by(l1.id);
         let enter = ui.input(|i| i.key_pressed(egui::Key::Enter));
         if (r0.lost_focus() || r1.lost_focus()) && enter || ui.button("Apply range").clicked() {
@@ -425,15 +425,15 @@ fn axis_ui(
         }
         ui.label(format!(
             "{} – {}",
-            m.doc.plan.local_time.format_hms(axis.start as i64),
-            m.doc.plan.local_time.format_hms(axis.end as i64)
+            format_local(&m.doc.plan.local_time, axis.start as i64),
+            format_local(&m.doc.plan.local_time, axis.end as i64)
         ));
     });
 }
 
 /// "Discard unsaved changes?"
 fn confirm_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
-    let Some(pending) = m.messages.confirm else {
+    let Some(pending) = &m.messages.confirm else {
         return;
     };
     let what = match pending {

@@ -3,7 +3,9 @@
 
 use eframe::egui::{self, RichText};
 use egui_plot::{HLine, Line, Plot, PlotPoints, VLine};
-use solscope_engine::{Consumer, MJ_PER_WH, MW_PER_W, energy_consumers, peak_users};
+use solscope_engine::{
+    Consumer, energy_consumers, format_plan_time, format_watts, format_wh, peak_users,
+};
 
 use super::{Model, ViewCache};
 use crate::gui::commands::Command;
@@ -32,7 +34,7 @@ fn plot_ui(
     let resp = Plot::new(id)
         .x_axis_formatter(move |mark, _range| {
             let t = mark.value.round() as i64;
-            format!("{t} ({})", local.format_hms(t))
+            format_plan_time(&local, t)
         })
         .height(PLOT_HEIGHT)
         .allow_zoom(false)
@@ -182,7 +184,7 @@ pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
             .striped(true)
             .show(&mut cols[0], |ui| {
                 for (who, amount) in energy.iter().take(12) {
-                    ui.label(format!("{:.1} Wh", *amount as f64 / MJ_PER_WH));
+                    ui.label(format_wh(i128::from(*amount)));
                     ui.label(who);
                     ui.end_row();
                 }
@@ -196,7 +198,7 @@ pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
             .striped(true)
             .show(&mut cols[1], |ui| {
                 for (who, amount) in peak.iter().take(12) {
-                    ui.label(format!("{:.1} W", *amount as f64 / MW_PER_W));
+                    ui.label(format_watts(*amount));
                     ui.label(who);
                     ui.end_row();
                 }

@@ -1,6 +1,6 @@
 //! Planner-facing sentences for explanations. Pure formatting: no decisions here.
 
-use super::{Explanation, Phase};
+use super::{Explanation, Phase, ReasonRange};
 use crate::model::Plan;
 use crate::scheduler::{Category, Phase2Reason, Problem, Schedule};
 use crate::timeline::IntervalSet;
@@ -66,6 +66,51 @@ pub fn suggestion_line(plan: &Plan, s: &super::Suggestion) -> String {
         .map(|&x| plan.activities[x].id.as_str())
         .collect();
     format!("{} (then fails: {})", s.description, ids.join(", "))
+}
+
+/// One range of failing starts in short form, with its numbers:
+/// `min_soc for starts 100–200: SOC 633.2 Wh at 1500 (10:25:00)`.
+pub fn reason_line(plan: &Plan, problem: &Problem, r: &ReasonRange) -> String {
+    let detail = match &r.reason {
+        Phase2Reason::MinSoc { at: t, soc_mj } => {
+            format!(
+                "SOC {} at {}",
+                format_wh(i128::from(*soc_mj)),
+                at(problem, *t)
+            )
+        }
+        Phase2Reason::MaxPeakPower { at: t, peak_mw } => {
+            format!("peak {} at {}", format_watts(*peak_mw), at(problem, *t))
+        }
+        Phase2Reason::HandoverSoc { soc_mj } => {
+            format!("SOC {} at handover", format_wh(i128::from(*soc_mj)))
+        }
+        Phase2Reason::PreheatOutsidePlan {
+            zone,
+            preheat_start,
+        }
+        | Phase2Reason::PreheatOperability {
+            zone,
+            preheat_start,
+        } => format!(
+            "{} preheat from {}",
+            problem.zone_names[*zone],
+            at(problem, *preheat_start)
+        ),
+        Phase2Reason::ForcedSleep { sleep: Some(x) }
+        | Phase2Reason::MinSleep { sleep: x }
+        | Phase2Reason::MinAwake { sleep: Some(x) } => {
+            format!("manual sleep {}", plan.activities[*x].id)
+        }
+        Phase2Reason::ForcedSleep { sleep: None } => "an awake period".to_string(),
+        Phase2Reason::MinAwake { sleep: None } => "the plan bounds".to_string(),
+    };
+    format!(
+        "{} for starts {}–{}: {detail}",
+        r.reason.kind().name(),
+        r.first,
+        r.last
+    )
 }
 
 /// The plain-language notes of an explanation.
