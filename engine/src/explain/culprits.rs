@@ -36,11 +36,11 @@ struct Load {
 
 /// Everything drawing power after step `k` (activities, awake periods, heating).
 fn loads(sched: &Schedule, k: usize) -> Vec<Load> {
-    let pb = &sched.problem;
+    let problem = &sched.problem;
     let mut out = Vec::new();
     for st in sched.steps.iter().take(k) {
         if let Outcome::Scheduled { start, end } = st.outcome {
-            let act = &pb.acts[st.activity];
+            let act = &problem.acts[st.activity];
             out.push(Load {
                 kind: "activity",
                 activity: Some(st.activity),
@@ -84,12 +84,12 @@ pub fn energy_consumers(
     t: i64,
     since_full: bool,
 ) -> (i64, Vec<Consumer>) {
-    let pb = &sched.problem;
+    let problem = &sched.problem;
     let from = if since_full {
         let state = sched.state_after(k);
-        last_full_before(&state, t).unwrap_or(pb.h0)
+        last_full_before(&state, t).unwrap_or(problem.h0)
     } else {
-        pb.h0
+        problem.h0
     };
     let mut out: Vec<Consumer> = loads(sched, k)
         .into_iter()
@@ -173,16 +173,16 @@ pub const ENERGY_CULPRITS: usize = 10;
 
 /// The culprits of an explained failure, from the state at its failure step.
 pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
-    let pb = state.pb;
+    let problem = state.pb;
     let a = ex.activity;
-    let act = &pb.acts[a];
+    let act = &problem.acts[a];
     let mut out: Vec<Culprit> = Vec::new();
     let mut seen: std::collections::HashSet<(usize, Blame)> = std::collections::HashSet::new();
     let mut push = |x: usize, blame: Blame| {
         if x != a && seen.insert((x, blame)) {
             out.push(Culprit {
                 activity: x,
-                step: pb.step_of[x],
+                step: problem.step_of[x],
                 blame,
             });
         }
@@ -212,7 +212,7 @@ pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
                         .categories
                         .iter()
                         .filter(|c| c.category != cat && conflict.contains(&c.category))
-                        .fold(IntervalSet::single(pb.h0, pb.h1), |acc, c| {
+                        .fold(IntervalSet::single(problem.h0, problem.h1), |acc, c| {
                             acc.intersect(&c.valid)
                         });
                     if let (Some(lo), Some(hi)) = (others.first(), others.intervals().last()) {
@@ -225,7 +225,7 @@ pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
                 let blame = Blame::Constraint(cat);
                 for (x, placed) in state.placed.iter().enumerate() {
                     let Some(iv) = *placed else { continue };
-                    let other = &pb.acts[x];
+                    let other = &problem.acts[x];
                     let hit = match cat {
                         Category::Execution => false,
                         Category::Dependency => act.after.iter().any(|dep| dep.target == x),
@@ -276,7 +276,7 @@ pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
                     Phase2Reason::MaxPeakPower { at, .. } => {
                         for (x, placed) in state.placed.iter().enumerate() {
                             if let Some((s, e)) = *placed {
-                                if s <= at && at < e && pb.acts[x].peak > 0 {
+                                if s <= at && at < e && problem.acts[x].peak > 0 {
                                     push(x, kind);
                                 }
                             }
@@ -285,9 +285,9 @@ pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
                     Phase2Reason::MinSoc { .. } | Phase2Reason::HandoverSoc { .. } => {
                         let t = match r.reason {
                             Phase2Reason::MinSoc { at, .. } => at,
-                            _ => pb.handover_time.unwrap_or(pb.h1),
+                            _ => problem.handover_time.unwrap_or(problem.h1),
                         };
-                        let from = last_full_before(state, t).unwrap_or(pb.h0);
+                        let from = last_full_before(state, t).unwrap_or(problem.h0);
                         let mut users: Vec<(i64, usize)> = state
                             .placed
                             .iter()
@@ -295,7 +295,7 @@ pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
                             .filter_map(|(x, p)| p.map(|(s, e)| (x, s, e)))
                             .map(|(x, s, e)| {
                                 (
-                                    pb.acts[x]
+                                    problem.acts[x]
                                         .energy
                                         .saturating_mul((e.min(t) - s.max(from)).max(0)),
                                     x,

@@ -232,9 +232,12 @@ fn from_probe(sched: &Schedule, a: usize, step: &Step, k: usize, record: Step) -
         }
     };
     let (conflicts, relaxations) = if phase == Phase::ValidIntervals {
-        let pb = &sched.problem;
-        let preferred = pb.acts[a].windows.first().map_or(pb.h0, |w| w.preferred);
-        minimal_conflicts(&record.categories, pb.h0, pb.h1, preferred)
+        let problem = &sched.problem;
+        let preferred = problem.acts[a]
+            .windows
+            .first()
+            .map_or(problem.h0, |w| w.preferred);
+        minimal_conflicts(&record.categories, problem.h0, problem.h1, preferred)
     } else {
         (Vec::new(), Vec::new())
     };

@@ -17,7 +17,7 @@ use crate::scheduler::{
 /// activities with an effect setting it, sorted, so that an activity's thresholds
 /// cost O(log N) per requirement instead of a scan of the plan.
 struct Inclusion<'a> {
-    pb: &'a Problem,
+    problem: &'a Problem,
     setters: std::collections::HashMap<(usize, usize), Vec<usize>>,
 }
 
@@ -30,29 +30,32 @@ struct Thresholds {
 }
 
 impl<'a> Inclusion<'a> {
-    fn new(pb: &'a Problem) -> Self {
+    fn new(problem: &'a Problem) -> Self {
         let mut setters: std::collections::HashMap<(usize, usize), Vec<usize>> =
             std::collections::HashMap::new();
-        for (x, act) in pb.acts.iter().enumerate() {
+        for (x, act) in problem.acts.iter().enumerate() {
             for e in &act.effects {
-                setters.entry((e.0, e.1)).or_default().push(pb.step_of[x]);
+                setters
+                    .entry((e.0, e.1))
+                    .or_default()
+                    .push(problem.step_of[x]);
             }
         }
         for v in setters.values_mut() {
             v.sort_unstable();
             v.dedup();
         }
-        Self { pb, setters }
+        Self { problem, setters }
     }
 
     fn thresholds(&self, a: usize) -> Thresholds {
-        let act = &self.pb.acts[a];
-        let mine = self.pb.step_of[a];
+        let act = &self.problem.acts[a];
+        let mine = self.problem.step_of[a];
         let deps = act
             .after
             .iter()
             .map(|d| {
-                let t = self.pb.step_of[d.target];
+                let t = self.problem.step_of[d.target];
                 if d.target != a && t < mine { t } else { 0 }
             })
             .collect();
@@ -112,7 +115,7 @@ struct RunEffects {
 
 impl RunEffects {
     fn new(sched: &Schedule) -> Self {
-        let pb = &sched.problem;
+        let problem = &sched.problem;
         let n = sched.steps.len();
         let mut out = RunEffects {
             applied: Vec::with_capacity(n + 1),
@@ -121,33 +124,38 @@ impl RunEffects {
             handover: Vec::with_capacity(n + 1),
             group_steps: Vec::new(),
             reach: {
-                let preheat = pb
+                let preheat = problem
                     .zones
                     .iter()
                     .flat_map(|z| z.table.iter().map(|t| t.1))
                     .max()
                     .unwrap_or(0);
-                pb.min_sleep.max(1) + pb.wake + pb.shut + pb.min_awake + preheat + 2
+                problem.min_sleep.max(1)
+                    + problem.wake
+                    + problem.shut
+                    + problem.min_awake
+                    + preheat
+                    + 2
             },
         };
         out.applied.push(None);
         out.energy.push(0);
         out.data.push(0);
         out.handover.push(0);
-        let mut state = State::new(pb);
+        let mut state = State::new(problem);
         for step in &sched.steps {
             let (mut e, mut d, mut h) = (0, 0, 0);
             let mut applied = None;
             if let Some(ev) = state.replay(step) {
                 if let Outcome::Scheduled { start, end } = step.outcome {
-                    let act = &pb.acts[step.activity];
+                    let act = &problem.acts[step.activity];
                     let produced = i128::from(act.data.max(0));
                     e = ev.energy;
                     d = produced * i128::from(end - start);
-                    if let Some(ht) = pb.handover_time {
-                        h = produced * overlap((start, end), (pb.h0, ht));
+                    if let Some(ht) = problem.handover_time {
+                        h = produced * overlap((start, end), (problem.h0, ht));
                     }
-                    let (lo, hi) = ev.footprint(pb);
+                    let (lo, hi) = ev.footprint(problem);
                     applied = Some(Applied {
                         act: step.activity,
                         lo,
@@ -189,9 +197,9 @@ struct Witness {
 
 /// Whether two activities share a state through effects on one side and effects or
 /// requirements on the other (an effect's reach is not bounded in time).
-fn share_state(pb: &Problem, a: usize, b: usize) -> bool {
+fn share_state(problem: &Problem, a: usize, b: usize) -> bool {
     let touches = |x: usize, y: usize| {
-        let (x, y) = (&pb.acts[x], &pb.acts[y]);
+        let (x, y) = (&problem.acts[x], &problem.acts[y]);
         x.effects
             .iter()
             .any(|e| y.requires.iter().any(|r| r.0 == e.0) || y.effects.iter().any(|f| f.0 == e.0))
@@ -216,18 +224,21 @@ fn next_check(
     k: usize,
     until: usize,
 ) -> usize {
-    let pb = state.pb;
+    let problem = state.pb;
     let a = ev.placement.act;
-    let act = &pb.acts[a];
+    let act = &problem.acts[a];
     let (s, d) = (ev.placement.start, ev.placement.duration);
     let mut due = until.min(RunEffects::exhausted(&fx.energy, k, ev.margin));
-    if let (Some(cap), true) = (pb.data_cap, act.data > 0) {
+    if let (Some(cap), true) = (problem.data_cap, act.data > 0) {
         let margin = cap + state.data.check(&[(s, s + d, act.data)], None).min;
         due = due.min(RunEffects::exhausted(&fx.data, k, margin));
     }
-    if let (false, Some(ht), Some(max)) = (act.mandatory, pb.handover_time, pb.handover_data) {
-        let margin =
-            max - state.produced - i128::from(act.data.max(0)) * overlap((s, s + d), (pb.h0, ht));
+    if let (false, Some(ht), Some(max)) =
+        (act.mandatory, problem.handover_time, problem.handover_data)
+    {
+        let margin = max
+            - state.produced
+            - i128::from(act.data.max(0)) * overlap((s, s + d), (problem.h0, ht));
         due = due.min(RunEffects::exhausted(&fx.handover, k, margin));
     }
     for &t in th.deps.iter().chain(&th.reqs) {
@@ -240,11 +251,11 @@ fn next_check(
             due = due.min(j);
         }
     }
-    let (lo, hi) = ev.footprint(pb);
+    let (lo, hi) = ev.footprint(problem);
     let (lo, hi) = (lo.saturating_sub(fx.reach), hi.saturating_add(fx.reach));
     for j in k + 1..due.min(fx.applied.len()) {
         if let Some(p) = &fx.applied[j] {
-            if (p.lo < hi && lo < p.hi) || share_state(pb, a, p.act) {
+            if (p.lo < hi && lo < p.hi) || share_state(problem, a, p.act) {
                 return j;
             }
         }
@@ -271,10 +282,10 @@ pub(super) fn failure_probes(
     mut on_failure: impl FnMut(usize, usize, Step, &State<'_>),
 ) {
     use std::cmp::Reverse;
-    let pb = &sched.problem;
-    let step_of = &pb.step_of;
+    let problem = &sched.problem;
+    let step_of = &problem.step_of;
     let fx = RunEffects::new(sched);
-    let inclusion = Inclusion::new(pb);
+    let inclusion = Inclusion::new(problem);
     let thresholds: Vec<Thresholds> = targets.iter().map(|&a| inclusion.thresholds(a)).collect();
     let mut witness: Vec<Option<Witness>> = (0..targets.len()).map(|_| None).collect();
     // (due step, target); a target is in the queue at most once.
@@ -289,7 +300,7 @@ pub(super) fn failure_probes(
         })
         .map(|(i, _)| Reverse((0, i)))
         .collect();
-    let mut state = State::new(pb);
+    let mut state = State::new(problem);
     for k in 0..sched.steps.len() {
         if queue.is_empty() {
             break;
@@ -321,7 +332,7 @@ pub(super) fn failure_probes(
             // probe only asks whether the activity fails). A group member placed
             // since skips the activity, which no placement check sees; an unplaced
             // dependency fails the witness's phase-1 check.
-            let grouped = pb.acts[a]
+            let grouped = problem.acts[a]
                 .group
                 .is_some_and(|g| state.group_member[g].is_some());
             let kept = witness[i]

@@ -126,7 +126,7 @@ pub fn explain_document(
     schedule: &Schedule,
     explanations: &[Explanation],
 ) -> ExplainDoc {
-    let pb = &schedule.problem;
+    let problem = &schedule.problem;
     let id = |a: usize| plan.activities[a].id.clone();
     let entries = explanations
         .iter()
@@ -141,7 +141,11 @@ pub fn explain_document(
                 .iter()
                 .map(|c| c.iter().map(|x| x.name()).collect())
                 .collect(),
-            reasons: ex.reasons.iter().map(|r| reason_value(pb, r)).collect(),
+            reasons: ex
+                .reasons
+                .iter()
+                .map(|r| reason_value(problem, r))
+                .collect(),
             culprits: ex
                 .culprits
                 .iter()
@@ -151,7 +155,7 @@ pub fn explain_document(
                     step: c.step,
                 })
                 .collect(),
-            notes: explanation_notes(plan, pb, ex),
+            notes: explanation_notes(plan, problem, ex),
             suggestions: ex
                 .suggestions
                 .iter()

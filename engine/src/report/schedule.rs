@@ -70,7 +70,7 @@ pub fn schedule_document(
     default_name: &str,
 ) -> ScheduleDoc {
     let plan = &loaded.plan;
-    let pb = &schedule.problem;
+    let problem = &schedule.problem;
     let activities = schedule
         .steps
         .iter()
@@ -105,7 +105,7 @@ pub fn schedule_document(
             };
             GeneratedEntry {
                 kind,
-                zone: heat.map(|(z, _)| pb.zone_names[z].clone()),
+                zone: heat.map(|(z, _)| problem.zone_names[z].clone()),
                 for_activity: heat.map(|(_, a)| plan.activities[a].id.clone()),
                 start: g.start,
                 end: g.end,

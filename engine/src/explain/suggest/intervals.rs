@@ -209,12 +209,12 @@ fn data_limits(plan: &Plan, ex: &Explanation) -> Vec<Candidate> {
     let mut out = Vec::new();
     if let Some(cap) = plan.data.capacity {
         let make = |mbit: f64| {
-            let mut data = serde_json::to_value(plan.data).unwrap_or(Value::Null);
-            data["capacity"] = json!(mbit);
-            Candidate::plan(
+            Candidate::plan_section(
                 format!("Raise the data capacity to {mbit} Mbit"),
                 "data",
-                data,
+                &plan.data,
+                "capacity",
+                mbit,
             )
         };
         out.extend(tune_limit(plan, a, &make, cap, round3(cap + extra), 1e12));
@@ -222,12 +222,12 @@ fn data_limits(plan: &Plan, ex: &Explanation) -> Vec<Candidate> {
     if let (false, Some(h)) = (activity.mandatory, plan.handover) {
         if let Some(max) = h.max_data_volume {
             let make = |mbit: f64| {
-                let mut handover = serde_json::to_value(h).unwrap_or(Value::Null);
-                handover["max_data_volume"] = json!(mbit);
-                Candidate::plan(
+                Candidate::plan_section(
                     format!("Raise the data allowed before handover to {mbit} Mbit"),
                     "handover",
-                    handover,
+                    &h,
+                    "max_data_volume",
+                    mbit,
                 )
             };
             out.extend(tune_limit(plan, a, &make, max, round3(max + extra), 1e12));

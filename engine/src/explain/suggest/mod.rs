@@ -10,6 +10,7 @@ mod intervals;
 mod placement;
 mod verify;
 
+use serde::Serialize;
 use serde_json::{Map, Value, json};
 
 use super::{Explanation, Phase, Suggestion};
@@ -31,6 +32,20 @@ impl Candidate {
             target: "plan".into(),
             set: set1(key, value),
         }
+    }
+
+    /// An edit of one field inside a section of the plan (`battery.min_soc`, ...):
+    /// the section as it is, with that field replaced.
+    fn plan_section(
+        description: String,
+        section: &str,
+        current: &impl Serialize,
+        field: &str,
+        value: f64,
+    ) -> Self {
+        let mut edited = serde_json::to_value(current).unwrap_or(Value::Null);
+        edited[field] = json!(value);
+        Self::plan(description, section, edited)
     }
 
     /// An edit of one field of an activity.

@@ -72,12 +72,12 @@ pub(super) fn candidates(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec
 /// `min_soc`: the least lowering of `battery.min_soc` that makes it schedule.
 fn lower_min_soc(plan: &Plan, a: usize, soc_mj: i64) -> Option<Candidate> {
     let make = |wh: f64| {
-        let mut battery = serde_json::to_value(plan.battery).unwrap_or(Value::Null);
-        battery["min_soc"] = json!(wh);
-        Candidate::plan(
+        Candidate::plan_section(
             format!("Lower the minimum state of charge to {wh} Wh"),
             "battery",
-            battery,
+            &plan.battery,
+            "min_soc",
+            wh,
         )
     };
     let needed = floor3(wh(i128::from(soc_mj))).max(0.0);
@@ -92,12 +92,12 @@ fn handover_soc(plan: &Plan, a: usize, soc_mj: i64) -> Vec<Candidate> {
     };
     let activity = &plan.activities[a];
     let make = |wh: f64| {
-        let mut handover = serde_json::to_value(h).unwrap_or(Value::Null);
-        handover["min_soc"] = json!(wh);
-        Candidate::plan(
+        Candidate::plan_section(
             format!("Lower the handover state of charge to {wh} Wh"),
             "handover",
-            handover,
+            &h,
+            "min_soc",
+            wh,
         )
     };
     let needed = floor3(wh(i128::from(soc_mj))).max(0.0);
@@ -120,12 +120,12 @@ fn handover_soc(plan: &Plan, a: usize, soc_mj: i64) -> Vec<Candidate> {
 /// `max_peak_power`: the least raise of `power.max_peak`.
 fn raise_max_peak(plan: &Plan, a: usize, peak_mw: i64) -> Option<Candidate> {
     let make = |w: f64| {
-        let mut power = serde_json::to_value(plan.power).unwrap_or(Value::Null);
-        power["max_peak"] = json!(w);
-        Candidate::plan(
+        Candidate::plan_section(
             format!("Raise the peak power limit to {w} W"),
             "power",
-            power,
+            &plan.power,
+            "max_peak",
+            w,
         )
     };
     let needed = watts(peak_mw).ceil();
