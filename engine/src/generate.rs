@@ -386,7 +386,7 @@ mod tests {
             let scheduled = s
                 .steps
                 .iter()
-                .filter(|x| matches!(x.outcome, crate::Outcome::Scheduled { .. }))
+                .filter(|x| x.outcome.placement().is_some())
                 .count();
             assert!(scheduled * 2 >= n, "{scheduled} of {n} scheduled");
         }

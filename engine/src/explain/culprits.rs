@@ -4,9 +4,7 @@
 use serde::Serialize;
 
 use super::{Culprit, Explanation, Phase};
-use crate::scheduler::{
-    Category, GeneratedKind, Outcome, Phase2Reason, ReasonKind, Schedule, State,
-};
+use crate::scheduler::{Category, GeneratedKind, Phase2Reason, ReasonKind, Schedule, State};
 use crate::timeline::IntervalSet;
 
 /// One consumer of energy or peak power.
@@ -39,7 +37,7 @@ fn loads(sched: &Schedule, k: usize) -> Vec<Load> {
     let problem = &sched.problem;
     let mut out = Vec::new();
     for st in sched.steps.iter().take(k) {
-        if let Outcome::Scheduled { start, end } = st.outcome {
+        if let Some((start, end)) = st.outcome.placement() {
             let act = &problem.acts[st.activity];
             out.push(Load {
                 kind: "activity",

@@ -155,7 +155,7 @@ pub fn explain(
         None => sched
             .steps
             .iter()
-            .filter(|s| !matches!(s.outcome, Outcome::Scheduled { .. }))
+            .filter(|s| s.outcome.placement().is_none())
             .map(|s| s.activity)
             .collect(),
     };

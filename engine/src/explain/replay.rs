@@ -147,7 +147,7 @@ impl RunEffects {
             let (mut e, mut d, mut h) = (0, 0, 0);
             let mut applied = None;
             if let Some(ev) = state.replay(step) {
-                if let Outcome::Scheduled { start, end } = step.outcome {
+                if let Some((start, end)) = step.outcome.placement() {
                     let act = &problem.acts[step.activity];
                     let produced = i128::from(act.data.max(0));
                     e = ev.energy;
@@ -292,12 +292,7 @@ pub(super) fn failure_probes(
     let mut queue: std::collections::BinaryHeap<Reverse<(usize, usize)>> = targets
         .iter()
         .enumerate()
-        .filter(|&(_, &a)| {
-            !matches!(
-                sched.steps[step_of[a] - 1].outcome,
-                Outcome::Scheduled { .. }
-            )
-        })
+        .filter(|&(_, &a)| sched.placement(a).is_none())
         .map(|(i, _)| Reverse((0, i)))
         .collect();
     let mut state = State::new(problem);

@@ -1,7 +1,7 @@
 //! Inspector queries over a finished run: the valid starts of any activity at any
 //! step, and the partial schedule after a step.
 
-use super::{CategoryIntervals, Generated, Outcome, Schedule, Scope};
+use super::{CategoryIntervals, Generated, Schedule, Scope};
 
 /// Valid starts per category of activity `a` against the state after step `k`,
 /// for duration `d` (its shortest duration when `None`): the inspector's view of
@@ -38,10 +38,12 @@ pub fn partial_schedule(sched: &Schedule, k: usize) -> PartialSchedule {
         generated: sched.generated_after(k).copied().collect(),
     };
     for s in &sched.steps {
-        match s.outcome {
-            _ if s.step > k => p.pending.push(s.activity),
-            Outcome::Scheduled { start, end } => p.placed.push((s.activity, start, end)),
-            _ => p.failed.push(s.activity),
+        if s.step > k {
+            p.pending.push(s.activity);
+        } else if let Some((start, end)) = s.outcome.placement() {
+            p.placed.push((s.activity, start, end));
+        } else {
+            p.failed.push(s.activity);
         }
     }
     p
