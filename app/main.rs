@@ -110,19 +110,39 @@ fn main() -> ExitCode {
     match run(command) {
         Ok(text) => {
             let mut out = std::io::stdout().lock();
-            if out
-                .write_all(text.as_bytes())
-                .and_then(|()| out.flush())
-                .is_err()
-            {
-                return ExitCode::FAILURE;
+            match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+                Ok(()) => ExitCode::SUCCESS,
+                // A reader that stopped early (`| head`) wants no more: not news.
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::FAILURE,
+                Err(e) => {
+                    eprintln!("error: could not write the output: {e}");
+                    ExitCode::FAILURE
+                }
             }
-            ExitCode::SUCCESS
         }
-        Err(err) => {
+        Err(Failure::Input(err)) => {
             eprintln!("error: {err}");
             ExitCode::from(EXIT_INVALID)
         }
+        Err(Failure::Output(what)) => {
+            eprintln!("error: {what}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Why a command printed nothing.
+#[derive(Debug)]
+enum Failure {
+    /// The input is invalid (exit status 2).
+    Input(solscope_engine::Error),
+    /// The output could not be made (exit status 1).
+    Output(String),
+}
+
+impl From<solscope_engine::Error> for Failure {
+    fn from(e: solscope_engine::Error) -> Self {
+        Failure::Input(e)
     }
 }
 
@@ -191,13 +211,13 @@ fn screenshot(
 
 /// Runs a command to completion and returns everything it prints on standard output,
 /// so that nothing is printed when it fails.
-fn run(command: Command) -> Result<String, solscope_engine::Error> {
+fn run(command: Command) -> Result<String, Failure> {
     match command {
         Command::Schedule { plan } => {
             let loaded = solscope_engine::load_plan_file(&plan)?;
             let schedule = solscope_engine::schedule(&loaded.plan)?;
             let doc = solscope_engine::schedule_document(&loaded, &schedule, &default_name(&plan));
-            Ok(format!("{}\n", to_json(&doc)))
+            to_json(&doc)
         }
         Command::Explain {
             plan,
@@ -220,7 +240,7 @@ fn run(command: Command) -> Result<String, solscope_engine::Error> {
                 ))
             } else {
                 let doc = solscope_engine::explain_document(&loaded.plan, &schedule, &explanations);
-                Ok(format!("{}\n", to_json(&doc)))
+                to_json(&doc)
             }
         }
         Command::Screenshot { .. } => Ok(String::new()),
@@ -230,13 +250,13 @@ fn run(command: Command) -> Result<String, solscope_engine::Error> {
             seed,
         } => {
             if activities > 1_000_000 || sols > 1000 {
-                return Err(solscope_engine::Error::invalid(
+                return Err(Failure::Input(solscope_engine::Error::invalid(
                     "--activities/--sols",
                     "at most 1000000 activities and 1000 sols",
-                ));
+                )));
             }
             let plan = solscope_engine::generate_plan(activities, sols, seed);
-            Ok(format!("{}\n", to_json(&plan)))
+            to_json(&plan)
         }
         Command::Check { plan } => {
             let loaded = solscope_engine::load_plan_file(&plan)?;
@@ -262,7 +282,9 @@ fn default_name(path: &std::path::Path) -> String {
         .unwrap_or_default()
 }
 
-fn to_json<T: serde::Serialize>(value: &T) -> String {
-    // Serialising plain data structures to a String cannot fail.
-    serde_json::to_string_pretty(value).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+/// The document as pretty JSON with a final newline.
+fn to_json<T: serde::Serialize>(value: &T) -> Result<String, Failure> {
+    serde_json::to_string_pretty(value)
+        .map(|text| text + "\n")
+        .map_err(|e| Failure::Output(format!("could not write the document as JSON: {e}")))
 }

@@ -159,3 +159,23 @@ fn readme_worked_example_is_current() {
         body.trim_end()
     );
 }
+
+#[test]
+fn a_failed_write_of_the_output_says_what_failed() {
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .expect("/dev/full (Linux)");
+    let out = Command::new(env!("CARGO_BIN_EXE_solscope"))
+        .args(["schedule", "assets/examples/pitfall.json"])
+        .current_dir(root())
+        .stdout(full)
+        .output()
+        .expect("solscope runs");
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("could not write the output"),
+        "stderr: {stderr}"
+    );
+}

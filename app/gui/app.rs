@@ -182,6 +182,7 @@ impl SolscopeApp {
             suggestions: selected.and_then(|a| derived.suggestions(a, revision)),
             revision,
             explanation: selected.and_then(|a| derived.explanation(a, revision)),
+            explanation_error: selected.and_then(|a| derived.explanation_error(a, revision)),
             valid: selected.and_then(|a| derived.valid(a, revision)),
             nav: &self.ui.nav,
             messages: &self.ui.messages,

@@ -32,8 +32,9 @@ impl<T> Derived<T> {
 /// The derived values of the activity looked at (one of each at a time).
 #[derive(Debug, Default)]
 pub struct DerivedCache {
-    /// Explanation of the selected activity, per plan revision.
-    explanation: Option<Derived<Option<Explanation>>>,
+    /// Explanation of the selected activity (none when it scheduled), or why it
+    /// could not be explained, per plan revision.
+    explanation: Option<Derived<Result<Option<Explanation>, String>>>,
     /// Full valid intervals of the selected scheduled activity as it saw them.
     valid: Option<Derived<Vec<CategoryIntervals>>>,
     /// Verified suggestions of the selected activity, per plan revision.
@@ -57,7 +58,7 @@ impl DerivedCache {
             self.explanation = Some(Derived {
                 activity: a,
                 revision,
-                value: analysis.explain(plan, a),
+                value: analysis.explain(plan, a).map_err(|e| e.to_string()),
             });
         }
         self.explanation(a, revision)
@@ -65,7 +66,15 @@ impl DerivedCache {
 
     /// The explanation of `a`, if derived at `revision`.
     pub fn explanation(&self, a: usize, revision: u64) -> Option<&Explanation> {
-        Derived::get(&self.explanation, a, revision).and_then(Option::as_ref)
+        Derived::get(&self.explanation, a, revision)
+            .and_then(|r| r.as_ref().ok())
+            .and_then(Option::as_ref)
+    }
+
+    /// Why `a` could not be explained at `revision`, if that is what happened.
+    pub fn explanation_error(&self, a: usize, revision: u64) -> Option<&str> {
+        Derived::get(&self.explanation, a, revision)
+            .and_then(|r| r.as_ref().err().map(String::as_str))
     }
 
     /// Derives the valid intervals of activity `a` at its own step (over the whole

@@ -98,7 +98,15 @@ impl Document {
     }
 
     fn refresh_warnings(&mut self) {
-        self.warnings = solscope_engine::validate(&self.plan).unwrap_or_default();
+        // Every plan here passed validation (loading and edits validate); should
+        // one not, say so where warnings are shown instead of showing none.
+        self.warnings = match solscope_engine::validate(&self.plan) {
+            Ok(warnings) => warnings,
+            Err(e) => vec![Warning {
+                path: "$".into(),
+                message: format!("the plan does not validate: {e}"),
+            }],
+        };
     }
 }
 
@@ -129,15 +137,19 @@ impl Analysis {
     }
 
     /// Explains activity `a` (without suggestions) if it did not schedule.
-    pub fn explain(&self, plan: &Plan, a: usize) -> Option<Explanation> {
+    pub fn explain(&self, plan: &Plan, a: usize) -> Result<Option<Explanation>, Error> {
         if self.placement(a).is_some() {
-            return None;
+            return Ok(None);
         }
+        let act = plan
+            .activities
+            .get(a)
+            .ok_or_else(|| Error::UnknownActivity(format!("#{a}")))?;
         let opts = ExplainOptions {
-            activity: Some(plan.activities.get(a)?.id.clone()),
+            activity: Some(act.id.clone()),
             no_suggestions: true,
         };
-        explain(plan, &self.schedule, &opts).ok()?.pop()
+        Ok(explain(plan, &self.schedule, &opts)?.pop())
     }
 
     /// Number of activities that did not schedule.

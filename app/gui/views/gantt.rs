@@ -422,6 +422,7 @@ mod tests {
             suggestions: None,
             revision: app.revision,
             explanation: None,
+            explanation_error: None,
             valid: None,
             nav: &app.ui.nav,
             messages: &app.ui.messages,

@@ -82,6 +82,10 @@ fn activity_ui(
         intervals_ui(ui, m, &cats);
     }
 
+    if let Some(e) = m.explanation_error {
+        ui.separator();
+        ui.colored_label(m.theme.error, format!("Could not explain it: {e}"));
+    }
     if let Some(ex) = m.explanation {
         ui.separator();
         ui.label(RichText::new("Why it did not schedule").strong());
@@ -298,7 +302,16 @@ fn activity_editor_ui(
 ) {
     reset_buffers_if_stale(st, (Some(a), m.revision));
     let act = &m.doc.plan.activities[a];
-    let value = serde_json::to_value(act).unwrap_or(Value::Null);
+    let value = match serde_json::to_value(act) {
+        Ok(value) => value,
+        Err(e) => {
+            ui.colored_label(
+                m.theme.error,
+                format!("This activity cannot be edited: {e}"),
+            );
+            return;
+        }
+    };
     let target = format!("activity:{}", act.id);
     egui::Grid::new("activity_editor")
         .num_columns(2)
@@ -313,7 +326,16 @@ fn plan_editor_ui(ui: &mut egui::Ui, m: &Model<'_>, st: &mut TextBuffers, cmds: 
     if m.nav.selected.is_none() {
         reset_buffers_if_stale(st, (None, m.revision));
     }
-    let value = serde_json::to_value(&m.doc.plan).unwrap_or(Value::Null);
+    let value = match serde_json::to_value(&m.doc.plan) {
+        Ok(value) => value,
+        Err(e) => {
+            ui.colored_label(
+                m.theme.error,
+                format!("The plan limits cannot be edited: {e}"),
+            );
+            return;
+        }
+    };
     egui::Grid::new("plan_editor")
         .num_columns(2)
         .show(ui, |ui| {

@@ -40,6 +40,8 @@ pub struct Model<'a> {
     pub revision: u64,
     /// Explanation of the selected activity, when it did not schedule.
     pub explanation: Option<&'a solscope_engine::Explanation>,
+    /// Why the selected activity could not be explained, if that happened.
+    pub explanation_error: Option<&'a str>,
     /// Valid intervals of the selected activity at its own step (full horizon).
     pub valid: Option<&'a [solscope_engine::CategoryIntervals]>,
     /// Where the user is: step, selection, visible range, probe.
