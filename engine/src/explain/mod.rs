@@ -15,6 +15,7 @@ mod replay;
 mod suggest;
 mod text;
 
+use rayon::prelude::*;
 use serde::Serialize;
 
 pub use conflicts::{Relaxation, minimal_conflicts};
@@ -172,7 +173,7 @@ pub fn explain(
     });
     let mut out = Vec::with_capacity(targets.len());
     for (a, ex) in targets.iter().copied().zip(found) {
-        let mut ex = match ex {
+        let ex = match ex {
             Some(ex) => ex,
             None => {
                 let step = &sched.steps[step_of[a] - 1];
@@ -182,10 +183,14 @@ pub fn explain(
                 ex
             }
         };
-        if !opts.no_suggestions && ex.failure_step.is_some() {
-            ex.suggestions = suggest::suggestions(plan, sched, &ex);
-        }
         out.push(ex);
+    }
+    if !opts.no_suggestions {
+        // Independent per failure: in parallel, each written to its own slot, so
+        // the output does not depend on the number of threads.
+        out.par_iter_mut()
+            .filter(|ex| ex.failure_step.is_some())
+            .for_each(|ex| ex.suggestions = suggest::suggestions(plan, sched, ex));
     }
     Ok(out)
 }

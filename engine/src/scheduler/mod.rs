@@ -81,7 +81,8 @@ impl Schedule {
 /// Schedules a validated plan.
 pub fn schedule(plan: &Plan) -> Result<Schedule, Error> {
     let problem = Problem::compile(plan)?;
-    Ok(run(problem, Vec::new(), Vec::new()))
+    let until = problem.order.len();
+    Ok(run(problem, Vec::new(), Vec::new(), until))
 }
 
 /// Schedules an edited plan, reusing the steps of `prev` (the run of the plan
@@ -89,7 +90,28 @@ pub fn schedule(plan: &Plan) -> Result<Schedule, Error> {
 /// whose activity moved or changed. The result is identical to [`schedule`]'s.
 pub fn reschedule(prev: &Schedule, plan: &Plan) -> Result<Schedule, Error> {
     let problem = Problem::compile(plan)?;
-    let k = prev.problem.common_steps(&problem);
+    let until = problem.order.len();
+    Ok(rerun(prev, problem, until))
+}
+
+/// Where activity `a` is placed when the edited `plan` is scheduled (`None`:
+/// it fails), running only the steps up to `a`'s and reusing the steps of `prev`
+/// that the edit cannot change: what [`reschedule`] would say of `a`, without the
+/// steps after it.
+pub(crate) fn placement_after_edit(
+    prev: &Schedule,
+    plan: &Plan,
+    a: usize,
+) -> Result<Option<(i64, i64)>, Error> {
+    let problem = Problem::compile(plan)?;
+    let until = problem.step_of.get(a).copied().unwrap_or(0);
+    Ok(rerun(prev, problem, until).placement(a))
+}
+
+/// Runs `problem` (an edit of `prev`'s) up to step `until`, reusing the steps of
+/// `prev` the edit cannot change.
+fn rerun(prev: &Schedule, problem: Problem, until: usize) -> Schedule {
+    let k = prev.problem.common_steps(&problem).min(until);
     let steps = prev.steps[..k].to_vec();
     // Generated activities are recorded in step order, so those of the first k
     // steps are a prefix; undo the retirements that later steps made.
@@ -102,12 +124,13 @@ pub fn reschedule(prev: &Schedule, plan: &Plan) -> Result<Schedule, Error> {
             ..*g
         })
         .collect();
-    Ok(run(problem, steps, generated))
+    run(problem, steps, generated, until)
 }
 
 /// Runs the steps after `done` (the records of the first steps, already known)
-/// with `generated` the generated activities of those steps.
-fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>) -> Schedule {
+/// up to step `until`, with `generated` the generated activities of those steps.
+/// A run that stops early holds the first `until` steps only.
+fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>, until: usize) -> Schedule {
     let mut steps = done;
     steps.reserve(problem.acts.len().saturating_sub(steps.len()));
     let mut generated = generated;
@@ -126,7 +149,13 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>) -> Schedule
         for step in &steps {
             state.replay(step);
         }
-        for (k, &a) in problem.order.iter().enumerate().skip(steps.len()) {
+        for (k, &a) in problem
+            .order
+            .iter()
+            .enumerate()
+            .take(until)
+            .skip(steps.len())
+        {
             let step_no = k + 1;
             let mut step = run_step(&state, a, step_no, &Scope::default(), true);
             if let Some(placement) = step.1.take().map(|ev| ev.placement) {

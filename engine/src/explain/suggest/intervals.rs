@@ -29,7 +29,7 @@ pub(super) fn candidates(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec
             [Category::Dependency] => out.extend(dependencies(plan, sched, ex)),
             [Category::SequenceEngines] => out.push(more_engines(plan)),
             [Category::StateRequirement] => out.extend(initial_states(plan, activity)),
-            [Category::DataVolume] => out.extend(data_limits(plan, ex)),
+            [Category::DataVolume] => out.extend(data_limits(plan, sched, ex)),
             _ => {}
         }
     }
@@ -202,7 +202,7 @@ fn initial_states(plan: &Plan, activity: &Activity) -> Vec<Candidate> {
 
 /// The least raise of the data capacity, and for an optional activity of the data
 /// allowed before handover, that makes the activity schedule.
-fn data_limits(plan: &Plan, ex: &Explanation) -> Vec<Candidate> {
+fn data_limits(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec<Candidate> {
     let a = ex.activity;
     let activity = &plan.activities[a];
     let extra = activity.data_rate.max(0.0) * ex.duration as f64;
@@ -217,7 +217,15 @@ fn data_limits(plan: &Plan, ex: &Explanation) -> Vec<Candidate> {
                 mbit,
             )
         };
-        out.extend(tune_limit(plan, a, &make, cap, round3(cap + extra), 1e12));
+        out.extend(tune_limit(
+            plan,
+            sched,
+            a,
+            &make,
+            cap,
+            round3(cap + extra),
+            1e12,
+        ));
     }
     if let (false, Some(h)) = (activity.mandatory, plan.handover) {
         if let Some(max) = h.max_data_volume {
@@ -230,7 +238,15 @@ fn data_limits(plan: &Plan, ex: &Explanation) -> Vec<Candidate> {
                     mbit,
                 )
             };
-            out.extend(tune_limit(plan, a, &make, max, round3(max + extra), 1e12));
+            out.extend(tune_limit(
+                plan,
+                sched,
+                a,
+                &make,
+                max,
+                round3(max + extra),
+                1e12,
+            ));
         }
     }
     out

@@ -55,13 +55,13 @@ pub(super) fn candidates(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec
     let closest = Closest::of(ex);
     let mut out = Vec::new();
     if let Some(mj) = closest.soc {
-        out.extend(lower_min_soc(plan, ex.activity, mj));
+        out.extend(lower_min_soc(plan, sched, ex.activity, mj));
     }
     if let Some(mj) = closest.handover_soc {
-        out.extend(handover_soc(plan, ex.activity, mj));
+        out.extend(handover_soc(plan, sched, ex.activity, mj));
     }
     if let Some(mw) = closest.peak {
-        out.extend(raise_max_peak(plan, ex.activity, mw));
+        out.extend(raise_max_peak(plan, sched, ex.activity, mw));
     }
     if let Some((zone, preheat_start)) = closest.operability {
         out.extend(extend_operable(plan, sched, zone, preheat_start));
@@ -70,7 +70,7 @@ pub(super) fn candidates(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec
 }
 
 /// `min_soc`: the least lowering of `battery.min_soc` that makes it schedule.
-fn lower_min_soc(plan: &Plan, a: usize, soc_mj: i64) -> Option<Candidate> {
+fn lower_min_soc(plan: &Plan, sched: &Schedule, a: usize, soc_mj: i64) -> Option<Candidate> {
     let make = |wh: f64| {
         Candidate::plan_section(
             format!("Lower the minimum state of charge to {wh} Wh"),
@@ -81,12 +81,12 @@ fn lower_min_soc(plan: &Plan, a: usize, soc_mj: i64) -> Option<Candidate> {
         )
     };
     let needed = floor3(wh(i128::from(soc_mj))).max(0.0);
-    tune_limit(plan, a, &make, plan.battery.min_soc, needed, 0.0)
+    tune_limit(plan, sched, a, &make, plan.battery.min_soc, needed, 0.0)
 }
 
 /// `handover_soc`: the least lowering of `handover.min_soc`, or making the
 /// activity mandatory (handover limits bind only optional activities).
-fn handover_soc(plan: &Plan, a: usize, soc_mj: i64) -> Vec<Candidate> {
+fn handover_soc(plan: &Plan, sched: &Schedule, a: usize, soc_mj: i64) -> Vec<Candidate> {
     let Some(h) = plan.handover else {
         return Vec::new();
     };
@@ -102,7 +102,7 @@ fn handover_soc(plan: &Plan, a: usize, soc_mj: i64) -> Vec<Candidate> {
     };
     let needed = floor3(wh(i128::from(soc_mj))).max(0.0);
     let current = h.min_soc.unwrap_or(0.0);
-    let mut out: Vec<Candidate> = tune_limit(plan, a, &make, current, needed, 0.0)
+    let mut out: Vec<Candidate> = tune_limit(plan, sched, a, &make, current, needed, 0.0)
         .into_iter()
         .collect();
     out.push(Candidate::activity(
@@ -118,7 +118,7 @@ fn handover_soc(plan: &Plan, a: usize, soc_mj: i64) -> Vec<Candidate> {
 }
 
 /// `max_peak_power`: the least raise of `power.max_peak`.
-fn raise_max_peak(plan: &Plan, a: usize, peak_mw: i64) -> Option<Candidate> {
+fn raise_max_peak(plan: &Plan, sched: &Schedule, a: usize, peak_mw: i64) -> Option<Candidate> {
     let make = |w: f64| {
         Candidate::plan_section(
             format!("Raise the peak power limit to {w} W"),
@@ -130,7 +130,7 @@ fn raise_max_peak(plan: &Plan, a: usize, peak_mw: i64) -> Option<Candidate> {
     };
     let needed = watts(peak_mw).ceil();
     let current = plan.power.max_peak.unwrap_or(needed);
-    tune_limit(plan, a, &make, current, needed, 1e6)
+    tune_limit(plan, sched, a, &make, current, needed, 1e6)
 }
 
 /// `preheat_operability`: extend the zone's operable period that starts nearest

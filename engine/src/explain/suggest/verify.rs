@@ -2,45 +2,74 @@
 //! places the activity; numeric limits are searched to the least relaxation that
 //! does.
 
+use rayon::prelude::*;
+
 use super::{Candidate, round3};
 use crate::edit::apply_edit;
 use crate::explain::Suggestion;
 use crate::model::Plan;
-use crate::scheduler::{Schedule, schedule};
+use crate::scheduler::{Schedule, placement_after_edit, reschedule, schedule};
 
 /// The candidates that make activity `a` schedule, each once, with the activities
 /// they make fail; fewest side effects first (stable: candidate order breaks ties).
+///
+/// A candidate is first checked by running the edited plan only up to `a`'s step
+/// (the greedy run never looks ahead, so that decides whether `a` is placed); only
+/// one that passes is run to the end for its side effects. Both runs reuse the
+/// steps of `sched` that the edit cannot change. Candidates are verified in
+/// parallel and collected in candidate order, so the result does not depend on
+/// the number of threads.
 pub(super) fn verified(
     plan: &Plan,
     sched: &Schedule,
     a: usize,
     candidates: Vec<Candidate>,
 ) -> Vec<Suggestion> {
-    let mut out: Vec<Suggestion> = Vec::new();
+    let mut unique: Vec<Candidate> = Vec::with_capacity(candidates.len());
     for c in candidates {
-        if out.iter().any(|s| s.target == c.target && s.set == c.set) {
-            continue;
+        if !unique
+            .iter()
+            .any(|u| u.target == c.target && u.set == c.set)
+        {
+            unique.push(c);
         }
-        let Ok(edited) = apply_edit(plan, &c.target, &c.set) else {
-            continue;
-        };
-        if let Some(side_effects) = reschedule_outcome(&edited, a, sched) {
-            out.push(Suggestion {
+    }
+    let mut out: Vec<Suggestion> = unique
+        .into_par_iter()
+        .filter_map(|c| {
+            let edited = apply_edit(plan, &c.target, &c.set).ok()?;
+            let side_effects = side_effects(&edited, a, sched)?;
+            Some(Suggestion {
                 description: c.description,
                 target: c.target,
                 set: c.set,
                 side_effects,
-            });
-        }
-    }
+            })
+        })
+        .collect();
     out.sort_by_key(|s| s.side_effects.len());
     out
 }
 
-/// Reschedules `plan` and reports whether activity `a` is scheduled, with the
-/// activities scheduled in `before` that are not any more.
-fn reschedule_outcome(plan: &Plan, a: usize, before: &Schedule) -> Option<Vec<usize>> {
-    let after = schedule(plan).ok()?;
+/// Whether activity `a` is placed in the run of the edited `plan` (only the steps
+/// up to its own are run). Debug builds check it against a full run from scratch.
+fn places(plan: &Plan, a: usize, before: &Schedule) -> bool {
+    let placed = placement_after_edit(before, plan, a).ok().flatten();
+    debug_assert_eq!(
+        placed,
+        schedule(plan).ok().and_then(|s| s.placement(a)),
+        "the run up to the activity's step disagrees with a full run"
+    );
+    placed.is_some()
+}
+
+/// If activity `a` is placed in the run of the edited `plan`: the activities
+/// scheduled in `before` that are not any more.
+fn side_effects(plan: &Plan, a: usize, before: &Schedule) -> Option<Vec<usize>> {
+    if !places(plan, a, before) {
+        return None;
+    }
+    let after = reschedule(before, plan).ok()?;
     after.placement(a)?;
     Some(
         before
@@ -59,6 +88,7 @@ fn reschedule_outcome(plan: &Plan, a: usize, before: &Schedule) -> Option<Vec<us
 /// `needed` and `loosest`, to a resolution of 0.001.
 pub(super) fn tune_limit(
     plan: &Plan,
+    sched: &Schedule,
     a: usize,
     make: &dyn Fn(f64) -> Candidate,
     current: f64,
@@ -67,10 +97,7 @@ pub(super) fn tune_limit(
 ) -> Option<Candidate> {
     let works = |v: f64| {
         let c = make(v);
-        apply_edit(plan, &c.target, &c.set)
-            .ok()
-            .and_then(|p| schedule(&p).ok())
-            .is_some_and(|s| s.placement(a).is_some())
+        apply_edit(plan, &c.target, &c.set).is_ok_and(|p| places(&p, a, sched))
     };
     let (mut bad, mut good) = if works(needed) {
         (current, needed)
