@@ -179,3 +179,23 @@ fn a_failed_write_of_the_output_says_what_failed() {
         "stderr: {stderr}"
     );
 }
+
+#[test]
+fn explain_is_byte_identical_on_one_and_on_several_threads() {
+    let with_threads = |n: &str| {
+        Command::new(env!("CARGO_BIN_EXE_solscope"))
+            .args(["explain", "assets/default-plan.json"])
+            .env("RAYON_NUM_THREADS", n)
+            .current_dir(root())
+            .output()
+            .expect("solscope runs")
+    };
+    let one = with_threads("1");
+    let four = with_threads("4");
+    assert!(one.status.success() && four.status.success());
+    assert!(!one.stdout.is_empty());
+    assert_eq!(
+        one.stdout, four.stdout,
+        "output depends on the thread count"
+    );
+}
