@@ -103,9 +103,34 @@ pub(crate) fn placement_after_edit(
     plan: &Plan,
     a: usize,
 ) -> Result<Option<(i64, i64)>, Error> {
+    Ok(partial_rerun(prev, plan, a)?.placement(a))
+}
+
+/// [`reschedule`], when activity `a` is placed in it: the steps after `a`'s are
+/// run only then (the greedy run never looks ahead, so `a`'s step decides).
+pub(crate) fn reschedule_if_placed(
+    prev: &Schedule,
+    plan: &Plan,
+    a: usize,
+) -> Result<Option<Schedule>, Error> {
+    let partial = partial_rerun(prev, plan, a)?;
+    if partial.placement(a).is_none() {
+        return Ok(None);
+    }
+    let until = partial.problem.order.len();
+    Ok(Some(run(
+        partial.problem,
+        partial.steps,
+        partial.generated,
+        until,
+    )))
+}
+
+/// The run of the edited `plan` up to `a`'s step.
+fn partial_rerun(prev: &Schedule, plan: &Plan, a: usize) -> Result<Schedule, Error> {
     let problem = Problem::compile(plan)?;
     let until = problem.step_of.get(a).copied().unwrap_or(0);
-    Ok(rerun(prev, problem, until).placement(a))
+    Ok(rerun(prev, problem, until))
 }
 
 /// Runs `problem` (an edit of `prev`'s) up to step `until`, reusing the steps of

@@ -8,7 +8,7 @@ use super::{Candidate, round3};
 use crate::edit::apply_edit;
 use crate::explain::Suggestion;
 use crate::model::Plan;
-use crate::scheduler::{Schedule, placement_after_edit, reschedule, schedule};
+use crate::scheduler::{Schedule, placement_after_edit, reschedule_if_placed, schedule};
 
 /// The candidates that make activity `a` schedule, each once, with the activities
 /// they make fail; fewest side effects first (stable: candidate order breaks ties).
@@ -64,13 +64,20 @@ fn places(plan: &Plan, a: usize, before: &Schedule) -> bool {
 }
 
 /// If activity `a` is placed in the run of the edited `plan`: the activities
-/// scheduled in `before` that are not any more.
+/// scheduled in `before` that are not any more. The steps after `a`'s are run
+/// only when it is placed. Debug builds check the answer against a full run from
+/// scratch.
 fn side_effects(plan: &Plan, a: usize, before: &Schedule) -> Option<Vec<usize>> {
-    if !places(plan, a, before) {
-        return None;
-    }
-    let after = reschedule(before, plan).ok()?;
-    after.placement(a)?;
+    let after = reschedule_if_placed(before, plan, a).ok().flatten();
+    debug_assert_eq!(
+        after.as_ref().map(|s| (s.steps.len(), s.placement(a))),
+        schedule(plan)
+            .ok()
+            .filter(|s| s.placement(a).is_some())
+            .map(|s| (s.steps.len(), s.placement(a))),
+        "the rerun disagrees with a full run"
+    );
+    let after = after?;
     Some(
         before
             .steps
