@@ -184,3 +184,55 @@ fn pitfall_a_at_zero_b_failed() {
     assert_eq!(acts[1]["id"], "B");
     assert_eq!(acts[1]["status"], "failed");
 }
+
+/// How often the generator makes the plans that exercise the expanding search's
+/// split paths (issue 10): an expanding, awake-required activity with `min_awake >
+/// 0` whose window (or the whole horizon) ends within `min_awake - wakeup` of the
+/// plan end, with and without an effect at its end. The property tests above only
+/// test these paths as often as this finds them.
+#[test]
+fn generator_covers_non_monotone_expanding_activities() {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    let mut runner = TestRunner::new_with_rng(
+        Config::default(),
+        TestRng::from_seed(RngAlgorithm::ChaCha, &[7; 32]),
+    );
+    let strategy = plangen::plan_text();
+    let (mut backward, mut end_effect, mut windowless) = (0, 0, 0);
+    let n = 256;
+    for _ in 0..n {
+        let text = strategy.new_tree(&mut runner).unwrap().current();
+        let v: Value = serde_json::from_str(&text).unwrap();
+        let h1 = v["horizon"]["end"].as_i64().unwrap();
+        let wake = v["sleep"]["wakeup_duration"].as_i64().unwrap_or(0);
+        let min_awake = v["sleep"]["min_awake"].as_i64().unwrap_or(0);
+        let (mut b, mut e, mut w) = (false, false, false);
+        for a in v["activities"].as_array().unwrap() {
+            if !a["duration"].is_object() {
+                continue;
+            }
+            let required = a.get("awake").is_none_or(|m| m == "required");
+            let ends = a["windows"].as_array().map_or(vec![h1], |ws| {
+                ws.iter().map(|w| w["end"].as_i64().unwrap()).collect()
+            });
+            let near = ends.iter().any(|&x| x - wake + min_awake > h1);
+            let has_end_effect = a["effects"]
+                .as_array()
+                .is_some_and(|es| es.iter().any(|x| x["at"] == "end"));
+            b |= required && min_awake > 0 && near && !has_end_effect;
+            e |= has_end_effect;
+            w |= a.get("windows").is_none();
+        }
+        backward += usize::from(b);
+        end_effect += usize::from(e);
+        windowless += usize::from(w);
+    }
+    eprintln!(
+        "of {n} plans: {backward} with a backward-extension expanding activity, \
+         {end_effect} with an end-effect one, {windowless} with a windowless one"
+    );
+    assert!(backward >= n / 8, "{backward}");
+    assert!(end_effect >= n / 10, "{end_effect}");
+    assert!(windowless >= n / 4, "{windowless}");
+}

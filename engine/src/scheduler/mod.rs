@@ -304,7 +304,7 @@ pub(crate) fn run_step(
     };
     let mut pending: Vec<(Try, Option<i64>)> = Vec::new();
     let mut attempt = |d: i64, step: &mut Step, record: bool| {
-        let tried = try_duration(state, a, d, scope, span);
+        let tried = try_duration(state, a, d, scope, span, None);
         any_candidate |= !tried.union.is_empty();
         pending.extend(tried.tries);
         if record || tried.found.is_some() {
@@ -333,6 +333,23 @@ pub(crate) fn run_step(
         // Successes come at increasing durations, so the last one `attempt` recorded
         // is the chosen duration's.
         best
+    } else if let Some(head_end) = head_tail_split(pb, a) {
+        // Only the min_awake extension near the plan end breaks monotonicity, and
+        // only for starts after `head_end`: search the two parts separately, then
+        // redo the chosen (or shortest) duration over every start so that the start
+        // and the record are those of the plain search.
+        let d = longest_split(state, a, scope, span, head_end);
+        #[cfg(debug_assertions)]
+        if act.dur_max - act.dur_min <= 400 {
+            debug_assert_eq!(
+                d,
+                longest_by_scan(state, a, scope, span),
+                "split search disagrees with the scan"
+            );
+        }
+        let found = attempt(d.unwrap_or(act.dur_min), &mut step, true);
+        debug_assert_eq!(found.is_some(), d.is_some());
+        found
     } else {
         // End effects (or a backward min_awake extension) can make a shorter
         // duration fail where a longer one fits: scan down from the longest duration
@@ -401,10 +418,27 @@ struct Tried {
 }
 
 /// Phase 1 over starts in `span` and the window-by-window phase-2 search for one
-/// duration.
-fn try_duration(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, i64)) -> Tried {
+/// duration; with `only`, over the starts in `span` and in `only` (a partial
+/// search, never recorded: its categories are for the clipped span).
+fn try_duration(
+    state: &State<'_>,
+    a: usize,
+    d: i64,
+    scope: &Scope,
+    span: (i64, i64),
+    only: Option<(i64, i64)>,
+) -> Tried {
     let pb = state.pb;
     let act = &pb.acts[a];
+    let span = only.map_or(span, |(lo, hi)| (span.0.max(lo), span.1.min(hi)));
+    if span.0 > span.1 {
+        return Tried {
+            categories: Vec::new(),
+            union: IntervalSet::empty(),
+            found: None,
+            tries: Vec::new(),
+        };
+    }
     let categories = state.phase1_in(a, d, scope, span.0, span.1);
     let others = categories
         .iter()
@@ -417,7 +451,7 @@ fn try_duration(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, 
     let mut tries = Vec::new();
     for w in &act.windows {
         let range = state.window_range(a, w, d);
-        let cand = others.clip(range.lo, range.hi);
+        let cand = others.clip(range.lo.max(span.0), range.hi.min(span.1));
         if cand.is_empty() {
             continue;
         }
@@ -453,6 +487,85 @@ fn duration_monotone(pb: &Problem, a: usize) -> bool {
             .iter()
             .any(|w| w.end - pb.wake + pb.min_awake > pb.h1);
     !end_effect && !backward
+}
+
+/// For an expanding activity whose only break of monotonicity is the backward
+/// min_awake extension near the plan end: the last start of the "head", the starts
+/// for which fitting with a duration implies fitting with every shorter one.
+///
+/// Why: for a start `s` with `s - wakeup + min_awake <= horizon.end`, the merged
+/// period `Q1` of any duration starts at or before `s - wakeup`, so the extension
+/// (when needed) is the forward one, `[Q1.start, Q1.start + min_awake)`. Merging
+/// never moves `Q1.start` differently for a longer need with the same start (a
+/// period merged at the front is merged for both), so a shorter duration's `Q1`,
+/// extension and `Q2` are subsets of the longer one's: its awake need, merge and
+/// min_awake checks pass whenever the longer one's do, its preheats are the same
+/// (same start), and every load piece (activity, awake extra, maintenance) covers
+/// a subset of the seconds with at most the same power, which can only raise the
+/// capped state of charge and lower the peak. That needs `awake >= asleep` (an
+/// awake period must not charge) and no effect at the end (the only phase-1
+/// category that is not monotone in the duration). `None` when that does not hold.
+fn head_tail_split(pb: &Problem, a: usize) -> Option<i64> {
+    let act = &pb.acts[a];
+    let end_effect = act
+        .effects
+        .iter()
+        .any(|e| e.2 == crate::model::EffectAt::End);
+    (!end_effect && act.awake == AwakeMode::Required && pb.min_awake > 0 && pb.awake >= pb.asleep)
+        .then(|| pb.h1 - pb.min_awake + pb.wake)
+}
+
+/// The longest duration with a passing start, for an activity split at `head_end`
+/// ([`head_tail_split`]); `None` if no duration in `[dur_min, dur_max]` has one.
+///
+/// Head starts (`<= head_end`) are downward closed in the duration, so the longest
+/// duration with a passing head start is found by binary search. A tail start
+/// (`> head_end`) needs `s + d + shutdown <= horizon.end`, so only durations below
+/// `min_awake - wakeup - shutdown` have any; those longer than the head's result
+/// are scanned, longest first, over the tail starts only.
+fn longest_split(
+    state: &State<'_>,
+    a: usize,
+    scope: &Scope,
+    span: (i64, i64),
+    head_end: i64,
+) -> Option<i64> {
+    let pb = state.pb;
+    let act = &pb.acts[a];
+    let top = longest_monotone(state, a, scope, span);
+    let fits = |d: i64, only: (i64, i64)| {
+        try_duration(state, a, d, scope, span, Some(only))
+            .found
+            .is_some()
+    };
+    let (mut lo, mut hi) = (act.dur_min, top);
+    let mut best = None;
+    while lo <= hi {
+        let mid = lo + (hi - lo) / 2;
+        if fits(mid, (i64::MIN, head_end)) {
+            best = Some(mid);
+            lo = mid + 1;
+        } else {
+            hi = mid - 1;
+        }
+    }
+    let tail_top = top.min(pb.min_awake - pb.wake - pb.shut - 1);
+    let floor = best.map_or(act.dur_min, |b| b + 1);
+    (floor..=tail_top)
+        .rev()
+        .find(|&d| fits(d, (head_end.saturating_add(1), i64::MAX)))
+        .or(best)
+}
+
+/// The longest duration with a passing start, by trying every duration down from
+/// the longest the monotone categories allow (debug cross-check).
+#[cfg(debug_assertions)]
+fn longest_by_scan(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64)) -> Option<i64> {
+    let act = &state.pb.acts[a];
+    let top = longest_monotone(state, a, scope, span);
+    (act.dur_min..=top)
+        .rev()
+        .find(|&d| try_duration(state, a, d, scope, span, None).found.is_some())
 }
 
 /// The longest duration for which the duration-monotone phase-1 categories (all but

@@ -362,7 +362,10 @@ pub struct Step {
     pub categories: Vec<CategoryIntervals>,
     /// Intersection of all categories for `duration`, restricted per window.
     pub intersection: IntervalSet,
-    /// Every phase-2 try, in the order tried (all durations).
+    /// The phase-2 tries, merged into ranges (`merge_tries`): of every duration
+    /// tried, except for an expanding activity searched in two parts (the
+    /// min_awake extension near the plan end), whose partial searches are not
+    /// recorded: only the tries of `duration` (the chosen one, or the shortest).
     pub tries: Vec<Try>,
     /// Generated activities added at this step (indices into `Schedule::generated`).
     pub added: Vec<usize>,

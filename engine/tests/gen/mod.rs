@@ -56,6 +56,10 @@ pub struct ActG {
     uhf: Option<u8>,
     comm: Option<usize>,
     group: Option<usize>,
+    /// For an expanding activity: no windows, awake required and (for an even
+    /// `dur`, with states) an effect at its end, the shapes whose feasibility is not monotone in the
+    /// duration (the min_awake extension near the plan end, end effects).
+    near_end: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -148,13 +152,14 @@ fn act(max_dur: i64) -> impl Strategy<Value = ActG> {
         option::weighted(0.3, 0u8..4),
         option::weighted(0.2, 0usize..2),
         option::weighted(0.25, 0usize..2),
+        prop::bool::weighted(0.5),
     );
     (core, res, misc, comm).prop_map(
         |(
             (priority, mandatory, dur, expand, windows),
             (resources, engines, energy, peak, data),
             (awake, zones, after, requires, effects),
-            (uhf, comm, group),
+            (uhf, comm, group, near_end),
         )| ActG {
             priority,
             mandatory,
@@ -174,6 +179,7 @@ fn act(max_dur: i64) -> impl Strategy<Value = ActG> {
             uhf,
             comm,
             group,
+            near_end,
         },
     )
 }
@@ -391,7 +397,8 @@ pub fn assemble(g: &PlanG) -> Value {
             None => o.insert("duration".into(), json!(dmin)),
         };
         let dmax = dmin + a.expand.unwrap_or(0);
-        if let Some(ws) = &a.windows {
+        let near_end = a.near_end && a.expand.is_some();
+        if let (false, Some(ws)) = (near_end, &a.windows) {
             let list: Vec<Value> = ws
                 .iter()
                 .map(|w| {
@@ -445,6 +452,7 @@ pub fn assemble(g: &PlanG) -> Value {
             o.insert("data_rate".into(), json!(f64::from(a.data) * 0.5));
         }
         let awake = match a.awake {
+            _ if near_end => None,
             0..=10 => None,
             11..=16 => Some("any"),
             _ => Some("forbidden"),
@@ -513,7 +521,9 @@ pub fn assemble(g: &PlanG) -> Value {
             }
             let mut eff: Vec<Value> = Vec::new();
             let mut seen: Vec<(usize, bool)> = Vec::new();
-            for &(s, v, at_start) in &a.effects {
+            let end_effect =
+                (near_end && a.dur % 2 == 0).then_some((a.priority as usize, i, false));
+            for &(s, v, at_start) in a.effects.iter().chain(&end_effect) {
                 let s = s % ns;
                 if seen.contains(&(s, at_start)) {
                     continue;

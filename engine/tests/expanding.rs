@@ -1,0 +1,100 @@
+#![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
+
+//! Expanding activities whose feasibility is not monotone in the duration (the
+//! min_awake extension near the plan end): the longest duration is found without
+//! trying every duration, and the trace stays small (issue 10).
+
+use std::time::{Duration, Instant};
+
+use serde_json::json;
+use solscope_engine::{
+    ExplainOptions, FailurePhase, GeneratedKind, Outcome, Phase2Reason, explain, load_plan,
+    schedule,
+};
+
+/// Issue 10: a valid five-line plan that hung with memory growing ~50 MB/s (the
+/// scheduler tried every duration from 999,000,000 s down, one second at a time,
+/// keeping every failed try). Kept exactly as reported.
+const HANG: &str = r#"{"format":"solscope.plan/1","horizon":{"start":0,"end":1000000000},
+ "battery":{"capacity":1600.0,"initial":1200.0,"min_soc":500.0},
+ "power":{"rtg":110.0,"asleep":25.0,"awake":190.0,"max_peak":900.0},
+ "sleep":{"min_awake":1800},
+ "activities":[{"id":"x","priority":1,"duration":{"min":1,"max":999000000},"peak_power":5000.0}]}"#;
+
+#[test]
+fn huge_expanding_range_without_windows_fails_quickly() {
+    let loaded = load_plan(HANG).expect("valid plan");
+    let t = Instant::now();
+    let s = schedule(&loaded.plan).expect("schedules");
+    let took = t.elapsed();
+    // Debug builds cross-check every shortcut; the release run takes milliseconds.
+    assert!(took < Duration::from_secs(30), "schedule took {took:?}");
+    let step = &s.steps[0];
+    assert_eq!(step.outcome, Outcome::Failed(FailurePhase::Placement));
+    // The record is that of the shortest duration (docs/semantics.md), and the
+    // trace holds merged ranges, not one entry per duration tried.
+    assert_eq!(step.duration, 1);
+    assert!(
+        !step.tries.is_empty() && step.tries.len() <= 4,
+        "{:?}",
+        step.tries
+    );
+    for t in &step.tries {
+        assert_eq!(t.duration, 1);
+        assert!(
+            matches!(t.reason, Some(Phase2Reason::MaxPeakPower { .. })),
+            "{t:?}"
+        );
+    }
+    let t = Instant::now();
+    let ex = explain(&loaded.plan, &s, &ExplainOptions::default()).expect("explains");
+    let took = t.elapsed();
+    assert!(took < Duration::from_secs(60), "explain took {took:?}");
+    assert_eq!(ex.len(), 1);
+    assert_eq!(ex[0].duration, 1);
+    assert!(!ex[0].reasons.is_empty() && ex[0].reasons.len() <= 4);
+}
+
+/// Only starts after `horizon.end - min_awake + wakeup` fit (a blocker's peak power
+/// rules out every earlier one), so the longest duration comes from the part of
+/// the search where the awake period is extended backwards from the activity's end.
+///
+/// Horizon 0..10000, no wakeup/shutdown, min_awake 1800, awake and asleep draw 0.
+/// B holds 100 W of peak over [0, 8300) with max_peak 100 W, so X (10 W) starts at
+/// 8300 or later; X's end is at most 10000, so its longest duration is 1700 at
+/// 8300, and its awake period [8300, 10000) is 1700 s long: the forward extension
+/// would pass the plan end, so it is extended backwards to [8200, 10000).
+#[test]
+fn longest_duration_from_a_start_after_the_head() {
+    let p = json!({
+        "format": "solscope.plan/1",
+        "horizon": { "start": 0, "end": 10000 },
+        "battery": { "capacity": 1000.0, "initial": 1000.0, "min_soc": 0.0 },
+        "power": { "rtg": 0.0, "asleep": 0.0, "awake": 0.0, "max_peak": 100.0 },
+        "sleep": { "min_awake": 1800 },
+        "activities": [
+            { "id": "B", "priority": 1, "duration": 8300, "awake": "any",
+              "peak_power": 100.0, "windows": [ { "start": 0, "end": 0 } ] },
+            { "id": "X", "priority": 2, "duration": { "min": 10, "max": 5000 },
+              "peak_power": 10.0 }
+        ]
+    });
+    let loaded = load_plan(&p.to_string()).expect("valid plan");
+    let s = schedule(&loaded.plan).expect("schedules");
+    let x = s.step_of(1).expect("step");
+    assert_eq!(
+        x.outcome,
+        Outcome::Scheduled {
+            start: 8300,
+            end: 10000
+        }
+    );
+    assert_eq!(x.duration, 1700);
+    assert!(x.tries.iter().all(|t| t.duration == 1700), "{:?}", x.tries);
+    let awake: Vec<(i64, i64)> = s
+        .generated_after(2)
+        .filter(|g| g.kind == GeneratedKind::Awake)
+        .map(|g| (g.start, g.end))
+        .collect();
+    assert_eq!(awake, vec![(8200, 10000)]);
+}
