@@ -199,6 +199,7 @@ impl Phase2Reason {
 /// adjacent ranges with the same outcome (pass, or the same kind of reason) merge,
 /// keeping the numbers of the start that came closest to passing. This keeps the
 /// trace O(ranges of distinct outcome) instead of O(cells).
+#[cfg_attr(not(debug_assertions), allow(dead_code))]
 pub fn merge_tries(tries: Vec<Try>) -> Vec<Try> {
     merge_tries_with(tries.into_iter().map(|t| (t, None)).collect(), |t| {
         t.clone()
