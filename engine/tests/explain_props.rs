@@ -137,13 +137,18 @@ fn check(text: &str) -> Result<(), TestCaseError> {
         prop_assert_eq!(brute, Some(k), "{}: failure step", id);
         // Conflicts against subset enumeration (phase valid_intervals).
         if ex.phase == Some(Phase::ValidIntervals) {
-            let pb = &sched.problem;
+            let problem = &sched.problem;
             let mut mine = ex.conflicts.clone();
             for c in &mut mine {
                 c.sort();
             }
             mine.sort();
-            prop_assert_eq!(mine, brute_conflicts(ex, pb.h0, pb.h1), "{}: conflicts", id);
+            prop_assert_eq!(
+                mine,
+                brute_conflicts(ex, problem.h0, problem.h1),
+                "{}: conflicts",
+                id
+            );
             prop_assert!(
                 !ex.conflicts.is_empty(),
                 "{id}: valid_intervals without a conflict"

@@ -70,12 +70,12 @@ fn pack(mut bars: Vec<Bar>, label: &str, max_lanes: usize) -> Vec<Row> {
 
 fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
     let plan = &m.doc.plan;
-    let pb = &m.analysis.schedule.problem;
+    let problem = &m.analysis.schedule.problem;
     let t = &m.theme;
     let mut rows = Vec::new();
     // Generated activities alive after step k.
     let mut awake = Vec::new();
-    let mut heat: Vec<Vec<Bar>> = vec![Vec::new(); pb.zone_names.len()];
+    let mut heat: Vec<Vec<Bar>> = vec![Vec::new(); problem.zone_names.len()];
     for g in m.analysis.schedule.generated_after(k) {
         match g.kind {
             GeneratedKind::Awake => awake.push(Bar {
@@ -102,7 +102,7 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
         }
     }
     // Wakeup and shutdown drawn over the start and end of each awake period.
-    let (wake, shut) = (pb.wake as f64, pb.shut as f64);
+    let (wake, shut) = (problem.wake as f64, problem.shut as f64);
     let mut edges = Vec::new();
     for bar in &awake {
         for (start, end, label) in [
@@ -128,7 +128,7 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
         bars: awake,
     });
     for (z, bars) in heat.into_iter().enumerate() {
-        rows.extend(pack(bars, &format!("Heat: {}", pb.zone_names[z]), 3));
+        rows.extend(pack(bars, &format!("Heat: {}", problem.zone_names[z]), 3));
     }
     let (mut comm, mut scheduled, mut failed, mut pending) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());

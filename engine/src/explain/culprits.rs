@@ -171,7 +171,7 @@ pub const ENERGY_CULPRITS: usize = 10;
 
 /// The culprits of an explained failure, from the state at its failure step.
 pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
-    let problem = state.pb;
+    let problem = state.problem;
     let a = ex.activity;
     let act = &problem.acts[a];
     let mut out: Vec<Culprit> = Vec::new();
@@ -232,24 +232,25 @@ pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
                                 && other.resources.iter().any(|r| act.resources.contains(r))
                         }
                         Category::SequenceEngines => overlaps(iv) && other.engines > 0,
-                        Category::StateRequirement => act.requires.iter().any(|&(st, v)| {
+                        Category::StateRequirement => act.requires.iter().any(|req| {
                             // Effects setting another value inside the span, or the one
                             // in force when the span begins.
-                            let effects = state.states[st].effects();
-                            let last_before = effects.iter().rev().find(|e| e.0 <= span_lo);
-                            effects.iter().any(|e| {
-                                e.3 == x
-                                    && e.2 != v
-                                    && ((span_lo < e.0 && e.0 < span_hi)
-                                        || last_before.is_some_and(|l| l.3 == x && l.0 == e.0))
+                            let changes = state.states[req.state].effects();
+                            let last_before = changes.iter().rev().find(|c| c.time <= span_lo);
+                            changes.iter().any(|c| {
+                                c.owner == x
+                                    && c.value != req.value
+                                    && ((span_lo < c.time && c.time < span_hi)
+                                        || last_before
+                                            .is_some_and(|l| l.owner == x && l.time == c.time))
                             })
                         }),
                         Category::StateEffect => {
-                            other
-                                .requires
-                                .iter()
-                                .any(|r| act.effects.iter().any(|e| e.0 == r.0 && e.1 != r.1))
-                                && iv.1 > span_lo
+                            other.requires.iter().any(|r| {
+                                act.effects
+                                    .iter()
+                                    .any(|e| e.state == r.state && e.value != r.value)
+                            }) && iv.1 > span_lo
                         }
                         Category::DataVolume => other.data > 0 && iv.0 < span_hi,
                         Category::Uhf => {

@@ -36,7 +36,7 @@ impl<'a> Inclusion<'a> {
         for (x, act) in problem.acts.iter().enumerate() {
             for e in &act.effects {
                 setters
-                    .entry((e.0, e.1))
+                    .entry((e.state, e.value))
                     .or_default()
                     .push(problem.step_of[x]);
             }
@@ -63,11 +63,13 @@ impl<'a> Inclusion<'a> {
         let reqs = act
             .requires
             .iter()
-            .map(|&(st, v)| {
-                self.setters.get(&(st, v)).map_or(0, |steps| {
-                    let below = steps.partition_point(|&x| x < mine);
-                    if below == 0 { 0 } else { steps[below - 1] }
-                })
+            .map(|req| {
+                self.setters
+                    .get(&(req.state, req.value))
+                    .map_or(0, |steps| {
+                        let below = steps.partition_point(|&x| x < mine);
+                        if below == 0 { 0 } else { steps[below - 1] }
+                    })
             })
             .collect();
         Thresholds { deps, reqs }
@@ -200,9 +202,10 @@ struct Witness {
 fn share_state(problem: &Problem, a: usize, b: usize) -> bool {
     let touches = |x: usize, y: usize| {
         let (x, y) = (&problem.acts[x], &problem.acts[y]);
-        x.effects
-            .iter()
-            .any(|e| y.requires.iter().any(|r| r.0 == e.0) || y.effects.iter().any(|f| f.0 == e.0))
+        x.effects.iter().any(|e| {
+            y.requires.iter().any(|r| r.state == e.state)
+                || y.effects.iter().any(|f| f.state == e.state)
+        })
     };
     touches(a, b) || touches(b, a)
 }
@@ -224,7 +227,7 @@ fn next_check(
     k: usize,
     until: usize,
 ) -> usize {
-    let problem = state.pb;
+    let problem = state.problem;
     let a = ev.placement.act;
     let act = &problem.acts[a];
     let (s, d) = (ev.placement.start, ev.placement.duration);

@@ -13,22 +13,22 @@ use crate::timeline::IntervalSet;
 /// Whether the activity has a state effect at its end (which moves with the
 /// duration, so that a shorter duration can fail where a longer one fits).
 fn has_end_effect(act: &Act) -> bool {
-    act.effects.iter().any(|e| e.2 == EffectAt::End)
+    act.effects.iter().any(|e| e.at == EffectAt::End)
 }
 
 /// Whether "fits with duration d" implies "fits with every shorter duration" for
 /// this activity: true unless it has an effect at its end (which moves with the
 /// duration) or its awake period could need extending backwards from its end
 /// (docs/semantics.md, min_awake extension near the plan end).
-pub(super) fn duration_monotone(pb: &Problem, a: usize) -> bool {
-    let act = &pb.acts[a];
+pub(super) fn duration_monotone(problem: &Problem, a: usize) -> bool {
+    let act = &problem.acts[a];
     let end_effect = has_end_effect(act);
     let backward = act.awake == AwakeMode::Required
-        && pb.min_awake > 0
+        && problem.min_awake > 0
         && act
             .windows
             .iter()
-            .any(|w| w.end - pb.wake + pb.min_awake > pb.h1);
+            .any(|w| w.end - problem.wake + problem.min_awake > problem.h1);
     !end_effect && !backward
 }
 
@@ -48,11 +48,14 @@ pub(super) fn duration_monotone(pb: &Problem, a: usize) -> bool {
 /// capped state of charge and lower the peak. That needs `awake >= asleep` (an
 /// awake period must not charge) and no effect at the end (the only phase-1
 /// category that is not monotone in the duration). `None` when that does not hold.
-pub(super) fn head_tail_split(pb: &Problem, a: usize) -> Option<i64> {
-    let act = &pb.acts[a];
+pub(super) fn head_tail_split(problem: &Problem, a: usize) -> Option<i64> {
+    let act = &problem.acts[a];
     let end_effect = has_end_effect(act);
-    (!end_effect && act.awake == AwakeMode::Required && pb.min_awake > 0 && pb.awake >= pb.asleep)
-        .then(|| pb.h1 - pb.min_awake + pb.wake)
+    (!end_effect
+        && act.awake == AwakeMode::Required
+        && problem.min_awake > 0
+        && problem.awake >= problem.asleep)
+        .then(|| problem.h1 - problem.min_awake + problem.wake)
 }
 
 /// The longest duration with a passing start, for an activity split at `head_end`
@@ -70,8 +73,8 @@ pub(super) fn longest_split(
     span: (i64, i64),
     head_end: i64,
 ) -> Option<i64> {
-    let pb = state.pb;
-    let act = &pb.acts[a];
+    let problem = state.problem;
+    let act = &problem.acts[a];
     let top = longest_monotone(state, a, scope, span);
     let fits = |d: i64, only: (i64, i64)| {
         try_duration(state, a, d, scope, span, Some(only))
@@ -89,7 +92,7 @@ pub(super) fn longest_split(
             hi = mid - 1;
         }
     }
-    let tail_top = top.min(pb.min_awake - pb.wake - pb.shut - 1);
+    let tail_top = top.min(problem.min_awake - problem.wake - problem.shut - 1);
     let floor = best.map_or(act.dur_min, |b| b + 1);
     (floor..=tail_top)
         .rev()
@@ -100,8 +103,13 @@ pub(super) fn longest_split(
 /// The longest duration with a passing start, by trying every duration down from
 /// the longest the monotone categories allow (debug cross-check).
 #[cfg(debug_assertions)]
-pub(super) fn longest_by_scan(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64)) -> Option<i64> {
-    let act = &state.pb.acts[a];
+pub(super) fn longest_by_scan(
+    state: &State<'_>,
+    a: usize,
+    scope: &Scope,
+    span: (i64, i64),
+) -> Option<i64> {
+    let act = &state.problem.acts[a];
     let top = longest_monotone(state, a, scope, span);
     (act.dur_min..=top)
         .rev()
@@ -110,8 +118,13 @@ pub(super) fn longest_by_scan(state: &State<'_>, a: usize, scope: &Scope, span: 
 
 /// The longest duration for which the duration-monotone phase-1 categories (all but
 /// state_effect) leave a start in some window; below `dur_min` if none.
-pub(super) fn longest_monotone(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64)) -> i64 {
-    let act = &state.pb.acts[a];
+pub(super) fn longest_monotone(
+    state: &State<'_>,
+    a: usize,
+    scope: &Scope,
+    span: (i64, i64),
+) -> i64 {
+    let act = &state.problem.acts[a];
     let fits = |d: i64| {
         let others = state
             .phase1_in(a, d, scope, span.0, span.1)

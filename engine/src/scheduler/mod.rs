@@ -15,21 +15,21 @@ mod profiles;
 mod state;
 mod trace;
 
+#[cfg(debug_assertions)]
+use duration::longest_by_scan;
+use duration::{duration_monotone, head_tail_split, longest_monotone, longest_split};
 pub use inspect::{PartialSchedule, partial_schedule, valid_intervals_at};
 pub(crate) use phase2::Evaluated;
 pub use problem::{Act, Problem};
 pub use profiles::Profiles;
 pub use state::{Placement, State};
+#[cfg(debug_assertions)]
+use trace::merge_tries;
+use trace::merge_tries_with;
 pub use trace::{
     Category, CategoryIntervals, FailurePhase, Generated, GeneratedKind, Outcome, Phase2Reason,
     ReasonKind, Step, Try,
 };
-#[cfg(debug_assertions)]
-use duration::longest_by_scan;
-use duration::{duration_monotone, head_tail_split, longest_monotone, longest_split};
-#[cfg(debug_assertions)]
-use trace::merge_tries;
-use trace::merge_tries_with;
 
 use crate::error::Error;
 use crate::model::Plan;
@@ -274,8 +274,8 @@ pub(crate) fn run_step(
     scope: &Scope,
     clip: bool,
 ) -> (Step, Option<Evaluated>) {
-    let pb = state.pb;
-    let act = &pb.acts[a];
+    let problem = state.problem;
+    let act = &problem.acts[a];
     let mut step = Step {
         step: step_no,
         activity: a,
@@ -304,9 +304,9 @@ pub(crate) fn run_step(
     // The trace keeps category intervals within the window span only, so phase 1
     // need not look further; probes (`clip == false`) want the whole horizon.
     let span = if clip {
-        window_span(pb, a)
+        window_span(problem, a)
     } else {
-        (pb.h0, pb.h1)
+        (problem.h0, problem.h1)
     };
     let mut pending: Vec<(Try, Option<i64>)> = Vec::new();
     let mut attempt = |d: i64, step: &mut Step, record: bool| {
@@ -322,7 +322,7 @@ pub(crate) fn run_step(
     };
     let found = if act.dur_min == act.dur_max {
         attempt(act.dur_max, &mut step, true)
-    } else if duration_monotone(pb, a) {
+    } else if duration_monotone(problem, a) {
         // Feasibility is downward closed in the duration: binary search the longest.
         let (mut lo, mut hi) = (act.dur_min, act.dur_max);
         let mut best = None;
@@ -339,7 +339,7 @@ pub(crate) fn run_step(
         // Successes come at increasing durations, so the last one `attempt` recorded
         // is the chosen duration's.
         best
-    } else if let Some(head_end) = head_tail_split(pb, a) {
+    } else if let Some(head_end) = head_tail_split(problem, a) {
         // Only the min_awake extension near the plan end breaks monotonicity, and
         // only for starts after `head_end`: search the two parts separately, then
         // redo the chosen (or shortest) duration over every start so that the start
@@ -434,8 +434,8 @@ pub(super) fn try_duration(
     span: (i64, i64),
     only: Option<(i64, i64)>,
 ) -> Tried {
-    let pb = state.pb;
-    let act = &pb.acts[a];
+    let problem = state.problem;
+    let act = &problem.acts[a];
     let span = only.map_or(span, |(lo, hi)| (span.0.max(lo), span.1.min(hi)));
     if span.0 > span.1 {
         return Tried {
@@ -480,9 +480,19 @@ pub(super) fn try_duration(
 /// to the latest window end, which is what the inspector draws. Over a long horizon
 /// the full sets of every step would make the trace O(N^2) in memory and time; the
 /// explainer computes full sets itself when it probes.
-fn window_span(pb: &Problem, a: usize) -> (i64, i64) {
-    let act = &pb.acts[a];
-    let lo = act.windows.iter().map(|w| w.start).min().unwrap_or(pb.h0);
-    let hi = act.windows.iter().map(|w| w.end).max().unwrap_or(pb.h1);
-    (lo.max(pb.h0), hi.min(pb.h1))
+fn window_span(problem: &Problem, a: usize) -> (i64, i64) {
+    let act = &problem.acts[a];
+    let lo = act
+        .windows
+        .iter()
+        .map(|w| w.start)
+        .min()
+        .unwrap_or(problem.h0);
+    let hi = act
+        .windows
+        .iter()
+        .map(|w| w.end)
+        .max()
+        .unwrap_or(problem.h1);
+    (lo.max(problem.h0), hi.min(problem.h1))
 }

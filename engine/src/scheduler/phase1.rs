@@ -14,7 +14,7 @@ use crate::timeline::{Interval, IntervalSet, atomic_valid, claimable_valid, cumu
 impl State<'_> {
     /// Valid starts of every phase-1 category for activity `a` with duration `d`.
     pub fn phase1(&self, a: usize, d: i64, scope: &Scope) -> Vec<CategoryIntervals> {
-        self.phase1_in(a, d, scope, self.pb.h0, self.pb.h1)
+        self.phase1_in(a, d, scope, self.problem.h0, self.problem.h1)
     }
 
     /// Whether start `s` with duration `d` satisfies every phase-1 category but
@@ -34,8 +34,8 @@ impl State<'_> {
     }
 
     fn phase1_point_unchecked(&self, a: usize, s: i64, d: i64, scope: &Scope) -> bool {
-        let pb = self.pb;
-        let act = &pb.acts[a];
+        let problem = self.problem;
+        let act = &problem.acts[a];
         let e = s.saturating_add(d);
         let overlaps = |x: i64, y: i64| x < e && s < y;
         // dependency
@@ -60,7 +60,7 @@ impl State<'_> {
             return false;
         }
         // sequence_engines
-        if let (Some(cap), true) = (pb.engines, act.engines > 0) {
+        if let (Some(cap), true) = (problem.engines, act.engines > 0) {
             if self
                 .engines
                 .max_on(s, e)
@@ -88,8 +88,8 @@ impl State<'_> {
         lo: i64,
         hi: i64,
     ) -> Vec<CategoryIntervals> {
-        let pb = self.pb;
-        let act = &pb.acts[a];
+        let problem = self.problem;
+        let act = &problem.acts[a];
         let all = || IntervalSet::single(lo, hi);
         let mut out = Vec::with_capacity(8);
         // execution
@@ -120,7 +120,7 @@ impl State<'_> {
         }
         out.push((Category::UnitResource, res));
         // sequence_engines
-        let eng = match pb.engines {
+        let eng = match problem.engines {
             Some(cap) if act.engines > 0 => {
                 claimable_valid(&self.engines, cap - act.engines, d, lo, hi)
             }
@@ -149,8 +149,8 @@ impl State<'_> {
     /// activities of a kind it does not allow, and, for a comm activity, activities
     /// that do not allow its kind.
     fn uhf_busy(&self, a: usize) -> impl Iterator<Item = (i64, i64)> + '_ {
-        let pb = self.pb;
-        let act = &pb.acts[a];
+        let problem = self.problem;
+        let act = &problem.acts[a];
         let comms = self
             .comms
             .iter()
@@ -159,7 +159,7 @@ impl State<'_> {
         let restricted = act.comm.into_iter().flat_map(move |kind| {
             self.restricted
                 .iter()
-                .filter(move |r| !pb.acts[r.2].allows(kind))
+                .filter(move |r| !problem.acts[r.2].allows(kind))
                 .map(|r| (r.0, r.1))
         });
         comms.chain(restricted)
@@ -175,43 +175,45 @@ impl State<'_> {
         lo: i64,
         hi: i64,
     ) -> [(Category, IntervalSet); 3] {
-        let pb = self.pb;
-        let act = &pb.acts[a];
+        let problem = self.problem;
+        let act = &problem.acts[a];
         let all = || IntervalSet::single(lo, hi);
         // state_requirement
         let mut req = all();
-        for (_, &(st, v)) in act
+        for (_, r) in act
             .requires
             .iter()
             .enumerate()
             .filter(|(k, _)| !scope.skip_reqs.contains(k))
         {
-            req = req.intersect(&self.states[st].requirement_valid(v, d, lo, hi));
+            req = req.intersect(&self.states[r.state].requirement_valid(r.value, d, lo, hi));
         }
         // state_effect
         let mut eff = all();
-        let mut states: Vec<usize> = act.effects.iter().map(|e| e.0).collect();
+        let mut states: Vec<usize> = act.effects.iter().map(|e| e.state).collect();
         states.sort_unstable();
         states.dedup();
         for st in states {
             let mut own: Vec<(i64, usize)> = act
                 .effects
                 .iter()
-                .filter(|e| e.0 == st)
-                .map(|e| (if e.2 == EffectAt::Start { 0 } else { d }, e.1))
+                .filter(|e| e.state == st)
+                .map(|e| (if e.at == EffectAt::Start { 0 } else { d }, e.value))
                 .collect();
             own.sort_unstable();
             eff = eff.intersect(&self.states[st].effect_valid(&own, lo, hi));
         }
         // data_volume
         let mut data = all();
-        if let (true, Some(cap)) = (act.data > 0, pb.data_cap) {
+        if let (true, Some(cap)) = (act.data > 0, problem.data_cap) {
             data = self.data_valid(act.data, d, cap, lo, hi);
         }
         // The handover limit binds every optional activity, even one producing
         // nothing, once the placed activities have exceeded it.
-        if let (false, Some(ht), Some(max)) = (act.mandatory, pb.handover_time, pb.handover_data) {
-            let range = (pb.h0, ht);
+        if let (false, Some(ht), Some(max)) =
+            (act.mandatory, problem.handover_time, problem.handover_data)
+        {
+            let range = (problem.h0, ht);
             data = data.intersect(&cumulative_valid(
                 self.produced,
                 max,
@@ -232,14 +234,14 @@ impl State<'_> {
     /// window, its cutoff, the plan bounds, and for an activity that needs the rover
     /// awake room for the wakeup before and the shutdown after it.
     pub fn window_range(&self, a: usize, w: &Win, d: i64) -> Interval {
-        let pb = self.pb;
-        let (wake, shut) = if pb.acts[a].awake == AwakeMode::Required {
-            (pb.wake, pb.shut)
+        let problem = self.problem;
+        let (wake, shut) = if problem.acts[a].awake == AwakeMode::Required {
+            (problem.wake, problem.shut)
         } else {
             (0, 0)
         };
-        let lo = w.start.max(pb.h0.saturating_add(wake));
-        let mut hi = w.end.min(pb.h1.saturating_sub(d).saturating_sub(shut));
+        let lo = w.start.max(problem.h0.saturating_add(wake));
+        let mut hi = w.end.min(problem.h1.saturating_sub(d).saturating_sub(shut));
         if let Some(c) = w.cutoff {
             hi = hi.min(c.saturating_sub(d));
         }

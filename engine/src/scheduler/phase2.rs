@@ -41,13 +41,13 @@ pub struct Evaluated {
 impl Evaluated {
     /// The span `[lo, hi)` of everything the placement touches or depends on
     /// directly: the activity, the awake period it needs or creates, its preheats.
-    pub fn footprint(&self, pb: &Problem) -> (i64, i64) {
+    pub fn footprint(&self, problem: &Problem) -> (i64, i64) {
         let p = &self.placement;
         let e = p.start + p.duration;
         let (mut lo, mut hi) = (p.start, e);
-        if pb.acts[p.act].awake == AwakeMode::Required {
-            lo = lo.min(p.start - pb.wake);
-            hi = hi.max(e + pb.shut);
+        if problem.acts[p.act].awake == AwakeMode::Required {
+            lo = lo.min(p.start - problem.wake);
+            hi = hi.max(e + problem.shut);
         }
         if let Some((qa, qb)) = p.new_awake {
             lo = lo.min(qa);
@@ -70,7 +70,7 @@ impl State<'_> {
 
     /// [`State::fits`], with the passing evaluation.
     pub fn fitting(&self, a: usize, s: i64, d: i64, scope: &Scope) -> Option<Evaluated> {
-        let act = &self.pb.acts[a];
+        let act = &self.problem.acts[a];
         let in_window = act
             .windows
             .iter()
@@ -96,8 +96,8 @@ impl State<'_> {
         d: i64,
         soc: bool,
     ) -> Result<Evaluated, Phase2Reason> {
-        let pb = self.pb;
-        let act = &pb.acts[a];
+        let problem = self.problem;
+        let act = &problem.acts[a];
         let e = s + d;
         let mut retire = Vec::new();
         let mut new_awake = None;
@@ -109,7 +109,7 @@ impl State<'_> {
             }
             AwakeMode::Any => {}
             AwakeMode::Required => {
-                let need = (s - pb.wake, e + pb.shut);
+                let need = (s - problem.wake, e + problem.shut);
                 if let Some(f) = self.sleep_overlapping(need) {
                     return Err(Phase2Reason::ForcedSleep { sleep: Some(f) });
                 }
@@ -118,11 +118,11 @@ impl State<'_> {
                     if let Some(f) = self.sleep_overlapping(q1) {
                         return Err(Phase2Reason::MinSleep { sleep: f });
                     }
-                    let (q2, merged2) = if q1.1 - q1.0 < pb.min_awake {
-                        let ext = if q1.0 + pb.min_awake <= pb.h1 {
-                            (q1.0, q1.0 + pb.min_awake)
-                        } else if q1.1 - pb.min_awake >= pb.h0 {
-                            (q1.1 - pb.min_awake, q1.1)
+                    let (q2, merged2) = if q1.1 - q1.0 < problem.min_awake {
+                        let ext = if q1.0 + problem.min_awake <= problem.h1 {
+                            (q1.0, q1.0 + problem.min_awake)
+                        } else if q1.1 - problem.min_awake >= problem.h0 {
+                            (q1.1 - problem.min_awake, q1.1)
                         } else {
                             return Err(Phase2Reason::MinAwake { sleep: None });
                         };
@@ -145,18 +145,18 @@ impl State<'_> {
             if self.heater_on(z, s - 1) {
                 continue;
             }
-            let p = pb.preheat_duration(z, s);
+            let p = problem.preheat_duration(z, s);
             if p > 0 {
                 preheats.push((z, s - p, s));
             }
         }
-        if let Some(&(zone, ps, _)) = preheats.iter().find(|x| x.1 < pb.h0) {
+        if let Some(&(zone, ps, _)) = preheats.iter().find(|x| x.1 < problem.h0) {
             return Err(Phase2Reason::PreheatOutsidePlan {
                 zone,
                 preheat_start: ps,
             });
         }
-        if let Some(&(zone, ps, _)) = preheats.iter().find(|x| !pb.operable(x.0, x.1)) {
+        if let Some(&(zone, ps, _)) = preheats.iter().find(|x| !problem.operable(x.0, x.1)) {
             return Err(Phase2Reason::PreheatOperability {
                 zone,
                 preheat_start: ps,
@@ -172,13 +172,13 @@ impl State<'_> {
         };
         piece(s, e, act.energy, act.peak);
         if let Some((qa, qb)) = new_awake {
-            let extra = pb.awake - pb.asleep;
+            let extra = problem.awake - problem.asleep;
             for (x, y) in uncovered(qa, qb, retire.iter().map(|&i| self.awake[i])) {
                 piece(x, y, extra, extra);
             }
         }
         for &z in &act.zones {
-            let zone = &pb.zones[z];
+            let zone = &problem.zones[z];
             let preheat = preheats
                 .iter()
                 .find(|x| x.0 == z)
@@ -204,7 +204,7 @@ impl State<'_> {
             }
         }
         // Peak power.
-        if let Some(max) = pb.max_peak {
+        if let Some(max) = problem.max_peak {
             if let Some((v, at)) = self.peak_max.filter(|(v, _)| *v > max) {
                 return Err(Phase2Reason::MaxPeakPower { at, peak_mw: v });
             }
@@ -225,7 +225,7 @@ impl State<'_> {
             .iter()
             .map(|&(x, y, r)| i128::from(r).abs() * i128::from(y - x))
             .sum();
-        let handover = match (act.mandatory, pb.handover_time, pb.handover_soc) {
+        let handover = match (act.mandatory, problem.handover_time, problem.handover_soc) {
             (false, Some(t), Some(min)) => Some((t, min)),
             _ => None,
         };
@@ -246,7 +246,7 @@ impl State<'_> {
             });
         }
         let check = self.soc.check(&drain, handover.map(|h| h.0));
-        let mut margin = check.min - pb.min_soc;
+        let mut margin = check.min - problem.min_soc;
         let mut soc_reason = (margin < 0).then(|| Phase2Reason::MinSoc {
             at: check.min_at,
             soc_mj: clamp_i64(check.min),
@@ -275,7 +275,7 @@ impl State<'_> {
 
     /// Merges `q` with every awake period closer than `max(min_sleep, 1)`, repeatedly.
     fn merge(&self, mut q: (i64, i64)) -> ((i64, i64), Vec<usize>) {
-        let gap = self.pb.min_sleep.max(1);
+        let gap = self.problem.min_sleep.max(1);
         let mut merged = vec![false; self.awake.len()];
         loop {
             let mut changed = false;
@@ -309,17 +309,17 @@ impl State<'_> {
     /// only needs the cells to keep every piece end inside one rate segment, which
     /// either point does.)
     fn critical_points(&self, a: usize, d: i64, lo: i64, hi: i64) -> Vec<i64> {
-        let pb = self.pb;
-        let act = &pb.acts[a];
+        let problem = self.problem;
+        let act = &problem.acts[a];
         // (offset, +1 for an end offset)
         let mut offsets: Vec<(i64, i64)> = vec![(0, 0), (d, 1)];
         let mut preheat_lengths = Vec::new();
         if act.awake == AwakeMode::Required {
             offsets.extend([
-                (-pb.wake, 0),
-                (d + pb.shut, 1),
-                (-pb.wake + pb.min_awake, 1),
-                (d + pb.shut - pb.min_awake, 0),
+                (-problem.wake, 0),
+                (d + problem.shut, 1),
+                (-problem.wake + problem.min_awake, 1),
+                (d + problem.shut - problem.min_awake, 0),
             ]);
         }
         if !act.zones.is_empty() {
@@ -327,7 +327,7 @@ impl State<'_> {
             offsets.push((0, 1));
         }
         for &z in &act.zones {
-            for &(_, p) in &pb.zones[z].table {
+            for &(_, p) in &problem.zones[z].table {
                 preheat_lengths.push(p);
                 offsets.push((-p, 0));
             }
@@ -338,7 +338,7 @@ impl State<'_> {
         preheat_lengths.dedup();
         let omin = offsets.iter().map(|o| o.0).min().unwrap_or(0);
         let omax = offsets.iter().map(|o| o.0).max().unwrap_or(0);
-        let gap = pb.min_sleep.max(1);
+        let gap = problem.min_sleep.max(1);
         let (xlo, xhi) = (lo + omin - gap - 2, hi + omax + gap + 2);
         let mut fixed: Vec<i64> = Vec::new();
         let in_range = |x: &i64| xlo <= *x && *x <= xhi;
@@ -359,8 +359,8 @@ impl State<'_> {
         for &(x, y, _) in &self.sleeps {
             fixed.extend([x, y].into_iter().filter(in_range));
         }
-        fixed.extend([pb.h0, pb.h1]);
-        if let Some(t) = pb.handover_time {
+        fixed.extend([problem.h0, problem.h1]);
+        if let Some(t) = problem.handover_time {
             fixed.push(t);
         }
         for &(x, y) in &self.awake {
@@ -375,26 +375,26 @@ impl State<'_> {
             }
         }
         for &p in &preheat_lengths {
-            points.push(pb.h0 + p);
+            points.push(problem.h0 + p);
         }
         // Local-time structure: table rows at tod(s), operability at tod(s - p).
         for &z in &act.zones {
-            let zone = &pb.zones[z];
+            let zone = &problem.zones[z];
             for &(from, _) in &zone.table {
-                points.extend(tod_points(pb, from, 0, lo, hi));
+                points.extend(tod_points(problem, from, 0, lo, hi));
             }
             if let Some(periods) = &zone.operable {
                 for &p in &preheat_lengths {
                     for &(from, to) in periods {
-                        points.extend(tod_points(pb, from, p, lo, hi));
+                        points.extend(tod_points(problem, from, p, lo, hi));
                         points.extend(tod_points(
-                            pb,
-                            (to + 1).rem_euclid(pb.clock.sol_length),
+                            problem,
+                            (to + 1).rem_euclid(problem.clock.sol_length),
                             p,
                             lo,
                             hi,
                         ));
-                        points.extend(tod_points(pb, 0, p, lo, hi));
+                        points.extend(tod_points(problem, 0, p, lo, hi));
                     }
                 }
             }
@@ -437,24 +437,24 @@ impl State<'_> {
             if best.is_some_and(|b| dist(&cell) > b.0) {
                 break;
             }
-            let (ca, cb) = cell;
-            if let Some(bound) = self.failing_soc_bound(a, d, ca, cb) {
+            let (cell_lo, cell_hi) = cell;
+            if let Some(bound) = self.failing_soc_bound(a, d, cell_lo, cell_hi) {
                 let closeness = clamp_i64(bound);
                 tries.push((
                     Try {
-                        starts: Interval::new(ca, cb),
+                        starts: Interval::new(cell_lo, cell_hi),
                         duration: d,
                         reason: Some(Phase2Reason::MinSoc {
-                            at: ca,
+                            at: cell_lo,
                             soc_mj: closeness,
                         }),
-                        probe: ca,
+                        probe: cell_lo,
                     },
                     Some(closeness),
                 ));
                 continue;
             }
-            let cell_tries = self.cell_tries(a, d, ca, cb);
+            let cell_tries = self.cell_tries(a, d, cell_lo, cell_hi);
             for t in &cell_tries {
                 if t.reason.is_none() {
                     let s = preferred.clamp(t.starts.lo, t.starts.hi);
@@ -471,36 +471,39 @@ impl State<'_> {
     }
 
     /// An upper bound below `min_soc` on the lowest state of charge for every start
-    /// in `[ca, cb]` with duration `d`, from the activity's own energy alone (other
+    /// in `[cell_lo, cell_hi]` with duration `d`, from the activity's own energy alone (other
     /// generated pieces only drain more): the cell then fails on `min_soc`
     /// everywhere. `None` when the bound does not prove that, when the cell fails
     /// a structural or peak check (reported as such), or when no bound applies (an
     /// activity that does not drain, or awake periods that charge).
-    fn failing_soc_bound(&self, a: usize, d: i64, ca: i64, cb: i64) -> Option<i128> {
-        let pb = self.pb;
-        let act = &pb.acts[a];
-        if act.energy <= 0 || pb.awake < pb.asleep {
+    fn failing_soc_bound(&self, a: usize, d: i64, cell_lo: i64, cell_hi: i64) -> Option<i128> {
+        let problem = self.problem;
+        let act = &problem.acts[a];
+        if act.energy <= 0 || problem.awake < problem.asleep {
             return None;
         }
         let energy = i128::from(act.energy) * i128::from(d);
-        let bound = self.soc.drain_bound(ca, cb.saturating_add(d), energy);
+        let bound = self
+            .soc
+            .drain_bound(cell_lo, cell_hi.saturating_add(d), energy);
         // Structural and peak results are constant within a cell; they are
         // evaluated only when the bound would prune it.
-        (bound < pb.min_soc && self.evaluate_inner(a, ca, d, false).is_ok()).then_some(bound)
+        (bound < problem.min_soc && self.evaluate_inner(a, cell_lo, d, false).is_ok())
+            .then_some(bound)
     }
 
     /// The tries of one cell: its structural or peak reason, or the exact
     /// state-of-charge search (the part that passes, and the numbers of the start
     /// that came closest on either side).
-    pub fn cell_tries(&self, a: usize, d: i64, ca: i64, cb: i64) -> Vec<Try> {
+    pub fn cell_tries(&self, a: usize, d: i64, cell_lo: i64, cell_hi: i64) -> Vec<Try> {
         let mut tries = Vec::new();
-        let first = match self.evaluate(a, ca, d) {
+        let first = match self.evaluate(a, cell_lo, d) {
             Err(reason) => {
                 tries.push(Try {
-                    starts: Interval::new(ca, cb),
+                    starts: Interval::new(cell_lo, cell_hi),
                     duration: d,
                     reason: Some(reason),
-                    probe: ca,
+                    probe: cell_lo,
                 });
                 return tries;
             }
@@ -508,7 +511,7 @@ impl State<'_> {
         };
         // The cell's evaluations, so that reporting a probe's reason does not
         // evaluate it again (a handful per cell: a linear scan is fastest).
-        let memo = std::cell::RefCell::new(vec![(ca, first.margin, first.soc_reason)]);
+        let memo = std::cell::RefCell::new(vec![(cell_lo, first.margin, first.soc_reason)]);
         let look = |s: i64| -> (i128, Option<Phase2Reason>) {
             if let Some(x) = memo.borrow().iter().find(|x| x.0 == s) {
                 return (x.1, x.2.clone());
@@ -520,22 +523,22 @@ impl State<'_> {
             (m, r)
         };
         let margin = |s: i64| look(s).0;
-        let (feasible, probe) = concave_feasible(ca, cb, &margin);
+        let (feasible, probe) = concave_feasible(cell_lo, cell_hi, &margin);
         let reason_at = |s: i64| look(s).1;
         match feasible {
             None => tries.push(Try {
-                starts: Interval::new(ca, cb),
+                starts: Interval::new(cell_lo, cell_hi),
                 duration: d,
                 reason: reason_at(probe),
                 probe,
             }),
             Some(iv) => {
-                if iv.lo > ca {
+                if iv.lo > cell_lo {
                     tries.push(Try {
-                        starts: Interval::new(ca, iv.lo - 1),
+                        starts: Interval::new(cell_lo, iv.lo - 1),
                         duration: d,
-                        reason: reason_at(ca),
-                        probe: ca,
+                        reason: reason_at(cell_lo),
+                        probe: cell_lo,
                     });
                 }
                 tries.push(Try {
@@ -544,12 +547,12 @@ impl State<'_> {
                     reason: None,
                     probe: iv.lo,
                 });
-                if iv.hi < cb {
+                if iv.hi < cell_hi {
                     tries.push(Try {
-                        starts: Interval::new(iv.hi + 1, cb),
+                        starts: Interval::new(iv.hi + 1, cell_hi),
                         duration: d,
-                        reason: reason_at(cb),
-                        probe: cb,
+                        reason: reason_at(cell_hi),
+                        probe: cell_hi,
                     });
                 }
             }
@@ -559,17 +562,17 @@ impl State<'_> {
 }
 
 /// Plan times `s` in `[lo, hi + 1]` with `tod(s - shift) == tod`.
-fn tod_points(pb: &Problem, tod: i64, shift: i64, lo: i64, hi: i64) -> Vec<i64> {
+fn tod_points(problem: &Problem, tod: i64, shift: i64, lo: i64, hi: i64) -> Vec<i64> {
     // s - shift = tod - offset + k * sol
-    let base = tod - pb.clock.offset + shift;
-    let k0 = (lo - base).div_euclid(pb.clock.sol_length);
+    let base = tod - problem.clock.offset + shift;
+    let k0 = (lo - base).div_euclid(problem.clock.sol_length);
     let mut out = Vec::new();
-    let mut s = base + k0 * pb.clock.sol_length;
+    let mut s = base + k0 * problem.clock.sol_length;
     while s <= hi + 1 {
         if s >= lo {
             out.push(s);
         }
-        s += pb.clock.sol_length;
+        s += problem.clock.sol_length;
     }
     out
 }

@@ -57,10 +57,10 @@ pub struct Act {
     pub zones: Vec<usize>,
     /// Dependencies.
     pub after: Vec<Dep>,
-    /// `(state, value)` requirements.
-    pub requires: Vec<(usize, usize)>,
-    /// `(state, value, at)` effects.
-    pub effects: Vec<(usize, usize, EffectAt)>,
+    /// State requirements.
+    pub requires: Vec<Requirement>,
+    /// State effects.
+    pub effects: Vec<Effect>,
     /// Allowed comm kinds (interned); `None` = all.
     pub uhf: Option<Vec<usize>>,
     /// Comm kind (interned).
@@ -74,6 +74,28 @@ impl Act {
     pub fn allows(&self, kind: usize) -> bool {
         self.uhf.as_ref().is_none_or(|k| k.contains(&kind))
     }
+}
+
+/// A state requirement in compiled form: the state must hold `value` over the
+/// activity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Requirement {
+    /// State index (in plan order of `states`).
+    pub state: usize,
+    /// Value index (in the state's `values`).
+    pub value: usize,
+}
+
+/// A state effect in compiled form: the activity sets `state` to `value` at its
+/// start or end.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Effect {
+    /// State index.
+    pub state: usize,
+    /// Value index.
+    pub value: usize,
+    /// At the activity's start or end.
+    pub at: EffectAt,
 }
 
 /// A thermal zone in compiled form.
@@ -286,19 +308,19 @@ impl Problem {
             let mut requires = Vec::new();
             for (k, r) in a.requires.iter().enumerate() {
                 let path = format!("{p}.requires[{k}]");
-                requires.push((
-                    state_index(&path, &r.state)?,
-                    value_index(&path, &r.state, &r.value)?,
-                ));
+                requires.push(Requirement {
+                    state: state_index(&path, &r.state)?,
+                    value: value_index(&path, &r.state, &r.value)?,
+                });
             }
             let mut effects = Vec::new();
             for (k, e) in a.effects.iter().enumerate() {
                 let path = format!("{p}.effects[{k}]");
-                effects.push((
-                    state_index(&path, &e.state)?,
-                    value_index(&path, &e.state, &e.value)?,
-                    e.at,
-                ));
+                effects.push(Effect {
+                    state: state_index(&path, &e.state)?,
+                    value: value_index(&path, &e.state, &e.value)?,
+                    at: e.at,
+                });
             }
             let uhf = a.uhf_interactions.as_ref().map(|list| {
                 list.iter()

@@ -27,7 +27,7 @@ pub struct Placement {
 #[derive(Clone, Debug)]
 pub struct State<'p> {
     /// The problem.
-    pub pb: &'p Problem,
+    pub problem: &'p Problem,
     /// `[start, end)` of each placed activity.
     pub placed: Vec<Option<(i64, i64)>>,
     /// The scheduled member of each group.
@@ -68,39 +68,39 @@ pub struct State<'p> {
 
 impl<'p> State<'p> {
     /// The state before step 1.
-    pub fn new(pb: &'p Problem) -> Self {
-        let groups = pb
+    pub fn new(problem: &'p Problem) -> Self {
+        let groups = problem
             .acts
             .iter()
             .filter_map(|a| a.group)
             .max()
             .map_or(0, |g| g + 1);
-        let net = StepFn::constant(pb.h0, pb.h1, pb.rtg - pb.asleep);
-        let data_rate = StepFn::constant(pb.h0, pb.h1, 0);
+        let net = StepFn::constant(problem.h0, problem.h1, problem.rtg - problem.asleep);
+        let data_rate = StepFn::constant(problem.h0, problem.h1, 0);
         Self {
-            pb,
-            placed: vec![None; pb.acts.len()],
+            problem,
+            placed: vec![None; problem.acts.len()],
             group_member: vec![None; groups],
-            busy: vec![Vec::new(); pb.resource_count],
-            engines: StepFn::constant(pb.h0, pb.h1, 0),
-            states: pb
+            busy: vec![Vec::new(); problem.resource_count],
+            engines: StepFn::constant(problem.h0, problem.h1, 0),
+            states: problem
                 .state_initial
                 .iter()
                 .map(|&v| StateTimeline::new(v))
                 .collect(),
-            data: RateTimeline::new(&data_rate, -pb.data0, 0),
+            data: RateTimeline::new(&data_rate, -problem.data0, 0),
             data_rate,
             produced: 0,
             comms: Vec::new(),
             restricted: Vec::new(),
             awake: Vec::new(),
             sleeps: Vec::new(),
-            zone_draw: vec![StepFn::constant(pb.h0, pb.h1, 0); pb.zones.len()],
-            zone_on: vec![Vec::new(); pb.zones.len()],
-            soc: RateTimeline::new(&net, pb.soc0, pb.capacity),
+            zone_draw: vec![StepFn::constant(problem.h0, problem.h1, 0); problem.zones.len()],
+            zone_on: vec![Vec::new(); problem.zones.len()],
+            soc: RateTimeline::new(&net, problem.soc0, problem.capacity),
             net,
-            peak: StepFn::constant(pb.h0, pb.h1, pb.asleep),
-            peak_max: Some((pb.asleep, pb.h0)),
+            peak: StepFn::constant(problem.h0, problem.h1, problem.asleep),
+            peak_max: Some((problem.asleep, problem.h0)),
         }
     }
 
@@ -123,8 +123,8 @@ impl<'p> State<'p> {
 
     /// Applies a placement decided at `step`.
     pub fn apply(&mut self, step: usize, p: &Placement) {
-        let pb = self.pb;
-        let act = &pb.acts[p.act];
+        let problem = self.problem;
+        let act = &problem.acts[p.act];
         let (s, e) = (p.start, p.start + p.duration);
         self.placed[p.act] = Some((s, e));
         if let Some(g) = act.group {
@@ -134,19 +134,19 @@ impl<'p> State<'p> {
             self.busy[r].push((s, e));
         }
         self.engines.add(s, e, act.engines);
-        for &(st, v) in &act.requires {
-            self.states[st].add_requirement(s, e, v, p.act);
+        for r in &act.requires {
+            self.states[r.state].add_requirement(s, e, r.value, p.act);
         }
-        for &(st, v, at) in &act.effects {
-            let t = if at == EffectAt::Start { s } else { e };
-            self.states[st].add_effect(t, step, v, p.act);
+        for effect in &act.effects {
+            let t = if effect.at == EffectAt::Start { s } else { e };
+            self.states[effect.state].add_effect(t, step, effect.value, p.act);
         }
         if act.data != 0 {
             self.data_rate.add(s, e, -act.data);
             self.data.rebuild(&self.data_rate);
         }
-        if let Some(ht) = pb.handover_time {
-            let overlap = (e.min(ht) - s.max(pb.h0)).max(0);
+        if let Some(ht) = problem.handover_time {
+            let overlap = (e.min(ht) - s.max(problem.h0)).max(0);
             self.produced += i128::from(act.data.max(0)) * i128::from(overlap);
         }
         if let Some(k) = act.comm {
@@ -160,7 +160,7 @@ impl<'p> State<'p> {
             self.sleeps.insert(at, (s, e, p.act));
         }
         if let Some((qa, qb)) = p.new_awake {
-            let extra = pb.awake - pb.asleep;
+            let extra = problem.awake - problem.asleep;
             for part in uncovered(qa, qb, p.retire.iter().map(|&i| self.awake[i])) {
                 self.add_load(part.0, part.1, extra, extra);
             }
@@ -176,7 +176,7 @@ impl<'p> State<'p> {
             self.awake = keep;
         }
         for &z in &act.zones {
-            let zone = &pb.zones[z];
+            let zone = &problem.zones[z];
             let mut demands = vec![(s, e, zone.maintenance)];
             if let Some(&(_, ps, pe)) = p.preheats.iter().find(|x| x.0 == z) {
                 demands.push((ps, pe, zone.preheat));
@@ -196,7 +196,7 @@ impl<'p> State<'p> {
         }
         self.add_load(s, e, act.energy, act.peak);
         self.soc.rebuild(&self.net);
-        self.peak_max = self.peak.max_on(pb.h0, pb.h1);
+        self.peak_max = self.peak.max_on(problem.h0, problem.h1);
     }
 
     /// Whether the heater of zone `z` is on over the second `t`.

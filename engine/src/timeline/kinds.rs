@@ -61,12 +61,26 @@ pub fn cumulative_valid(
     early.union(&late)
 }
 
+/// A placed state effect: at `time`, activity `owner` (placed at `step`) sets the
+/// state to `value`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StateChange {
+    /// When the value changes.
+    pub time: i64,
+    /// The step that placed the effect (orders effects at the same time).
+    pub step: usize,
+    /// The value set.
+    pub value: usize,
+    /// The activity whose effect it is.
+    pub owner: usize,
+}
+
 /// One named state: its initial value, the placed effects and requirements.
 #[derive(Clone, Debug, Default)]
 pub struct StateTimeline {
     initial: usize,
-    /// `(time, step, value, owner)`, sorted by `(time, step)`.
-    effects: Vec<(i64, usize, usize, usize)>,
+    /// Sorted by `(time, step)`.
+    effects: Vec<StateChange>,
     /// Placed requirements `(start, end, value, owner)`.
     requirements: Vec<(i64, i64, usize, usize)>,
 }
@@ -83,8 +97,18 @@ impl StateTimeline {
 
     /// Records an effect of activity `owner` placed at `step`.
     pub fn add_effect(&mut self, time: i64, step: usize, value: usize, owner: usize) {
-        let at = self.effects.partition_point(|e| (e.0, e.1) <= (time, step));
-        self.effects.insert(at, (time, step, value, owner));
+        let at = self
+            .effects
+            .partition_point(|e| (e.time, e.step) <= (time, step));
+        self.effects.insert(
+            at,
+            StateChange {
+                time,
+                step,
+                value,
+                owner,
+            },
+        );
     }
 
     /// Records a placed requirement of activity `owner` over `[start, end)`.
@@ -92,15 +116,18 @@ impl StateTimeline {
         self.requirements.push((start, end, value, owner));
     }
 
-    /// The placed effects `(time, step, value, owner)`, sorted by `(time, step)`.
-    pub fn effects(&self) -> &[(i64, usize, usize, usize)] {
+    /// The placed effects, sorted by `(time, step)`.
+    pub fn effects(&self) -> &[StateChange] {
         &self.effects
     }
 
     /// The distinct effect times with the value that wins there (the later step).
     fn effective(&self) -> Vec<(i64, usize)> {
         let mut out: Vec<(i64, usize)> = Vec::with_capacity(self.effects.len());
-        for &(t, _, v, _) in &self.effects {
+        for &StateChange {
+            time: t, value: v, ..
+        } in &self.effects
+        {
             match out.last_mut() {
                 Some(last) if last.0 == t => last.1 = v,
                 _ => out.push((t, v)),
@@ -152,7 +179,7 @@ impl StateTimeline {
     /// activity's effects.
     pub fn effect_valid(&self, own: &[(i64, usize)], lo: i64, hi: i64) -> IntervalSet {
         let mut bad = Vec::new();
-        let mut all: Vec<i64> = self.effects.iter().map(|e| e.0).collect();
+        let mut all: Vec<i64> = self.effects.iter().map(|e| e.time).collect();
         all.dedup();
         // Effects at `s + offset` with `s >= lo` cannot reach a requirement that ends
         // by then.
@@ -166,9 +193,14 @@ impl StateTimeline {
             if re <= earliest {
                 continue;
             }
-            let times: &[i64] = if self.effects.iter().any(|e| e.3 == owner) {
+            let times: &[i64] = if self.effects.iter().any(|e| e.owner == owner) {
                 owned.clear();
-                owned.extend(self.effects.iter().filter(|e| e.3 != owner).map(|e| e.0));
+                owned.extend(
+                    self.effects
+                        .iter()
+                        .filter(|e| e.owner != owner)
+                        .map(|e| e.time),
+                );
                 owned.dedup();
                 &owned
             } else {
