@@ -94,7 +94,7 @@ enum Command {
 /// The `--profile` of `solscope generate`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum Profile {
-    /// The plans the scheduler's speed was tuned on (the default; output unchanged).
+    /// The plans the scheduler's speed was tuned on (the default).
     Standard,
     /// A real multi-sol tactical plan's shapes: activities without windows or with
     /// one window per sol, long expanding activities, night work, tight energy,
