@@ -10,7 +10,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{Parser, Subcommand, ValueEnum};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -54,17 +54,20 @@ enum Command {
         /// The plan file (solscope.plan/1 JSON).
         plan: PathBuf,
     },
-    /// Write a random but realistic plan (every feature) to standard output.
+    /// Write a random plan (every feature) to standard output.
     Generate {
         /// Number of activities.
         #[arg(long, default_value_t = 300)]
         activities: usize,
-        /// Number of sols.
+        /// Number of sols (at least 1).
         #[arg(long, default_value_t = 1)]
         sols: usize,
         /// Random seed.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Shape of the plan.
+        #[arg(long, value_enum, default_value_t = Profile::Standard)]
+        profile: Profile,
     },
     /// Render the app's view of a plan to a PNG, offscreen (software rendering).
     Screenshot {
@@ -86,6 +89,26 @@ enum Command {
         #[arg(long, default_value = "1600x1000")]
         size: String,
     },
+}
+
+/// The `--profile` of `solscope generate`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Profile {
+    /// The plans the scheduler's speed was tuned on (the default).
+    Standard,
+    /// A real multi-sol tactical plan's shapes: activities without windows or with
+    /// one window per sol, long expanding activities, night work, tight energy,
+    /// data and handover limits. Most, not all, activities schedule.
+    Realistic,
+}
+
+impl From<Profile> for solscope_engine::Profile {
+    fn from(p: Profile) -> Self {
+        match p {
+            Profile::Standard => solscope_engine::Profile::Standard,
+            Profile::Realistic => solscope_engine::Profile::Realistic,
+        }
+    }
 }
 
 /// Exit status for invalid input.
@@ -248,6 +271,7 @@ fn run(command: Command) -> Result<String, Failure> {
             activities,
             sols,
             seed,
+            profile,
         } => {
             if activities > 1_000_000 || sols > 1000 {
                 return Err(Failure::Input(solscope_engine::Error::invalid(
@@ -255,7 +279,13 @@ fn run(command: Command) -> Result<String, Failure> {
                     "at most 1000000 activities and 1000 sols",
                 )));
             }
-            let plan = solscope_engine::generate_plan(activities, sols, seed);
+            if sols == 0 {
+                return Err(Failure::Input(solscope_engine::Error::invalid(
+                    "--sols",
+                    "must be at least 1 (got 0)",
+                )));
+            }
+            let plan = solscope_engine::generate_plan_with(profile.into(), activities, sols, seed);
             to_json(&plan)
         }
         Command::Check { plan } => {

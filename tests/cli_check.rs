@@ -1,5 +1,6 @@
 //! `solscope check` through the real binary: the shared examples are valid, each
-//! loader warning is printed with its path, and a missing file is an error.
+//! loader warning is printed with its path, and a missing file is an error. Also
+//! `solscope generate`: its realistic plans check, and it refuses zero sols.
 
 // Test helpers outside `#[test]` functions are not covered by clippy.toml's
 // allow-*-in-tests; a failed expectation here is a test failure.
@@ -217,4 +218,59 @@ fn missing_file_is_an_error_naming_it() {
         se.starts_with(&format!("error: {}: ", path.display())),
         "stderr: {se}"
     );
+}
+
+fn solscope(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_solscope"))
+        .args(args)
+        .output()
+        .expect("solscope runs")
+}
+
+#[test]
+fn generate_refuses_zero_sols() {
+    for profile in ["standard", "realistic"] {
+        let out = solscope(&["generate", "--sols", "0", "--profile", profile]);
+        assert_eq!(out.status.code(), Some(2), "{profile}");
+        assert!(out.stdout.is_empty(), "{profile}");
+        assert_eq!(
+            stderr(&out),
+            "error: --sols: must be at least 1 (got 0)\n",
+            "{profile}"
+        );
+    }
+}
+
+#[test]
+fn generated_realistic_plan_checks() {
+    let out = solscope(&[
+        "generate",
+        "--profile",
+        "realistic",
+        "--activities",
+        "80",
+        "--sols",
+        "2",
+        "--seed",
+        "3",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "stderr: {}", stderr(&out));
+    let plan: Value = serde_json::from_slice(&out.stdout).expect("a JSON plan");
+    let warnings = check_warnings("generated-realistic.json", &plan);
+    // Only the step-order remark on optional activities: nothing rounded.
+    assert!(
+        warnings.iter().all(|w| w.contains("optional activity")),
+        "{warnings:?}"
+    );
+    // The profile is not the default one.
+    let standard = solscope(&[
+        "generate",
+        "--activities",
+        "80",
+        "--sols",
+        "2",
+        "--seed",
+        "3",
+    ]);
+    assert_ne!(standard.stdout, out.stdout);
 }

@@ -29,7 +29,7 @@ pub use explain::{
     Suggestion, energy_consumers, explain, explain_text, explanation_notes, minimal_conflicts,
     peak_users, reason_line, suggestion_line, verified_suggestions,
 };
-pub use generate::generate_plan;
+pub use generate::{Profile, generate_plan, generate_plan_with};
 pub use load::{LoadedPlan, MAX_PLAN_BYTES, load_plan, load_plan_file};
 pub use model::{
     Activity, AwakeMode, Battery, Data, Dependency, Duration, EffectAt, Handover, Horizon,
