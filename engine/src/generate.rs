@@ -1222,6 +1222,16 @@ fn realistic_zones() -> BTreeMap<String, ThermalZone> {
 mod tests {
     use super::*;
 
+    /// How many activities of `plan` the scheduler places.
+    fn scheduled(plan: &Plan) -> usize {
+        crate::scheduler::schedule(plan)
+            .expect("schedules")
+            .steps
+            .iter()
+            .filter(|x| x.outcome.placement().is_some())
+            .count()
+    }
+
     #[test]
     fn generated_plans_are_valid_and_deterministic() {
         for (n, sols) in [(5, 1), (100, 1), (300, 3)] {
@@ -1229,12 +1239,7 @@ mod tests {
             assert_eq!(plan.activities.len(), n);
             crate::validate::validate(&plan).expect("valid");
             assert_eq!(plan, generate_plan(n, sols, 7));
-            let s = crate::scheduler::schedule(&plan).expect("schedules");
-            let scheduled = s
-                .steps
-                .iter()
-                .filter(|x| x.outcome.placement().is_some())
-                .count();
+            let scheduled = scheduled(&plan);
             assert!(scheduled * 2 >= n, "{scheduled} of {n} scheduled");
         }
         assert_ne!(generate_plan(50, 1, 1), generate_plan(50, 1, 2));
@@ -1424,12 +1429,7 @@ mod tests {
     fn realistic_plans_mostly_schedule() {
         for (n, sols, seed) in [(50, 1, 2), (100, 1, 4), (300, 3, 1), (300, 3, 4)] {
             let plan = generate_plan_with(Profile::Realistic, n, sols, seed);
-            let s = crate::scheduler::schedule(&plan).expect("schedules");
-            let scheduled = s
-                .steps
-                .iter()
-                .filter(|x| x.outcome.placement().is_some())
-                .count();
+            let scheduled = scheduled(&plan);
             assert!(
                 (n * 60..=n * 90).contains(&(scheduled * 100)),
                 "{n} activities, {sols} sols, seed {seed}: {scheduled} scheduled"
