@@ -3,7 +3,11 @@
 //! activities (1, 3 and 30 sols). Prints a markdown table; results are recorded in
 //! docs/performance.md.
 //!
-//! `cargo bench -- --quick` measures only 100 and 1,000 activities.
+//! `cargo bench -- --quick` measures only 100 and 1,000 activities;
+//! `--profile standard|realistic` only one generator profile (default: both);
+//! `--sweep N` schedules seeds 1..=N of each size and profile once and reports the
+//! median and the worst (the plan of a sweep that costs most, not only the seed-1
+//! plan the table measures).
 
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
@@ -12,7 +16,7 @@ use std::time::{Duration, Instant};
 use eframe::egui;
 use serde_json::json;
 use solscope::gui::{Command, SolscopeApp};
-use solscope_engine::{ExplainOptions, Outcome, explain, generate_plan, schedule};
+use solscope_engine::{ExplainOptions, Outcome, Profile, explain, generate_plan_with, schedule};
 
 /// Median wall time of `runs` calls (at least one).
 fn median(runs: usize, mut f: impl FnMut()) -> Duration {
@@ -53,6 +57,14 @@ fn frame(ctx: &egui::Context, app: &mut SolscopeApp) {
     std::hint::black_box(prims);
 }
 
+/// The value following `flag` on the command line.
+fn arg(flag: &str) -> Option<String> {
+    let args: Vec<String> = std::env::args().collect();
+    args.iter()
+        .position(|a| a == flag)
+        .and_then(|i| args.get(i + 1).cloned())
+}
+
 fn main() {
     let quick = std::env::args().any(|a| a == "--quick");
     let sizes: &[(usize, usize, usize)] = if quick {
@@ -60,12 +72,61 @@ fn main() {
     } else {
         &[(100, 1, 5), (1000, 3, 3), (10_000, 30, 1)]
     };
+    let profiles: Vec<(&str, Profile)> = match arg("--profile").as_deref() {
+        Some("standard") => vec![("standard", Profile::Standard)],
+        Some("realistic") => vec![("realistic", Profile::Realistic)],
+        _ => vec![
+            ("standard", Profile::Standard),
+            ("realistic", Profile::Realistic),
+        ],
+    };
+    if let Some(n) = arg("--sweep").and_then(|v| v.parse::<u64>().ok()) {
+        sweep(&profiles, sizes, n);
+        return;
+    }
+    for (name, profile) in profiles {
+        println!("\n### profile {name}\n");
+        table(profile, sizes);
+    }
+    if let Some(mb) = peak_rss_mb() {
+        println!("\npeak resident memory of the whole run: {mb:.0} MB");
+    }
+}
+
+/// Schedules seeds `1..=seeds` of every size once: median and worst time.
+fn sweep(profiles: &[(&str, Profile)], sizes: &[(usize, usize, usize)], seeds: u64) {
+    println!("| profile | activities | sols | seeds | median schedule | worst schedule (seed) |");
+    println!("|---|---:|---:|---:|---:|---:|");
+    for &(name, profile) in profiles {
+        for &(n, sols, _) in sizes {
+            let mut times: Vec<(Duration, u64)> = (1..=seeds)
+                .map(|seed| {
+                    let plan = generate_plan_with(profile, n, sols, seed);
+                    let t = Instant::now();
+                    std::hint::black_box(schedule(&plan).expect("schedules"));
+                    (t.elapsed(), seed)
+                })
+                .collect();
+            times.sort();
+            let (median, _) = times[times.len() / 2];
+            let (worst, seed) = times[times.len() - 1];
+            println!(
+                "| {name} | {n} | {sols} | {seeds} | {} | {} ({seed}) |",
+                ms(median),
+                ms(worst)
+            );
+        }
+    }
+}
+
+/// The table of one profile: seed 1 of every size.
+fn table(profile: Profile, sizes: &[(usize, usize, usize)]) {
     println!(
         "| activities | sols | scheduled | schedule | explain all (no suggestions) | state at step N/2 | app frame | edit → rerun → repaint |"
     );
     println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
     for &(n, sols, runs) in sizes {
-        let plan = generate_plan(n, sols, 1);
+        let plan = generate_plan_with(profile, n, sols, 1);
         let mut sched = None;
         let t_schedule = median(runs, || sched = Some(schedule(&plan).expect("schedules")));
         let sched = sched.expect("ran");
@@ -118,8 +179,5 @@ fn main() {
             ms(t_frame),
             ms(t_edit)
         );
-    }
-    if let Some(mb) = peak_rss_mb() {
-        println!("\npeak resident memory of the whole run: {mb:.0} MB");
     }
 }
