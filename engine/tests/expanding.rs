@@ -98,3 +98,28 @@ fn longest_duration_from_a_start_after_the_head() {
         .collect();
     assert_eq!(awake, vec![(8200, 10000)]);
 }
+
+/// With `power.awake < power.asleep` an awake period charges the battery, so a
+/// longer awake-required activity can pass where a shorter one fails `min_soc`.
+/// The binary search over durations assumed the opposite and failed this activity
+/// (its middle duration fails, so it looked only shorter), although its longest
+/// duration fits: 7200 s awake out of 10 h keeps the battery at 700 Wh >= 675.
+#[test]
+fn an_awake_period_that_charges_still_gets_the_longest_duration() {
+    let plan = json!({
+        "format": "solscope.plan/1",
+        "horizon": { "start": 0, "end": 36000 },
+        "battery": { "capacity": 1000.0, "initial": 1000.0, "min_soc": 675.0 },
+        "power": { "rtg": 60.0, "asleep": 100.0, "awake": 50.0 },
+        "activities": [ { "id": "x", "priority": 1, "duration": { "min": 600, "max": 7200 } } ]
+    });
+    let loaded = load_plan(&plan.to_string()).expect("valid plan");
+    let s = schedule(&loaded.plan).expect("schedules");
+    assert_eq!(
+        s.steps[0].outcome,
+        Outcome::Scheduled {
+            start: 0,
+            end: 7200
+        }
+    );
+}

@@ -18,8 +18,9 @@ fn has_end_effect(act: &Act) -> bool {
 
 /// Whether "fits with duration d" implies "fits with every shorter duration" for
 /// this activity: true unless it has an effect at its end (which moves with the
-/// duration) or its awake period could need extending backwards from its end
-/// (docs/semantics.md, min_awake extension near the plan end).
+/// duration), its awake period could need extending backwards from its end
+/// (docs/semantics.md, min_awake extension near the plan end), or being awake
+/// draws less than sleeping (`power.awake < power.asleep`).
 pub(super) fn duration_monotone(problem: &Problem, a: usize) -> bool {
     let act = &problem.acts[a];
     let end_effect = has_end_effect(act);
@@ -29,7 +30,10 @@ pub(super) fn duration_monotone(problem: &Problem, a: usize) -> bool {
             .windows
             .iter()
             .any(|w| w.end - problem.wake + problem.min_awake > problem.h1);
-    !end_effect && !backward
+    // An awake period that draws less than sleep charges the battery: a longer
+    // awake need can then pass where a shorter one runs out of energy.
+    let awake_charges = act.awake == AwakeMode::Required && problem.awake < problem.asleep;
+    !end_effect && !backward && !awake_charges
 }
 
 /// For an expanding activity whose only break of monotonicity is the backward
