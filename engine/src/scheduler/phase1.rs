@@ -258,6 +258,23 @@ impl State<'_> {
                 IntervalSet::empty()
             };
         }
+        // Starts the added volume cannot push over the cap even in the worst case
+        // need no search; debug builds check them exactly.
+        let energy = i128::from(rate) * i128::from(d);
+        let sure = self
+            .data
+            .surely_at_least(lo, hi, energy, -cap)
+            .map_or_else(IntervalSet::empty, |(a, b)| IntervalSet::single(a, b));
+        #[cfg(debug_assertions)]
+        for iv in sure.intervals() {
+            for s in [iv.lo, iv.lo + (iv.hi - iv.lo) / 2, iv.hi] {
+                debug_assert!(margin(s) >= 0, "data bound wrong at {s}");
+            }
+        }
+        let rest = IntervalSet::single(lo, hi).subtract(&sure);
+        if rest.is_empty() {
+            return sure;
+        }
         // Only breakpoints that a piece starting in [lo, hi] can reach split cells
         // (the breakpoints are sorted).
         let all = self.data.breakpoints();
@@ -269,8 +286,8 @@ impl State<'_> {
                 points.extend([x - o, x - o + 1]);
             }
         }
-        let mut feasible = Vec::new();
-        for (a, b) in cells(&IntervalSet::single(lo, hi), points) {
+        let mut feasible = sure.intervals().to_vec();
+        for (a, b) in cells(&rest, points) {
             if let Some(iv) = concave_feasible(a, b, &margin).0 {
                 feasible.push(iv);
             }

@@ -89,7 +89,7 @@ impl State<'_> {
 
     /// [`State::evaluate`]; without `soc`, only the structural and peak checks
     /// (the margin is then `i128::MAX` and there is no energy reason).
-    fn evaluate_inner(
+    pub(super) fn evaluate_inner(
         &self,
         a: usize,
         s: i64,
@@ -342,7 +342,7 @@ impl State<'_> {
         let (xlo, xhi) = (lo + omin - gap - 2, hi + omax + gap + 2);
         let mut fixed: Vec<i64> = Vec::new();
         let in_range = |x: &i64| xlo <= *x && *x <= xhi;
-        fixed.extend(self.net.points().iter().map(|p| p.0).filter(in_range));
+        fixed.extend(self.soc.rate().points().iter().map(|p| p.0).filter(in_range));
         fixed.extend(self.peak.points().iter().map(|p| p.0).filter(in_range));
         for &z in &act.zones {
             fixed.extend(

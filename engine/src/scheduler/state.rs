@@ -38,9 +38,7 @@ pub struct State<'p> {
     pub engines: StepFn,
     /// State timelines.
     pub states: Vec<StateTimeline>,
-    /// Rate of `-D` (bit/s): minus the sum of data rates.
-    pub data_rate: StepFn,
-    /// `-D`, capped at 0.
+    /// `-D`, capped at 0; its rate (bit/s) is minus the sum of data rates.
     pub data: RateTimeline,
     /// Data produced in `[h0, handover)` (bit).
     pub produced: i128,
@@ -56,11 +54,9 @@ pub struct State<'p> {
     pub zone_draw: Vec<StepFn>,
     /// Union of heater demand intervals per zone, sorted, merged.
     pub zone_on: Vec<Vec<(i64, i64)>>,
-    /// Net charge rate (mW).
-    pub net: StepFn,
     /// Total peak power (mW).
     pub peak: StepFn,
-    /// State of charge (mJ).
+    /// State of charge (mJ); its rate is the net charge rate (mW).
     pub soc: RateTimeline,
     /// The highest total peak power and its first time (cached).
     pub peak_max: Option<(i64, i64)>,
@@ -75,8 +71,6 @@ impl<'p> State<'p> {
             .filter_map(|a| a.group)
             .max()
             .map_or(0, |g| g + 1);
-        let net = StepFn::constant(problem.h0, problem.h1, problem.rtg - problem.asleep);
-        let data_rate = StepFn::constant(problem.h0, problem.h1, 0);
         Self {
             problem,
             placed: vec![None; problem.acts.len()],
@@ -88,8 +82,11 @@ impl<'p> State<'p> {
                 .iter()
                 .map(|&v| StateTimeline::new(v))
                 .collect(),
-            data: RateTimeline::new(&data_rate, -problem.data0, 0),
-            data_rate,
+            data: RateTimeline::new(
+                StepFn::constant(problem.h0, problem.h1, 0),
+                -problem.data0,
+                0,
+            ),
             produced: 0,
             comms: Vec::new(),
             restricted: Vec::new(),
@@ -97,8 +94,11 @@ impl<'p> State<'p> {
             sleeps: Vec::new(),
             zone_draw: vec![StepFn::constant(problem.h0, problem.h1, 0); problem.zones.len()],
             zone_on: vec![Vec::new(); problem.zones.len()],
-            soc: RateTimeline::new(&net, problem.soc0, problem.capacity),
-            net,
+            soc: RateTimeline::new(
+                StepFn::constant(problem.h0, problem.h1, problem.rtg - problem.asleep),
+                problem.soc0,
+                problem.capacity,
+            ),
             peak: StepFn::constant(problem.h0, problem.h1, problem.asleep),
             peak_max: Some((problem.asleep, problem.h0)),
         }
@@ -106,17 +106,22 @@ impl<'p> State<'p> {
 
     /// Adds `delta` mW of load on `[a, b)` (drains charge, adds peak).
     fn add_load(&mut self, a: i64, b: i64, energy: i64, peak: i64) {
-        self.net.add(a, b, -energy);
+        self.soc.add_rate(a, b, -energy);
         self.peak.add(a, b, peak);
     }
 
     /// Replays a recorded step: re-derives its placement (deterministic) and applies
-    /// it when the step scheduled its activity. Returns the evaluation applied.
+    /// it when the step scheduled its activity. Returns the evaluation applied
+    /// (without its energy margin, which a recorded placement already passed).
     pub fn replay(&mut self, step: &super::Step) -> Option<super::Evaluated> {
         let super::Outcome::Scheduled { start, end } = step.outcome else {
             return None;
         };
-        let ev = self.evaluate(step.activity, start, end - start).ok()?;
+        // The placement's generated pieces do not depend on the state of charge, so
+        // the levels are not derived here (a whole replay derives them once, on use).
+        let ev = self
+            .evaluate_inner(step.activity, start, end - start, false)
+            .ok()?;
         self.apply(step.step, &ev.placement);
         Some(ev)
     }
@@ -142,8 +147,7 @@ impl<'p> State<'p> {
             self.states[effect.state].add_effect(t, step, effect.value, p.act);
         }
         if act.data != 0 {
-            self.data_rate.add(s, e, -act.data);
-            self.data.rebuild(&self.data_rate);
+            self.data.add_rate(s, e, -act.data);
         }
         if let Some(ht) = problem.handover_time {
             let overlap = (e.min(ht) - s.max(problem.h0)).max(0);
@@ -195,7 +199,6 @@ impl<'p> State<'p> {
             }
         }
         self.add_load(s, e, act.energy, act.peak);
-        self.soc.rebuild(&self.net);
         self.peak_max = self.peak.max_on(problem.h0, problem.h1);
     }
 

@@ -20,8 +20,22 @@ pub struct LevelCheck {
 }
 
 /// A capped integrator of a piecewise-constant rate over `[start, end]`.
+///
+/// The rate changes with every placement, but many placements are made before the
+/// levels are next asked for (replaying a schedule, steps that fail before phase 2,
+/// placements that change only the other timeline), so the levels are derived on
+/// first use after a change rather than on every change.
 #[derive(Clone, Debug)]
 pub struct RateTimeline {
+    cap: i128,
+    initial: i128,
+    rate: StepFn,
+    levels: std::sync::OnceLock<Levels>,
+}
+
+/// The levels of a [`RateTimeline`] and the summaries its queries use.
+#[derive(Clone, Debug)]
+struct Levels {
     cap: i128,
     initial: i128,
     /// Segment starts, then the domain end: `times[n] == end`.
@@ -100,7 +114,87 @@ fn advance(level: i128, rate: i64, dt: i64, cap: i128) -> i128 {
 
 impl RateTimeline {
     /// Integrates `rate` from `initial`, capped at `cap`.
-    pub fn new(rate: &StepFn, initial: i128, cap: i128) -> Self {
+    pub fn new(rate: StepFn, initial: i128, cap: i128) -> Self {
+        Self {
+            cap,
+            initial,
+            rate,
+            levels: std::sync::OnceLock::new(),
+        }
+    }
+
+    /// Adds `delta` to the rate on `[a, b)`.
+    pub fn add_rate(&mut self, a: i64, b: i64, delta: i64) {
+        self.rate.add(a, b, delta);
+        self.levels = std::sync::OnceLock::new();
+    }
+
+    /// The rate.
+    pub fn rate(&self) -> &StepFn {
+        &self.rate
+    }
+
+    /// The cap.
+    pub fn cap(&self) -> i128 {
+        self.cap
+    }
+
+    fn levels(&self) -> &Levels {
+        self.levels
+            .get_or_init(|| Levels::new(&self.rate, self.initial, self.cap))
+    }
+
+    /// The level at time `t` (clamped to the domain).
+    pub fn level_at(&self, t: i64) -> i128 {
+        self.levels().level_at(t)
+    }
+
+    /// Breakpoints `(t, level)` including every time the level reaches the cap inside
+    /// a segment, so that linear interpolation between them is exact.
+    pub fn profile(&self) -> Vec<(i64, i128)> {
+        self.levels().profile()
+    }
+
+    /// The last profile point at or before `t` where the level is at the cap (the
+    /// battery was full), scanning back from `t` only.
+    pub fn last_at_cap(&self, t: i64) -> Option<i64> {
+        self.levels().last_at_cap(t)
+    }
+
+    /// The rate breakpoints (segment starts), then the domain end.
+    pub fn breakpoints(&self) -> &[i64] {
+        &self.levels().times
+    }
+
+    /// An upper bound on the lowest level if `energy` (> 0) more is drained over some
+    /// span inside `[from, until)`: see [`Levels::drain_bound`].
+    pub fn drain_bound(&self, from: i64, until: i64, energy: i128) -> i128 {
+        self.levels().drain_bound(from, until, energy)
+    }
+
+    /// The starts in `[lo, hi]` for which draining at most `energy` more after the
+    /// start provably keeps every level at or above `floor`: see
+    /// [`Levels::surely_at_least`].
+    pub fn surely_at_least(
+        &self,
+        lo: i64,
+        hi: i64,
+        energy: i128,
+        floor: i128,
+    ) -> Option<(i64, i64)> {
+        self.levels().surely_at_least(lo, hi, energy, floor)
+    }
+
+    /// Lowest level, and level at `probe`, if `drain` (sorted, disjoint `[a, b)`
+    /// pieces with a rate subtracted from the timeline's rate) were added.
+    pub fn check(&self, drain: &[(i64, i64, i64)], probe: Option<i64>) -> LevelCheck {
+        self.levels().check(drain, probe)
+    }
+}
+
+impl Levels {
+    /// Integrates `rate` from `initial`, capped at `cap`.
+    fn new(rate: &StepFn, initial: i128, cap: i128) -> Self {
         let mut tl = Self {
             cap,
             initial,
@@ -118,7 +212,7 @@ impl RateTimeline {
     }
 
     /// Recomputes the levels after the rate changed.
-    pub fn rebuild(&mut self, rate: &StepFn) {
+    fn rebuild(&mut self, rate: &StepFn) {
         self.times.clear();
         self.rates.clear();
         self.levels.clear();
@@ -157,11 +251,6 @@ impl RateTimeline {
         }
     }
 
-    /// The cap.
-    pub fn cap(&self) -> i128 {
-        self.cap
-    }
-
     /// Segment index containing `t` (the last segment for `t >= end`).
     fn index(&self, t: i64) -> usize {
         let n = self.rates.len();
@@ -171,7 +260,7 @@ impl RateTimeline {
     }
 
     /// The level at time `t` (clamped to the domain).
-    pub fn level_at(&self, t: i64) -> i128 {
+    fn level_at(&self, t: i64) -> i128 {
         self.level_and_waste_at(t).0
     }
 
@@ -191,7 +280,7 @@ impl RateTimeline {
 
     /// Breakpoints `(t, level)` including every time the level reaches the cap inside
     /// a segment, so that linear interpolation between them is exact.
-    pub fn profile(&self) -> Vec<(i64, i128)> {
+    fn profile(&self) -> Vec<(i64, i128)> {
         let mut out = Vec::with_capacity(self.times.len() + 4);
         for i in 0..self.rates.len() {
             out.extend(self.segment_points(i).into_iter().flatten());
@@ -228,7 +317,7 @@ impl RateTimeline {
 
     /// The last profile point at or before `t` where the level is at the cap (the
     /// battery was full), scanning back from `t` only.
-    pub fn last_at_cap(&self, t: i64) -> Option<i64> {
+    fn last_at_cap(&self, t: i64) -> Option<i64> {
         let n = self.rates.len();
         if self.times[n] <= t && self.levels[n] >= self.cap {
             return Some(self.times[n]);
@@ -268,18 +357,13 @@ impl RateTimeline {
         })
     }
 
-    /// The rate breakpoints (segment starts).
-    pub fn breakpoints(&self) -> &[i64] {
-        &self.times
-    }
-
     /// An upper bound on the lowest level if `energy` (> 0) more is drained over some
     /// span inside `[from, until)` (and any further drain anywhere): the levels
     /// before `from` can only fall, and at a time `t >= until` the level falls by
     /// at least `energy` less the charge the unchanged trajectory loses to the cap
     /// between `from` and `t` (the most the cap can give back). Taken at the lowest
     /// level from `until` on.
-    pub fn drain_bound(&self, from: i64, until: i64, energy: i128) -> i128 {
+    fn drain_bound(&self, from: i64, until: i64, energy: i128) -> i128 {
         let n = self.rates.len();
         let before = self.prefix_min[self.index(from)].0;
         let i = self.times.partition_point(|&x| x < until);
@@ -291,9 +375,30 @@ impl RateTimeline {
         before.min(m - (energy - absorbed).max(0))
     }
 
+    /// The starts `s` in `[lo, hi]` (one interval, or `None`) for which draining at
+    /// most `energy` (>= 0) more, all of it at or after `s`, provably keeps every
+    /// level at or above `floor`. A capped integrator falls by at most the extra
+    /// drain, so a start in segment `i` is safe when the levels before it
+    /// (`prefix_min[i]`, which also bounds the segment's own start) and every level
+    /// from the segment on less `energy` (`suffix_min[i] - energy`) stay at `floor`.
+    /// The first is true on a prefix of the segments and the second on a suffix, so
+    /// the safe starts are one interval, found by two binary searches.
+    fn surely_at_least(&self, lo: i64, hi: i64, energy: i128, floor: i128) -> Option<(i64, i64)> {
+        let n = self.rates.len();
+        // Segments [i0, i1) are safe.
+        let i0 = self.suffix_min[..n].partition_point(|m| m.0 - energy < floor);
+        let i1 = self.prefix_min[..n].partition_point(|m| m.0 >= floor);
+        if i0 >= i1 {
+            return None;
+        }
+        let from = if i0 == 0 { lo } else { self.times[i0].max(lo) };
+        let to = if i1 == n { hi } else { (self.times[i1] - 1).min(hi) };
+        (from <= to).then_some((from, to))
+    }
+
     /// Lowest level, and level at `probe`, if `drain` (sorted, disjoint `[a, b)`
     /// pieces with a rate subtracted from the timeline's rate) were added.
-    pub fn check(&self, drain: &[(i64, i64, i64)], probe: Option<i64>) -> LevelCheck {
+    fn check(&self, drain: &[(i64, i64, i64)], probe: Option<i64>) -> LevelCheck {
         let n = self.rates.len();
         let (start, end) = (self.times[0], self.times[n]);
         // Usually every piece is inside the domain already: no copy then.
@@ -457,7 +562,7 @@ mod tests {
         let mut rate = StepFn::constant(0, 100, 3);
         rate.add(20, 40, -10);
         rate.add(60, 70, 50);
-        let tl = RateTimeline::new(&rate, 100, 150);
+        let tl = RateTimeline::new(rate.clone(), 100, 150);
         let b = brute(&rate, &[], 100, 150);
         for t in 0..=100 {
             assert_eq!(tl.level_at(t), b[t as usize], "t={t}");
@@ -504,7 +609,7 @@ mod tests {
         }
         let (cap, initial) = (100 + next(100) as i128, next(100) as i128);
         let initial = initial.min(cap);
-        let tl = RateTimeline::new(&rate, initial, cap);
+        let tl = RateTimeline::new(rate.clone(), initial, cap);
         (rate, initial, cap, tl)
     }
 
@@ -539,7 +644,7 @@ mod tests {
         let mut rate = StepFn::constant(0, 100, 7);
         rate.add(20, 50, -12);
         rate.add(70, 80, -30);
-        let tl = RateTimeline::new(&rate, 0, 60);
+        let tl = RateTimeline::new(rate.clone(), 0, 60);
         let profile = tl.profile();
         for t in -5..110 {
             let want = profile
@@ -575,7 +680,7 @@ mod tests {
     #[test]
     fn profile_marks_cap_hits() {
         let rate = StepFn::constant(0, 10, 7);
-        let tl = RateTimeline::new(&rate, 0, 20);
+        let tl = RateTimeline::new(rate.clone(), 0, 20);
         assert_eq!(tl.profile(), vec![(0, 0), (2, 14), (3, 20), (10, 20)]);
     }
 }
