@@ -4,7 +4,8 @@ use serde_json::Value;
 
 use crate::error::Error;
 use crate::load::load_plan;
-use crate::model::Plan;
+use crate::model::{Activity, Plan};
+use crate::validate::{check_activity_shape, validate};
 
 /// Applies an edit in the spec's format (`target` is `"plan"` or `"activity:ID"`;
 /// `set` replaces those top-level fields of the target, `null` removes one) and
@@ -39,4 +40,46 @@ pub fn apply_edit(
         }
     }
     load_plan(&v.to_string()).map(|loaded| loaded.plan)
+}
+
+/// [`apply_edit`] for the explainer's own candidate edits, where only whether the
+/// edit gives a valid plan matters, not why not: an edit of one activity
+/// re-reads only that activity from JSON and validates the plan, rather than
+/// writing and re-reading the whole plan. Debug builds check the result against
+/// [`apply_edit`].
+pub(crate) fn edited(
+    plan: &Plan,
+    target: &str,
+    set: &serde_json::Map<String, Value>,
+) -> Option<Plan> {
+    let quick = || -> Option<Plan> {
+        let id = target.strip_prefix("activity:")?;
+        let i = plan.activities.iter().position(|a| a.id == id)?;
+        let mut v = serde_json::to_value(&plan.activities[i]).ok()?;
+        let obj = v.as_object_mut()?;
+        for (k, x) in set {
+            if x.is_null() {
+                obj.remove(k);
+            } else {
+                obj.insert(k.clone(), x.clone());
+            }
+        }
+        check_activity_shape(obj, "").ok()?;
+        let activity: Activity = serde_json::from_value(v).ok()?;
+        let mut out = plan.clone();
+        out.activities[i] = activity;
+        validate(&out).ok()?;
+        Some(out)
+    };
+    let out = if target == "plan" {
+        apply_edit(plan, target, set).ok()
+    } else {
+        quick()
+    };
+    debug_assert_eq!(
+        out,
+        apply_edit(plan, target, set).ok(),
+        "the quick edit disagrees with apply_edit"
+    );
+    out
 }

@@ -51,6 +51,8 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use serde_json::Value;
+
 use crate::error::{Error, Warning};
 use crate::model::{
     Activity, Dependency, Duration, EffectAt, PLAN_FORMAT, Plan, StateDef, ThermalZone, Window,
@@ -81,55 +83,7 @@ pub fn validate(plan: &Plan) -> Result<Vec<Warning>, Error> {
 /// string-valued enum is expected (`"awake": { "any": null }`). Called by `load_plan`
 /// on the raw JSON; walks it in the model's field order and returns the first
 /// offending path.
-pub(crate) fn check_json_shape(doc: &serde_json::Value) -> Result<(), Error> {
-    use serde_json::Value;
-    type Object = serde_json::Map<String, Value>;
-
-    fn object<'a>(v: &'a Value, path: &str) -> Result<Option<&'a Object>, Error> {
-        match v {
-            Value::Array(_) => Err(invalid(
-                if path.is_empty() { "$" } else { path },
-                "invalid type: array, expected a JSON object",
-            )),
-            Value::Object(map) => Ok(Some(map)),
-            _ => Ok(None), // serde reports other wrong types itself
-        }
-    }
-    fn join(base: &str, key: &str) -> String {
-        if base.is_empty() {
-            key.to_string()
-        } else {
-            format!("{base}.{key}")
-        }
-    }
-    /// Each element of an array field must be an object; returns them with paths.
-    fn objects<'a>(
-        map: &'a Object,
-        base: &str,
-        key: &str,
-    ) -> Result<Vec<(String, &'a Object)>, Error> {
-        let mut out = Vec::new();
-        if let Some(Value::Array(items)) = map.get(key) {
-            for (i, item) in items.iter().enumerate() {
-                let path = format!("{}[{i}]", join(base, key));
-                if let Some(m) = object(item, &path)? {
-                    out.push((path, m));
-                }
-            }
-        }
-        Ok(out)
-    }
-    fn string_enum(map: &Object, base: &str, key: &str) -> Result<(), Error> {
-        if let Some(v @ (Value::Object(_) | Value::Array(_))) = map.get(key) {
-            let got = if v.is_object() { "object" } else { "array" };
-            return Err(invalid(
-                join(base, key),
-                format!("invalid type: {got}, expected a string"),
-            ));
-        }
-        Ok(())
-    }
-
+pub(crate) fn check_json_shape(doc: &Value) -> Result<(), Error> {
     let Some(root) = object(doc, "")? else {
         return Ok(());
     };
@@ -162,13 +116,62 @@ pub(crate) fn check_json_shape(doc: &serde_json::Value) -> Result<(), Error> {
         }
     }
     for (path, act) in objects(root, "", "activities")? {
-        objects(act, &path, "windows")?;
-        string_enum(act, &path, "awake")?;
-        objects(act, &path, "after")?;
-        objects(act, &path, "requires")?;
-        for (epath, eff) in objects(act, &path, "effects")? {
-            string_enum(eff, &epath, "at")?;
+        check_activity_shape(act, &path)?;
+    }
+    Ok(())
+}
+
+/// [`check_json_shape`] for one activity object at `path`.
+pub(crate) fn check_activity_shape(act: &Object, path: &str) -> Result<(), Error> {
+    objects(act, path, "windows")?;
+    string_enum(act, path, "awake")?;
+    objects(act, path, "after")?;
+    objects(act, path, "requires")?;
+    for (epath, eff) in objects(act, path, "effects")? {
+        string_enum(eff, &epath, "at")?;
+    }
+    Ok(())
+}
+
+type Object = serde_json::Map<String, Value>;
+
+fn object<'a>(v: &'a Value, path: &str) -> Result<Option<&'a Object>, Error> {
+    match v {
+        Value::Array(_) => Err(invalid(
+            if path.is_empty() { "$" } else { path },
+            "invalid type: array, expected a JSON object",
+        )),
+        Value::Object(map) => Ok(Some(map)),
+        _ => Ok(None), // serde reports other wrong types itself
+    }
+}
+fn join(base: &str, key: &str) -> String {
+    if base.is_empty() {
+        key.to_string()
+    } else {
+        format!("{base}.{key}")
+    }
+}
+/// Each element of an array field must be an object; returns them with paths.
+fn objects<'a>(map: &'a Object, base: &str, key: &str) -> Result<Vec<(String, &'a Object)>, Error> {
+    let mut out = Vec::new();
+    if let Some(Value::Array(items)) = map.get(key) {
+        for (i, item) in items.iter().enumerate() {
+            let path = format!("{}[{i}]", join(base, key));
+            if let Some(m) = object(item, &path)? {
+                out.push((path, m));
+            }
         }
+    }
+    Ok(out)
+}
+fn string_enum(map: &Object, base: &str, key: &str) -> Result<(), Error> {
+    if let Some(v @ (Value::Object(_) | Value::Array(_))) = map.get(key) {
+        let got = if v.is_object() { "object" } else { "array" };
+        return Err(invalid(
+            join(base, key),
+            format!("invalid type: {got}, expected a string"),
+        ));
     }
     Ok(())
 }

@@ -13,6 +13,7 @@ mod phase2;
 mod problem;
 mod profiles;
 mod state;
+mod tail;
 mod trace;
 
 #[cfg(debug_assertions)]
@@ -23,6 +24,7 @@ pub(crate) use phase2::Evaluated;
 pub use problem::{Act, Problem};
 pub use profiles::Profiles;
 pub use state::{Placement, State};
+pub(crate) use tail::placements_if_placed;
 #[cfg(debug_assertions)]
 use trace::merge_tries;
 use trace::merge_tries_with;
@@ -54,6 +56,8 @@ pub struct Schedule {
     pub steps: Vec<Step>,
     /// Every generated activity that ever existed, with its lifetime in steps.
     pub generated: Vec<Generated>,
+    /// The energy margin of each step's placement (derived on first use).
+    margins: std::sync::OnceLock<Vec<Option<i128>>>,
 }
 
 impl Schedule {
@@ -76,6 +80,24 @@ impl Schedule {
             state.replay(step);
         }
         state
+    }
+
+    /// The energy margin (`min(lowest soc - min_soc, handover soc - handover
+    /// min)`, mJ) of step `k`'s placement in the state before it, for every step
+    /// that placed its activity (`margins()[k - 1]`).
+    pub(crate) fn margins(&self) -> &[Option<i128>] {
+        self.margins.get_or_init(|| {
+            let mut state = State::new(&self.problem);
+            self.steps
+                .iter()
+                .map(|step| {
+                    let (s, e) = step.outcome.placement()?;
+                    let ev = state.evaluate(step.activity, s, e - s).ok()?;
+                    state.apply(step.step, &ev.placement);
+                    Some(ev.margin)
+                })
+                .collect()
+        })
     }
 
     /// The generated activities alive after step `k`.
@@ -110,26 +132,6 @@ pub(crate) fn placement_after_edit(
     a: usize,
 ) -> Result<Option<(i64, i64)>, Error> {
     Ok(partial_rerun(prev, plan, a)?.placement(a))
-}
-
-/// [`reschedule`], when activity `a` is placed in it: the steps after `a`'s are
-/// run only then (the greedy run never looks ahead, so `a`'s step decides).
-pub(crate) fn reschedule_if_placed(
-    prev: &Schedule,
-    plan: &Plan,
-    a: usize,
-) -> Result<Option<Schedule>, Error> {
-    let partial = partial_rerun(prev, plan, a)?;
-    if partial.placement(a).is_none() {
-        return Ok(None);
-    }
-    let until = partial.problem.order.len();
-    Ok(Some(run(
-        partial.problem,
-        partial.steps,
-        partial.generated,
-        until,
-    )))
 }
 
 /// The run of the edited `plan` up to `a`'s step.
@@ -260,6 +262,7 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>, until: usiz
         problem,
         steps,
         generated,
+        margins: std::sync::OnceLock::new(),
     }
 }
 

@@ -70,6 +70,19 @@ impl State<'_> {
 
     /// [`State::fits`], with the passing evaluation.
     pub fn fitting(&self, a: usize, s: i64, d: i64, scope: &Scope) -> Option<Evaluated> {
+        self.fitting_inner(a, s, d, scope, true)
+    }
+
+    /// [`State::fitting`]; without `soc`, every check but the energy margin (the
+    /// caller knows it holds; the margin is then `i128::MAX`).
+    pub(super) fn fitting_inner(
+        &self,
+        a: usize,
+        s: i64,
+        d: i64,
+        scope: &Scope,
+        soc: bool,
+    ) -> Option<Evaluated> {
         let act = &self.problem.acts[a];
         let in_window = act
             .windows
@@ -78,7 +91,9 @@ impl State<'_> {
         if !in_window || !self.phase1_point(a, s, d, scope) {
             return None;
         }
-        self.evaluate(a, s, d).ok().filter(|ev| ev.margin >= 0)
+        self.evaluate_inner(a, s, d, soc)
+            .ok()
+            .filter(|ev| ev.margin >= 0)
     }
 
     /// Phase 2 at start `s` with duration `d`: the generated activities and every
@@ -342,7 +357,14 @@ impl State<'_> {
         let (xlo, xhi) = (lo + omin - gap - 2, hi + omax + gap + 2);
         let mut fixed: Vec<i64> = Vec::new();
         let in_range = |x: &i64| xlo <= *x && *x <= xhi;
-        fixed.extend(self.soc.rate().points().iter().map(|p| p.0).filter(in_range));
+        fixed.extend(
+            self.soc
+                .rate()
+                .points()
+                .iter()
+                .map(|p| p.0)
+                .filter(in_range),
+        );
         fixed.extend(self.peak.points().iter().map(|p| p.0).filter(in_range));
         for &z in &act.zones {
             fixed.extend(

@@ -175,6 +175,19 @@ impl Problem {
     /// activities equal, and the same activity, compiled the same, at each of those
     /// steps. The greedy run never looks ahead, so those steps come out the same.
     pub fn common_steps(&self, other: &Problem) -> usize {
+        if !self.same_plan_wide(other) {
+            return 0;
+        }
+        self.order
+            .iter()
+            .zip(&other.order)
+            .take_while(|&(&a, &b)| a == b && self.acts[a] == other.acts[b])
+            .count()
+    }
+
+    /// Whether `other` has the same number of activities and the same plan-wide
+    /// parameters (everything but the activities and their order).
+    fn same_plan_wide(&self, other: &Problem) -> bool {
         let plan_wide = |p: &Problem| Problem {
             acts: Vec::new(),
             order: Vec::new(),
@@ -184,14 +197,20 @@ impl Problem {
             state_initial: p.state_initial.clone(),
             ..*p
         };
-        if self.acts.len() != other.acts.len() || plan_wide(self) != plan_wide(other) {
-            return 0;
-        }
-        self.order
-            .iter()
-            .zip(&other.order)
-            .take_while(|&(&a, &b)| a == b && self.acts[a] == other.acts[b])
-            .count()
+        self.acts.len() == other.acts.len() && plan_wide(self) == plan_wide(other)
+    }
+
+    /// Whether `other` differs from this problem in activity `a`'s definition at
+    /// most: same plan-wide parameters, same step order, every other activity equal.
+    pub fn differs_only_in(&self, other: &Problem, a: usize) -> bool {
+        self.same_plan_wide(other)
+            && self.order == other.order
+            && self
+                .acts
+                .iter()
+                .zip(&other.acts)
+                .enumerate()
+                .all(|(j, (x, y))| j == a || x == y)
     }
 
     /// Preheat duration of zone `z` for an activity starting at `s`.

@@ -392,7 +392,11 @@ impl Levels {
             return None;
         }
         let from = if i0 == 0 { lo } else { self.times[i0].max(lo) };
-        let to = if i1 == n { hi } else { (self.times[i1] - 1).min(hi) };
+        let to = if i1 == n {
+            hi
+        } else {
+            (self.times[i1] - 1).min(hi)
+        };
         (from <= to).then_some((from, to))
     }
 

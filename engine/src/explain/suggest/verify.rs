@@ -5,10 +5,10 @@
 use rayon::prelude::*;
 
 use super::{Candidate, round3};
-use crate::edit::apply_edit;
+use crate::edit::edited;
 use crate::explain::Suggestion;
 use crate::model::Plan;
-use crate::scheduler::{Schedule, placement_after_edit, reschedule_if_placed, schedule};
+use crate::scheduler::{Schedule, placement_after_edit, placements_if_placed, schedule};
 
 /// The candidates that make activity `a` schedule, each once, with the activities
 /// they make fail; fewest side effects first (stable: candidate order breaks ties).
@@ -37,7 +37,7 @@ pub(super) fn verified(
     let mut out: Vec<Suggestion> = unique
         .into_par_iter()
         .filter_map(|c| {
-            let edited = apply_edit(plan, &c.target, &c.set).ok()?;
+            let edited = edited(plan, &c.target, &c.set)?;
             let side_effects = side_effects(&edited, a, sched)?;
             Some(Suggestion {
                 description: c.description,
@@ -65,24 +65,15 @@ fn places(plan: &Plan, a: usize, before: &Schedule) -> bool {
 
 /// If activity `a` is placed in the run of the edited `plan`: the activities
 /// scheduled in `before` that are not any more. The steps after `a`'s are run
-/// only when it is placed. Debug builds check the answer against a full run from
-/// scratch.
+/// only when it is placed, and only where `a`'s placement can change them
+/// ([`placements_if_placed`], which debug builds check against a full run).
 fn side_effects(plan: &Plan, a: usize, before: &Schedule) -> Option<Vec<usize>> {
-    let after = reschedule_if_placed(before, plan, a).ok().flatten();
-    debug_assert_eq!(
-        after.as_ref().map(|s| (s.steps.len(), s.placement(a))),
-        schedule(plan)
-            .ok()
-            .filter(|s| s.placement(a).is_some())
-            .map(|s| (s.steps.len(), s.placement(a))),
-        "the rerun disagrees with a full run"
-    );
-    let after = after?;
+    let after = placements_if_placed(before, plan, a).ok().flatten()?;
     Some(
         before
             .steps
             .iter()
-            .filter(|s| s.outcome.placement().is_some() && after.placement(s.activity).is_none())
+            .filter(|s| s.outcome.placement().is_some() && after[s.activity].is_none())
             .map(|s| s.activity)
             .collect(),
     )
@@ -104,7 +95,7 @@ pub(super) fn tune_limit(
 ) -> Option<Candidate> {
     let works = |v: f64| {
         let c = make(v);
-        apply_edit(plan, &c.target, &c.set).is_ok_and(|p| places(&p, a, sched))
+        edited(plan, &c.target, &c.set).is_some_and(|p| places(&p, a, sched))
     };
     let (mut bad, mut good) = if works(needed) {
         (current, needed)
