@@ -5,7 +5,7 @@ use serde_json::Value;
 use crate::error::Error;
 use crate::load::load_plan;
 use crate::model::{Activity, Plan};
-use crate::validate::{check_activity_shape, validate};
+use crate::validate::{check_activity_shape, check_json_shape, validate};
 
 /// Applies an edit in the spec's format (`target` is `"plan"` or `"activity:ID"`;
 /// `set` replaces those top-level fields of the target, `null` removes one) and
@@ -43,9 +43,9 @@ pub fn apply_edit(
 }
 
 /// [`apply_edit`] for the explainer's own candidate edits, where only whether the
-/// edit gives a valid plan matters, not why not: an edit of one activity
-/// re-reads only that activity from JSON and validates the plan, rather than
-/// writing and re-reading the whole plan. Debug builds check the result against
+/// edit gives a valid plan matters, not why not: an edit re-reads only what it
+/// changes from JSON (one activity, or the plan without its activities) and
+/// validates the plan, rather than writing and re-reading the whole plan. Debug builds check the result against
 /// [`apply_edit`].
 pub(crate) fn edited(
     plan: &Plan,
@@ -71,8 +71,43 @@ pub(crate) fn edited(
         validate(&out).ok()?;
         Some(out)
     };
+    // An edit of plan-wide fields re-reads the plan without its activities.
+    let quick_plan = || -> Option<Plan> {
+        if set.contains_key("activities") {
+            return apply_edit(plan, target, set).ok();
+        }
+        let shell = Plan {
+            format: plan.format.clone(),
+            name: plan.name.clone(),
+            horizon: plan.horizon,
+            local_time: plan.local_time,
+            battery: plan.battery,
+            power: plan.power,
+            sleep: plan.sleep,
+            sequence_engines: plan.sequence_engines,
+            data: plan.data,
+            handover: plan.handover,
+            states: plan.states.clone(),
+            thermal_zones: plan.thermal_zones.clone(),
+            activities: Vec::new(),
+        };
+        let mut v = serde_json::to_value(&shell).ok()?;
+        let obj = v.as_object_mut()?;
+        for (k, x) in set {
+            if x.is_null() {
+                obj.remove(k);
+            } else {
+                obj.insert(k.clone(), x.clone());
+            }
+        }
+        check_json_shape(&v).ok()?;
+        let mut out: Plan = serde_json::from_value(v).ok()?;
+        out.activities = plan.activities.clone();
+        validate(&out).ok()?;
+        Some(out)
+    };
     let out = if target == "plan" {
-        apply_edit(plan, target, set).ok()
+        quick_plan()
     } else {
         quick()
     };

@@ -8,23 +8,23 @@
 mod cells;
 mod duration;
 mod inspect;
+mod outcomes;
 mod phase1;
 mod phase2;
 mod problem;
 mod profiles;
 mod state;
-mod tail;
 mod trace;
 
 #[cfg(debug_assertions)]
 use duration::longest_by_scan;
 use duration::{duration_monotone, head_tail_split, longest_monotone, longest_split};
 pub use inspect::{PartialSchedule, partial_schedule, valid_intervals_at};
+pub(crate) use outcomes::{placement_after_edit, placements_if_placed};
 pub(crate) use phase2::Evaluated;
 pub use problem::{Act, Problem};
 pub use profiles::Profiles;
 pub use state::{Placement, State};
-pub(crate) use tail::placements_if_placed;
 #[cfg(debug_assertions)]
 use trace::merge_tries;
 use trace::merge_tries_with;
@@ -119,25 +119,6 @@ pub fn schedule(plan: &Plan) -> Result<Schedule, Error> {
 pub fn reschedule(prev: &Schedule, plan: &Plan) -> Result<Schedule, Error> {
     let problem = Problem::compile(plan)?;
     let until = problem.order.len();
-    Ok(rerun(prev, problem, until))
-}
-
-/// Where activity `a` is placed when the edited `plan` is scheduled (`None`:
-/// it fails), running only the steps up to `a`'s and reusing the steps of `prev`
-/// that the edit cannot change: what [`reschedule`] would say of `a`, without the
-/// steps after it.
-pub(crate) fn placement_after_edit(
-    prev: &Schedule,
-    plan: &Plan,
-    a: usize,
-) -> Result<Option<(i64, i64)>, Error> {
-    Ok(partial_rerun(prev, plan, a)?.placement(a))
-}
-
-/// The run of the edited `plan` up to `a`'s step.
-fn partial_rerun(prev: &Schedule, plan: &Plan, a: usize) -> Result<Schedule, Error> {
-    let problem = Problem::compile(plan)?;
-    let until = problem.step_of.get(a).copied().unwrap_or(0);
     Ok(rerun(prev, problem, until))
 }
 

@@ -281,10 +281,9 @@ impl State<'_> {
         let near =
             &all[all.partition_point(|&x| x < lo)..all.partition_point(|&x| x <= hi + d + 1)];
         let mut points: Vec<i64> = Vec::with_capacity(near.len() * 4);
-        for &x in near {
-            for o in [0, d] {
-                points.extend([x - o, x - o + 1]);
-            }
+        // One sorted run per shift (`cells` merges the runs).
+        for shift in [0, 1, 1 - d, -d] {
+            points.extend(near.iter().map(|&x| x + shift));
         }
         let mut feasible = sure.intervals().to_vec();
         for (a, b) in cells(&rest, points) {

@@ -388,13 +388,12 @@ impl State<'_> {
         for &(x, y) in &self.awake {
             fixed.extend([x, y, x - gap, y + gap].into_iter().filter(in_range));
         }
-        fixed.sort_unstable();
+        fixed.sort(); // sorted runs, one per source: merged
         fixed.dedup();
         let mut points = Vec::with_capacity(fixed.len() * offsets.len() + 16);
-        for &x in &fixed {
-            for &(o, end) in &offsets {
-                points.push(x - o + end);
-            }
+        // One sorted run per offset (`cells` merges the runs).
+        for &(o, end) in &offsets {
+            points.extend(fixed.iter().map(|&x| x - o + end));
         }
         for &p in &preheat_lengths {
             points.push(problem.h0 + p);

@@ -31,6 +31,9 @@ pub struct RateTimeline {
     initial: i128,
     rate: StepFn,
     levels: std::sync::OnceLock<Levels>,
+    /// The levels before the latest changes, and the earliest time they changed
+    /// the rate at: the next derivation integrates only from there.
+    stale: Option<(Levels, i64)>,
 }
 
 /// The levels of a [`RateTimeline`] and the summaries its queries use.
@@ -120,13 +123,21 @@ impl RateTimeline {
             initial,
             rate,
             levels: std::sync::OnceLock::new(),
+            stale: None,
         }
     }
 
     /// Adds `delta` to the rate on `[a, b)`.
     pub fn add_rate(&mut self, a: i64, b: i64, delta: i64) {
+        if a >= b || delta == 0 {
+            return;
+        }
         self.rate.add(a, b, delta);
-        self.levels = std::sync::OnceLock::new();
+        if let Some(levels) = self.levels.take() {
+            self.stale = Some((levels, a));
+        } else if let Some((_, from)) = &mut self.stale {
+            *from = (*from).min(a);
+        }
     }
 
     /// The rate.
@@ -140,8 +151,10 @@ impl RateTimeline {
     }
 
     fn levels(&self) -> &Levels {
-        self.levels
-            .get_or_init(|| Levels::new(&self.rate, self.initial, self.cap))
+        self.levels.get_or_init(|| match &self.stale {
+            Some((old, from)) => Levels::update(old, &self.rate, *from),
+            None => Levels::new(&self.rate, self.initial, self.cap),
+        })
     }
 
     /// The level at time `t` (clamped to the domain).
@@ -195,59 +208,94 @@ impl RateTimeline {
 impl Levels {
     /// Integrates `rate` from `initial`, capped at `cap`.
     fn new(rate: &StepFn, initial: i128, cap: i128) -> Self {
-        let mut tl = Self {
-            cap,
-            initial,
-            times: Vec::new(),
-            rates: Vec::new(),
-            levels: Vec::new(),
-            prefix_min: Vec::new(),
-            suffix_min: Vec::new(),
-            wasted: Vec::new(),
-            uncapped: MinTree::default(),
-            last_full: std::sync::OnceLock::new(),
-        };
-        tl.rebuild(rate);
-        tl
+        Self::build(rate, initial, cap, None)
     }
 
-    /// Recomputes the levels after the rate changed.
-    fn rebuild(&mut self, rate: &StepFn) {
-        self.times.clear();
-        self.rates.clear();
-        self.levels.clear();
-        self.wasted.clear();
-        let mut level = self.initial;
-        let mut wasted = 0;
-        for (lo, hi, r) in rate.segments(rate.start(), rate.end()) {
-            self.times.push(lo);
-            self.rates.push(r);
-            self.levels.push(level);
-            self.wasted.push(wasted);
-            let next = advance(level, r, hi - lo, self.cap);
+    /// The levels of `rate`, given `old`, those of a rate that was the same before
+    /// time `from`: the segments before `from` and the levels up to the last of
+    /// them are copied, the rest integrated again.
+    fn update(old: &Levels, rate: &StepFn, from: i64) -> Self {
+        let fresh = Self::build(rate, old.initial, old.cap, Some((old, from)));
+        #[cfg(debug_assertions)]
+        {
+            let full = Self::new(rate, old.initial, old.cap);
+            debug_assert!(
+                fresh.times == full.times
+                    && fresh.rates == full.rates
+                    && fresh.levels == full.levels
+                    && fresh.wasted == full.wasted
+                    && fresh.prefix_min == full.prefix_min
+                    && fresh.suffix_min == full.suffix_min
+                    && fresh.uncapped.tree == full.uncapped.tree,
+                "incremental levels differ from a full integration"
+            );
+        }
+        fresh
+    }
+
+    /// Integrates `rate`, reusing `old`'s levels before `from` when given.
+    fn build(rate: &StepFn, initial: i128, cap: i128, old: Option<(&Levels, i64)>) -> Self {
+        let size = rate.points().len() + 1;
+        let mut times = Vec::with_capacity(size);
+        let mut rates = Vec::with_capacity(size);
+        let mut levels = Vec::with_capacity(size);
+        let mut wasted_at = Vec::with_capacity(size);
+        let mut prefix_min = Vec::with_capacity(size);
+        // Segments [0, k) are unchanged, and so is the level at times[k].
+        let (k, mut level, mut wasted, from_t) = match old {
+            Some((old, from)) => {
+                let n = old.rates.len();
+                let k = old.times[..n]
+                    .partition_point(|&t| t < from)
+                    .saturating_sub(1);
+                times.extend_from_slice(&old.times[..k]);
+                rates.extend_from_slice(&old.rates[..k]);
+                levels.extend_from_slice(&old.levels[..k]);
+                wasted_at.extend_from_slice(&old.wasted[..k]);
+                prefix_min.extend_from_slice(&old.prefix_min[..k]);
+                (k, old.levels[k], old.wasted[k], old.times[k])
+            }
+            None => (0, initial, 0, rate.start()),
+        };
+        for (lo, hi, r) in rate.segments(from_t, rate.end()) {
+            times.push(lo);
+            rates.push(r);
+            levels.push(level);
+            wasted_at.push(wasted);
+            let next = advance(level, r, hi - lo, cap);
             wasted += level + i128::from(r) * i128::from(hi - lo) - next;
             level = next;
         }
-        self.times.push(rate.end());
-        self.levels.push(level);
-        self.wasted.push(wasted);
-        self.uncapped = MinTree::build(self.levels.iter().zip(&self.wasted).map(|(l, w)| l + w));
-        self.prefix_min.clear();
-        let mut best = (i128::MAX, 0);
-        for (i, &l) in self.levels.iter().enumerate() {
+        times.push(rate.end());
+        levels.push(level);
+        wasted_at.push(wasted);
+        let mut best = prefix_min.last().copied().unwrap_or((i128::MAX, 0));
+        for (i, &l) in levels.iter().enumerate().skip(k) {
             if l < best.0 {
                 best = (l, i);
             }
-            self.prefix_min.push(best);
+            prefix_min.push(best);
         }
-        self.last_full = std::sync::OnceLock::new();
-        self.suffix_min = vec![(i128::MAX, 0); self.levels.len()];
+        let mut suffix_min = vec![(i128::MAX, 0); levels.len()];
         let mut best = (i128::MAX, 0);
-        for i in (0..self.levels.len()).rev() {
-            if self.levels[i] <= best.0 {
-                best = (self.levels[i], i);
+        for i in (0..levels.len()).rev() {
+            if levels[i] <= best.0 {
+                best = (levels[i], i);
             }
-            self.suffix_min[i] = best;
+            suffix_min[i] = best;
+        }
+        let uncapped = MinTree::build(levels.iter().zip(&wasted_at).map(|(l, w)| l + w));
+        Self {
+            cap,
+            initial,
+            times,
+            rates,
+            levels,
+            prefix_min,
+            suffix_min,
+            wasted: wasted_at,
+            uncapped,
+            last_full: std::sync::OnceLock::new(),
         }
     }
 
@@ -677,6 +725,26 @@ mod tests {
                 let b = brute(&rate, &drain, initial, cap);
                 let min = *b.iter().min().unwrap();
                 assert!(min <= bound, "s={s} min={min} bound={bound}");
+            }
+        }
+    }
+
+    #[test]
+    fn incremental_levels_match_a_fresh_integration() {
+        let mut next = xorshift(0x5851_f42d_4c95_7f2d);
+        for _ in 0..100 {
+            let (_, initial, cap, mut tl) = random_timeline(&mut next);
+            for _ in 0..8 {
+                // Several changes between queries, at random places.
+                for _ in 0..1 + next(3) {
+                    let a = next(130) - 5;
+                    tl.add_rate(a, a + 1 + next(50), next(21) - 10);
+                }
+                let fresh = RateTimeline::new(tl.rate().clone(), initial, cap);
+                let drain = [(next(60), 60 + next(60), next(9))];
+                assert_eq!(tl.check(&drain, Some(50)), fresh.check(&drain, Some(50)));
+                assert_eq!(tl.profile(), fresh.profile());
+                assert_eq!(tl.breakpoints(), fresh.breakpoints());
             }
         }
     }
