@@ -118,7 +118,10 @@ impl State<'_> {
         let mut new_awake = None;
         match act.awake {
             AwakeMode::Forbidden => {
-                if self.awake.iter().any(|p| p.0 < e && s < p.1) {
+                // Awake periods are sorted and disjoint: the first ending after
+                // `s` is the only one that can overlap first.
+                let i = self.awake.partition_point(|p| p.1 <= s);
+                if self.awake.get(i).is_some_and(|p| p.0 < e) {
                     return Err(Phase2Reason::ForcedSleep { sleep: None });
                 }
             }
@@ -128,7 +131,11 @@ impl State<'_> {
                 if let Some(f) = self.sleep_overlapping(need) {
                     return Err(Phase2Reason::ForcedSleep { sleep: Some(f) });
                 }
-                if !self.awake.iter().any(|p| p.0 <= need.0 && need.1 <= p.1) {
+                let covering = self.awake.partition_point(|p| p.0 <= need.0);
+                let covered = covering
+                    .checked_sub(1)
+                    .is_some_and(|i| need.1 <= self.awake[i].1);
+                if !covered {
                     let (q1, merged1) = self.merge(need);
                     if let Some(f) = self.sleep_overlapping(q1) {
                         return Err(Phase2Reason::MinSleep { sleep: f });
@@ -285,35 +292,66 @@ impl State<'_> {
 
     /// The first manual sleep overlapping `[a, b)`.
     fn sleep_overlapping(&self, (a, b): (i64, i64)) -> Option<usize> {
-        self.sleeps.iter().find(|x| x.0 < b && a < x.1).map(|x| x.2)
+        // The first sleep ending after `a` is where the running maximum of the
+        // ends first passes `a`; sleeps are sorted by start, so if it does not
+        // start before `b`, no later one does.
+        let i = self.sleep_reach.partition_point(|&r| r <= a);
+        let found = self
+            .sleeps
+            .get(i)
+            .filter(|x| x.0 < b && a < x.1)
+            .map(|x| x.2);
+        debug_assert_eq!(
+            found,
+            self.sleeps.iter().find(|x| x.0 < b && a < x.1).map(|x| x.2),
+            "sleep lookup shortcut"
+        );
+        found
     }
 
     /// Merges `q` with every awake period closer than `max(min_sleep, 1)`, repeatedly.
+    /// The periods are sorted and disjoint, so those merged are a contiguous run,
+    /// widened until no neighbour is within reach.
     fn merge(&self, mut q: (i64, i64)) -> ((i64, i64), Vec<usize>) {
         let gap = self.problem.min_sleep.max(1);
-        let mut merged = vec![false; self.awake.len()];
-        loop {
-            let mut changed = false;
-            for (i, p) in self.awake.iter().enumerate() {
-                if !merged[i] && p.0 - q.1 < gap && q.0 - p.1 < gap {
-                    merged[i] = true;
-                    q = (q.0.min(p.0), q.1.max(p.1));
-                    changed = true;
+        let awake = &self.awake;
+        #[cfg(debug_assertions)]
+        let q0 = q;
+        let (i, j) = loop {
+            // Periods with p.1 > q.0 - gap and p.0 < q.1 + gap.
+            let i = awake.partition_point(|p| p.1 <= q.0.saturating_sub(gap));
+            let j = awake.partition_point(|p| p.0 < q.1.saturating_add(gap));
+            if i >= j {
+                break (i, i);
+            }
+            let wider = (q.0.min(awake[i].0), q.1.max(awake[j - 1].1));
+            if wider == q {
+                break (i, j);
+            }
+            q = wider;
+        };
+        let merged = (i..j).collect();
+        #[cfg(debug_assertions)]
+        {
+            let mut q1 = q0;
+            let mut m = vec![false; awake.len()];
+            loop {
+                let mut changed = false;
+                for (k, p) in awake.iter().enumerate() {
+                    if !m[k] && p.0 - q1.1 < gap && q1.0 - p.1 < gap {
+                        m[k] = true;
+                        q1 = (q1.0.min(p.0), q1.1.max(p.1));
+                        changed = true;
+                    }
+                }
+                if !changed {
+                    break;
                 }
             }
-            if !changed {
-                break;
-            }
+            let want: Vec<usize> = (0..awake.len()).filter(|&k| m[k]).collect();
+            debug_assert_eq!((q, &merged), (q1, &want), "awake merge shortcut");
         }
-        (
-            q,
-            merged
-                .iter()
-                .enumerate()
-                .filter(|(_, m)| **m)
-                .map(|(i, _)| i)
-                .collect(),
-        )
+        (q, merged)
     }
 
     /// The critical points for activity `a` with duration `d` and starts in `[lo, hi]`.

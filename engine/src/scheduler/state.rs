@@ -50,6 +50,8 @@ pub struct State<'p> {
     pub awake: Vec<(i64, i64)>,
     /// Manual sleeps `(start, end, act)`, sorted by start.
     pub sleeps: Vec<(i64, i64, usize)>,
+    /// The latest end among `sleeps[..=i]` (a running maximum).
+    pub sleep_reach: Vec<i64>,
     /// Heater draw per zone (mW).
     pub zone_draw: Vec<StepFn>,
     /// Union of heater demand intervals per zone, sorted, merged.
@@ -92,6 +94,7 @@ impl<'p> State<'p> {
             restricted: Vec::new(),
             awake: Vec::new(),
             sleeps: Vec::new(),
+            sleep_reach: Vec::new(),
             zone_draw: vec![StepFn::constant(problem.h0, problem.h1, 0); problem.zones.len()],
             zone_on: vec![Vec::new(); problem.zones.len()],
             soc: RateTimeline::new(
@@ -162,6 +165,12 @@ impl<'p> State<'p> {
         if act.awake == AwakeMode::Forbidden {
             let at = self.sleeps.partition_point(|x| x.0 <= s);
             self.sleeps.insert(at, (s, e, p.act));
+            self.sleep_reach.truncate(at);
+            let mut reach = at.checked_sub(1).map_or(i64::MIN, |i| self.sleep_reach[i]);
+            for x in &self.sleeps[at..] {
+                reach = reach.max(x.1);
+                self.sleep_reach.push(reach);
+            }
         }
         if let Some((qa, qb)) = p.new_awake {
             let extra = problem.awake - problem.asleep;

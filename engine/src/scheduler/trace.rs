@@ -217,6 +217,8 @@ pub fn merge_tries_with(
     tries.sort_by_key(|(t, _)| (std::cmp::Reverse(t.duration), t.starts.lo, t.starts.hi));
     let mut out: Vec<Try> = Vec::with_capacity(tries.len().min(64));
     let mut run: Vec<(Try, Option<i64>)> = Vec::new();
+    // The highest start of the run so far.
+    let mut hi = i64::MIN;
     let mut flush = |run: &mut Vec<(Try, Option<i64>)>, out: &mut Vec<Try>| {
         if let Some(merged) = merge_run(std::mem::take(run), &mut exact) {
             out.push(merged);
@@ -224,7 +226,6 @@ pub fn merge_tries_with(
     };
     for t in tries {
         let joins = run.first().is_some_and(|(first, _)| {
-            let hi = run.iter().map(|r| r.0.starts.hi).max().unwrap_or(i64::MIN);
             first.duration == t.0.duration
                 && first.reason.as_ref().map(Phase2Reason::kind)
                     == t.0.reason.as_ref().map(Phase2Reason::kind)
@@ -232,7 +233,9 @@ pub fn merge_tries_with(
         });
         if !joins {
             flush(&mut run, &mut out);
+            hi = i64::MIN;
         }
+        hi = hi.max(t.0.starts.hi);
         run.push(t);
     }
     flush(&mut run, &mut out);
