@@ -51,6 +51,8 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use std::fmt::Display;
+
 use serde_json::Value;
 
 use crate::error::{Error, Warning};
@@ -233,8 +235,8 @@ enum Sign {
     Positive,
 }
 
-fn invalid(path: impl Into<String>, reason: impl Into<String>) -> Error {
-    Error::invalid(path, reason)
+fn invalid(path: impl Display, reason: impl Into<String>) -> Error {
+    Error::invalid(path.to_string(), reason)
 }
 
 /// `a, b, c` for an error message listing the allowed names.
@@ -259,9 +261,9 @@ struct Validator<'p> {
 }
 
 impl<'p> Validator<'p> {
-    fn warn(&mut self, path: impl Into<String>, message: impl Into<String>) {
+    fn warn(&mut self, path: impl Display, message: impl Into<String>) {
         self.warnings.push(Warning {
-            path: path.into(),
+            path: path.to_string(),
             message: message.into(),
         });
     }
@@ -270,7 +272,7 @@ impl<'p> Validator<'p> {
 
     /// A finite number of kind `q` with the given sign, within the magnitude limit;
     /// warns when it is rounded to the fixed-point resolution.
-    fn number(&mut self, path: &str, x: f64, q: Quantity, sign: Sign) -> Result<(), Error> {
+    fn number(&mut self, path: impl Display, x: f64, q: Quantity, sign: Sign) -> Result<(), Error> {
         if !x.is_finite() {
             return Err(invalid(path, format!("must be a finite number (got {x})")));
         }
@@ -309,7 +311,7 @@ impl<'p> Validator<'p> {
     }
 
     /// A time of the plan: within ±[`MAX_TIME`].
-    fn time(&self, path: &str, t: i64) -> Result<(), Error> {
+    fn time(&self, path: impl Display, t: i64) -> Result<(), Error> {
         if !(-MAX_TIME..=MAX_TIME).contains(&t) {
             return Err(invalid(
                 path,
@@ -320,7 +322,7 @@ impl<'p> Validator<'p> {
     }
 
     /// A duration or delay: `>= 0` (or `> 0`) and at most [`MAX_TIME`].
-    fn length(&self, path: &str, d: i64, positive: bool) -> Result<(), Error> {
+    fn length(&self, path: impl Display, d: i64, positive: bool) -> Result<(), Error> {
         if positive && d <= 0 {
             return Err(invalid(path, format!("must be > 0 (got {d})")));
         }
@@ -337,7 +339,7 @@ impl<'p> Validator<'p> {
     }
 
     /// A local time of day: within `[0, sol_length)`.
-    fn time_of_day(&self, path: &str, t: i64) -> Result<(), Error> {
+    fn time_of_day(&self, path: impl Display, t: i64) -> Result<(), Error> {
         let len = self.plan.local_time.sol_length;
         if !(0..len).contains(&t) {
             return Err(invalid(
@@ -348,7 +350,7 @@ impl<'p> Validator<'p> {
         Ok(())
     }
 
-    fn non_empty(&self, path: &str, s: &str) -> Result<(), Error> {
+    fn non_empty(&self, path: impl Display, s: &str) -> Result<(), Error> {
         if s.trim().is_empty() {
             return Err(invalid(path, "must not be empty"));
         }
@@ -560,7 +562,7 @@ impl<'p> Validator<'p> {
         let mut seen: HashMap<i64, usize> = HashMap::new();
         for (i, entry) in zone.preheat.iter().enumerate() {
             let path = format!("{base}.preheat[{i}]");
-            self.time_of_day(&format!("{path}.from"), entry.from)?;
+            self.time_of_day(format_args!("{path}.from"), entry.from)?;
             if let Some(first) = seen.insert(entry.from, i) {
                 return Err(invalid(
                     format!("{path}.from"),
@@ -570,7 +572,7 @@ impl<'p> Validator<'p> {
                     ),
                 ));
             }
-            self.length(&format!("{path}.duration"), entry.duration, false)?;
+            self.length(format_args!("{path}.duration"), entry.duration, false)?;
         }
         if !seen.contains_key(&0) {
             return Err(invalid(
@@ -579,21 +581,21 @@ impl<'p> Validator<'p> {
             ));
         }
         self.number(
-            &format!("{base}.preheat_power"),
+            format_args!("{base}.preheat_power"),
             zone.preheat_power,
             Quantity::Power,
             Sign::NonNegative,
         )?;
         self.number(
-            &format!("{base}.maintenance_power"),
+            format_args!("{base}.maintenance_power"),
             zone.maintenance_power,
             Quantity::Power,
             Sign::NonNegative,
         )?;
         for (i, period) in zone.operable.iter().flatten().enumerate() {
             let path = format!("{base}.operable[{i}]");
-            self.time_of_day(&format!("{path}.from"), period.from)?;
-            self.time_of_day(&format!("{path}.to"), period.to)?;
+            self.time_of_day(format_args!("{path}.from"), period.from)?;
+            self.time_of_day(format_args!("{path}.to"), period.to)?;
         }
         Ok(())
     }
@@ -642,7 +644,7 @@ impl<'p> Validator<'p> {
         let id = a.id.as_str();
 
         // id
-        self.non_empty(&format!("{base}.id"), id)?;
+        self.non_empty(format_args!("{base}.id"), id)?;
         if let Some(&f) = ctx.first.get(id)
             && f != i
         {
@@ -674,23 +676,23 @@ impl<'p> Validator<'p> {
 
         self.duration(&base, a.duration)?;
         for (w, window) in a.windows.iter().flatten().enumerate() {
-            self.window(&format!("{base}.windows[{w}]"), window)?;
+            self.window(format_args!("{base}.windows[{w}]"), window)?;
         }
-        unique_names(&format!("{base}.resources"), &a.resources, "resource")?;
+        unique_names(format_args!("{base}.resources"), &a.resources, "resource")?;
         self.number(
-            &format!("{base}.energy_rate"),
+            format_args!("{base}.energy_rate"),
             a.energy_rate,
             Quantity::Power,
             Sign::NonNegative,
         )?;
         self.number(
-            &format!("{base}.peak_power"),
+            format_args!("{base}.peak_power"),
             a.peak_power,
             Quantity::Power,
             Sign::NonNegative,
         )?;
         self.number(
-            &format!("{base}.data_rate"),
+            format_args!("{base}.data_rate"),
             a.data_rate,
             Quantity::DataRate,
             Sign::Any,
@@ -709,14 +711,14 @@ impl<'p> Validator<'p> {
             }
         }
         unique_names(
-            &format!("{base}.thermal_zones"),
+            format_args!("{base}.thermal_zones"),
             &a.thermal_zones,
             "thermal zone",
         )?;
 
         // dependencies
         for (d, dep) in a.after.iter().enumerate() {
-            self.dependency(&format!("{base}.after[{d}]"), i, a, dep, ctx)?;
+            self.dependency(format_args!("{base}.after[{d}]"), i, a, dep, ctx)?;
         }
 
         // requirements
@@ -769,31 +771,31 @@ impl<'p> Validator<'p> {
         }
 
         if let Some(kind) = &a.comm_kind {
-            self.non_empty(&format!("{base}.comm_kind"), kind)?;
+            self.non_empty(format_args!("{base}.comm_kind"), kind)?;
         }
         if let Some(group) = &a.group {
-            self.non_empty(&format!("{base}.group"), group)?;
+            self.non_empty(format_args!("{base}.group"), group)?;
         }
         Ok(())
     }
 
     fn duration(&self, base: &str, d: Duration) -> Result<(), Error> {
         match d {
-            Duration::Fixed(d) => self.length(&format!("{base}.duration"), d, true),
+            Duration::Fixed(d) => self.length(format_args!("{base}.duration"), d, true),
             Duration::Expanding { min, max } => {
-                self.length(&format!("{base}.duration.min"), min, true)?;
+                self.length(format_args!("{base}.duration.min"), min, true)?;
                 if max < min {
                     return Err(invalid(
                         format!("{base}.duration.max"),
                         format!("must be >= min (got {max} < {min})"),
                     ));
                 }
-                self.length(&format!("{base}.duration.max"), max, true)
+                self.length(format_args!("{base}.duration.max"), max, true)
             }
         }
     }
 
-    fn window(&self, path: &str, w: &Window) -> Result<(), Error> {
+    fn window(&self, path: impl Display, w: &Window) -> Result<(), Error> {
         let h = self.plan.horizon;
         if w.start < h.start {
             return Err(invalid(
@@ -839,7 +841,7 @@ impl<'p> Validator<'p> {
 
     fn dependency(
         &mut self,
-        path: &str,
+        path: impl Display,
         i: usize,
         a: &Activity,
         dep: &Dependency,
@@ -869,10 +871,10 @@ impl<'p> Validator<'p> {
             }
         }
         if let Some(min) = dep.min_delay {
-            self.length(&format!("{path}.min_delay"), min, false)?;
+            self.length(format_args!("{path}.min_delay"), min, false)?;
         }
         if let Some(max) = dep.max_delay {
-            self.length(&format!("{path}.max_delay"), max, false)?;
+            self.length(format_args!("{path}.max_delay"), max, false)?;
             if let Some(min) = dep.min_delay
                 && max < min
             {
@@ -896,7 +898,12 @@ impl<'p> Validator<'p> {
     }
 
     /// Checks that `state` exists and `value` is one of its values.
-    fn state_value(&self, path: &str, state: &str, value: &str) -> Result<&'p StateDef, Error> {
+    fn state_value(
+        &self,
+        path: impl Display,
+        state: &str,
+        value: &str,
+    ) -> Result<&'p StateDef, Error> {
         let Some(def) = self.plan.states.get(state) else {
             return Err(invalid(
                 format!("{path}.state"),
@@ -942,7 +949,7 @@ fn known<'a>(names: impl Iterator<Item = &'a String>, what: &str) -> String {
 }
 
 /// Rejects a repeated name in a list, at its second occurrence.
-fn unique_names(path: &str, names: &[String], what: &str) -> Result<(), Error> {
+fn unique_names(path: impl Display, names: &[String], what: &str) -> Result<(), Error> {
     let mut seen: BTreeMap<&str, usize> = BTreeMap::new();
     for (k, name) in names.iter().enumerate() {
         if let Some(f) = seen.insert(name.as_str(), k) {

@@ -10,7 +10,7 @@
 //! the first step that could disturb it ([`next_check`]).
 
 use crate::scheduler::{
-    Evaluated, FailurePhase, Outcome, Problem, Schedule, Scope, State, Step, run_step,
+    Detail, Evaluated, FailurePhase, Outcome, Problem, Schedule, Scope, State, Step, run_step,
 };
 
 /// The inclusion rule precomputed: for each `(state, value)`, the steps of the
@@ -344,13 +344,13 @@ pub(super) fn failure_probes(
                     // (phase 2 only looks inside the windows), so probe within the
                     // window span, and redo the failing probe over the whole horizon
                     // only when the relaxations need it (starts outside the windows).
-                    match run_step(&state, a, step_of[a], &scope, true) {
+                    match run_step(&state, a, step_of[a], &scope, Detail::Trace) {
                         (_, Some(ev)) => ev,
                         (record, None) => {
                             let record = if record.outcome
                                 == Outcome::Failed(FailurePhase::ValidIntervals)
                             {
-                                run_step(&state, a, step_of[a], &scope, false).0
+                                run_step(&state, a, step_of[a], &scope, Detail::Horizon).0
                             } else {
                                 record
                             };

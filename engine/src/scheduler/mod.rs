@@ -171,7 +171,7 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>, until: usiz
             .skip(steps.len())
         {
             let step_no = k + 1;
-            let mut step = run_step(&state, a, step_no, &Scope::default(), true);
+            let mut step = run_step(&state, a, step_no, &Scope::default(), Detail::Trace);
             if let Some(placement) = step.1.take().map(|ev| ev.placement) {
                 // Record generated activities.
                 let act = &problem.acts[a];
@@ -247,16 +247,28 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>, until: usiz
     }
 }
 
-/// Runs one step against `state`; returns the record and the evaluation of the
-/// placement to apply.
-/// With `clip`, the recorded category intervals are clipped to the activity's window
-/// span (what the trace keeps); probes ask for the full sets.
+/// How much of a step's record [`run_step`] fills in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Detail {
+    /// The outcome, duration and category intervals, but no tries (runs that
+    /// only ask where activities land).
+    Outcome,
+    /// The trace, with category intervals within the activity's window span
+    /// (what the scheduler keeps).
+    Trace,
+    /// The trace, with category intervals over the whole horizon (the
+    /// explainer's probes).
+    Horizon,
+}
+
+/// Runs one step against `state`; returns the record (filled in to `detail`) and
+/// the evaluation of the placement to apply.
 pub(crate) fn run_step(
     state: &State<'_>,
     a: usize,
     step_no: usize,
     scope: &Scope,
-    clip: bool,
+    detail: Detail,
 ) -> (Step, Option<Evaluated>) {
     let problem = state.problem;
     let act = &problem.acts[a];
@@ -287,10 +299,10 @@ pub(crate) fn run_step(
     let mut any_candidate = false;
     // The trace keeps category intervals within the window span only, so phase 1
     // need not look further; probes (`clip == false`) want the whole horizon.
-    let span = if clip {
-        window_span(problem, a)
-    } else {
+    let span = if detail == Detail::Horizon {
         (problem.h0, problem.h1)
+    } else {
+        window_span(problem, a)
     };
     let mut pending: Vec<(Try, Option<i64>)> = Vec::new();
     let mut attempt = |d: i64, step: &mut Step, record: bool| {
@@ -360,6 +372,9 @@ pub(crate) fn run_step(
     // Cells proven to fail on min_soc carry a bound instead of numbers; the exact
     // numbers are computed only for those that could be reported. Debug builds (the
     // property tests) check the result against computing every cell exactly.
+    if detail == Detail::Outcome {
+        pending.clear();
+    }
     #[cfg(debug_assertions)]
     let all_exact = merge_tries(
         pending

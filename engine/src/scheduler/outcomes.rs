@@ -20,7 +20,7 @@
 //! Debug builds compare every outcome with the full scheduler's.
 
 use super::state::{Placement, State};
-use super::{Evaluated, Schedule, Scope, run_step};
+use super::{Detail, Evaluated, Schedule, Scope, run_step};
 use crate::error::Error;
 use crate::model::{AwakeMode, Plan};
 
@@ -184,7 +184,7 @@ impl<'p> Run<'p> {
 fn outcome_step(state: &State<'_>, a: usize, step_no: usize) -> Option<Evaluated> {
     if let Some(ev) = ideal(state, a) {
         debug_assert_eq!(
-            run_step(state, a, step_no, &Scope::default(), true)
+            run_step(state, a, step_no, &Scope::default(), Detail::Outcome)
                 .0
                 .outcome
                 .placement(),
@@ -193,7 +193,7 @@ fn outcome_step(state: &State<'_>, a: usize, step_no: usize) -> Option<Evaluated
         );
         return Some(ev);
     }
-    run_step(state, a, step_no, &Scope::default(), true).1
+    run_step(state, a, step_no, &Scope::default(), Detail::Outcome).1
 }
 
 /// Activity `a`'s ideal placement, if it fits: the longest duration, in the

@@ -60,6 +60,16 @@ impl Evaluated {
     }
 }
 
+/// What a placement generates besides the activity itself.
+struct Generated {
+    /// Indices of the awake periods the new one absorbs.
+    retire: Vec<usize>,
+    /// The awake period it creates (absorbing `retire`), if any.
+    new_awake: Option<(i64, i64)>,
+    /// `(zone, start, end)` of each preheat.
+    preheats: Vec<(usize, i64, i64)>,
+}
+
 impl State<'_> {
     /// Whether activity `a` fits at start `s` with duration `d` (every phase-1
     /// category and phase 2), without searching: the explainer's quick re-check
@@ -102,15 +112,10 @@ impl State<'_> {
         self.evaluate_inner(a, s, d, true)
     }
 
-    /// [`State::evaluate`]; without `soc`, only the structural and peak checks
-    /// (the margin is then `i128::MAX` and there is no energy reason).
-    pub(super) fn evaluate_inner(
-        &self,
-        a: usize,
-        s: i64,
-        d: i64,
-        soc: bool,
-    ) -> Result<Evaluated, Phase2Reason> {
+    /// The wake/sleep and heating checks of phase 2 at start `s` with duration
+    /// `d`, and what the placement would generate: the awake periods it retires
+    /// and the one it creates, and its preheats.
+    fn structure(&self, a: usize, s: i64, d: i64) -> Result<Generated, Phase2Reason> {
         let problem = self.problem;
         let act = &problem.acts[a];
         let e = s + d;
@@ -184,6 +189,73 @@ impl State<'_> {
                 preheat_start: ps,
             });
         }
+        Ok(Generated {
+            retire,
+            new_awake,
+            preheats,
+        })
+    }
+
+    /// Whether phase 2 at start `s` with duration `d` passes every check but the
+    /// energy margin (what `evaluate_inner` without `soc` decides), building the
+    /// load pieces only when an upper bound on the peak the placement adds does
+    /// not already keep the total under the limit.
+    fn structurally_ok(&self, a: usize, s: i64, d: i64) -> bool {
+        let problem = self.problem;
+        let act = &problem.acts[a];
+        let ok = match (self.structure(a, s, d), problem.max_peak) {
+            (Err(_), _) => false,
+            (Ok(_), None) => true,
+            (Ok(g), Some(max)) => {
+                let awake = if g.new_awake.is_some() {
+                    (problem.awake - problem.asleep).max(0)
+                } else {
+                    0
+                };
+                let heaters: i64 = act
+                    .zones
+                    .iter()
+                    .map(|&z| {
+                        problem.zones[z]
+                            .preheat
+                            .max(problem.zones[z].maintenance)
+                            .max(0)
+                    })
+                    .sum();
+                let most = act.peak.max(0) + awake + heaters;
+                match self.peak_max {
+                    Some((v, _)) if v > max => false,
+                    Some((v, _)) if v + most <= max => true,
+                    None if most <= max => true,
+                    _ => self.evaluate_inner(a, s, d, false).is_ok(),
+                }
+            }
+        };
+        debug_assert_eq!(
+            ok,
+            self.evaluate_inner(a, s, d, false).is_ok(),
+            "structural shortcut"
+        );
+        ok
+    }
+
+    /// [`State::evaluate`]; without `soc`, only the structural and peak checks
+    /// (the margin is then `i128::MAX` and there is no energy reason).
+    pub(super) fn evaluate_inner(
+        &self,
+        a: usize,
+        s: i64,
+        d: i64,
+        soc: bool,
+    ) -> Result<Evaluated, Phase2Reason> {
+        let problem = self.problem;
+        let act = &problem.acts[a];
+        let e = s + d;
+        let Generated {
+            retire,
+            new_awake,
+            preheats,
+        } = self.structure(a, s, d)?;
         // Load pieces: (t, +energy, +peak) boundary events.
         let mut events: Vec<(i64, i64, i64)> = Vec::new();
         let mut piece = |x: i64, y: i64, energy: i64, peak: i64| {
@@ -547,8 +619,7 @@ impl State<'_> {
             .drain_bound(cell_lo, cell_hi.saturating_add(d), energy);
         // Structural and peak results are constant within a cell; they are
         // evaluated only when the bound would prune it.
-        (bound < problem.min_soc && self.evaluate_inner(a, cell_lo, d, false).is_ok())
-            .then_some(bound)
+        (bound < problem.min_soc && self.structurally_ok(a, cell_lo, d)).then_some(bound)
     }
 
     /// The tries of one cell: its structural or peak reason, or the exact
