@@ -307,8 +307,15 @@ pub fn assemble(g: &PlanG) -> Value {
     if initial - drain < min_soc + 0.5 && !g.unsafe_base {
         rtg = asleep;
     }
-    let mut power =
-        json!({"rtg": rtg, "asleep": asleep, "awake": asleep + f64::from(g.awake_extra)});
+    // Now and then the rover draws less awake than asleep (awake periods then
+    // give charge back, which several of the scheduler's shortcuts must not
+    // assume away).
+    let awake = if g.awake_extra % 6 == 0 {
+        (asleep - f64::from(g.awake_extra / 6)).max(0.0)
+    } else {
+        asleep + f64::from(g.awake_extra)
+    };
+    let mut power = json!({"rtg": rtg, "asleep": asleep, "awake": awake});
     if let Some(mp) = g.max_peak {
         power["max_peak"] = json!(asleep + f64::from(mp));
     }
