@@ -204,10 +204,10 @@ fn screenshot(
         eprintln!("error: --size: expected WxH between 100 and 8000 (got {size})");
         return ExitCode::from(EXIT_INVALID);
     };
-    let text = match std::fs::read_to_string(plan) {
+    let text = match solscope_engine::read_plan_text(plan, solscope_engine::MAX_PLAN_BYTES) {
         Ok(t) => t,
         Err(e) => {
-            eprintln!("error: {}: {e}", plan.display());
+            eprintln!("error: {e}");
             return ExitCode::from(EXIT_INVALID);
         }
     };

@@ -1,4 +1,5 @@
-//! `cargo bench`: scheduling, explaining, rebuilding the state at a step, one app
+//! `cargo bench`: scheduling, explaining (without and, up to 1,000 activities, with
+//! verified suggestions), rebuilding the state at a step, one app
 //! frame and edit → rerun → repaint, over generated plans of 100, 1,000 and 10,000
 //! activities (1, 3 and 30 sols). Prints a markdown table; results are recorded in
 //! docs/performance.md.
@@ -122,9 +123,9 @@ fn sweep(profiles: &[(&str, Profile)], sizes: &[(usize, usize, usize)], seeds: u
 /// The table of one profile: seed 1 of every size.
 fn table(profile: Profile, sizes: &[(usize, usize, usize)]) {
     println!(
-        "| activities | sols | scheduled | schedule | explain all (no suggestions) | state at step N/2 | app frame | edit → rerun → repaint |"
+        "| activities | sols | scheduled | schedule | explain all (no suggestions) | explain all (with suggestions) | state at step N/2 | app frame | edit → rerun → repaint |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for &(n, sols, runs) in sizes {
         let plan = generate_plan_with(profile, n, sols, 1);
         let mut sched = None;
@@ -141,6 +142,16 @@ fn table(profile: Profile, sizes: &[(usize, usize, usize)]) {
         };
         let t_explain = median(runs, || {
             std::hint::black_box(explain(&plan, &sched, &opts).expect("explains"));
+        });
+        // With suggestions (the CLI's default): once, and not at 10,000
+        // activities, where it takes minutes (docs/performance.md has the
+        // whole-process figures).
+        let t_suggest = (n <= 1000).then(|| {
+            median(1, || {
+                std::hint::black_box(
+                    explain(&plan, &sched, &ExplainOptions::default()).expect("explains"),
+                );
+            })
         });
         let t_state = median(runs, || {
             std::hint::black_box(sched.state_after(n / 2));
@@ -172,9 +183,10 @@ fn table(profile: Profile, sizes: &[(usize, usize, usize)]) {
             frame(&ctx, &mut app);
         });
         println!(
-            "| {n} | {sols} | {scheduled} | {} | {} | {} | {} | {} |",
+            "| {n} | {sols} | {scheduled} | {} | {} | {} | {} | {} | {} |",
             ms(t_schedule),
             ms(t_explain),
+            t_suggest.map_or_else(|| "not run".to_string(), ms),
             ms(t_state),
             ms(t_frame),
             ms(t_edit)

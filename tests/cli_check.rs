@@ -1,6 +1,8 @@
 //! `solscope check` through the real binary: the shared examples are valid, each
-//! loader warning is printed with its path, and a missing file is an error. Also
-//! `solscope generate`: its realistic plans check, and it refuses zero sols.
+//! loader warning is printed with its path, a missing file is an error, a file
+//! without end (`/dev/zero`) is refused at the size limit, and a byte-order mark is
+//! accepted. Also `solscope generate`: its realistic plans check, and it refuses
+//! zero sols.
 
 // Test helpers outside `#[test]` functions are not covered by clippy.toml's
 // allow-*-in-tests; a failed expectation here is a test failure.
@@ -273,4 +275,44 @@ fn generated_realistic_plan_checks() {
         "3",
     ]);
     assert_ne!(standard.stdout, out.stdout);
+}
+
+#[test]
+fn a_device_without_end_is_refused_at_the_size_limit() {
+    let zero = Path::new("/dev/zero");
+    if !zero.exists() {
+        return;
+    }
+    let out = solscope_check(zero);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stdout(&out).is_empty());
+    assert!(
+        stderr(&out).contains("larger than 33554432 bytes"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn a_byte_order_mark_is_accepted() {
+    let plan = plan_with(json!([{ "id": "a", "priority": 1, "duration": 60 }]));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli_check");
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let path = dir.join("bom.json");
+    let mut bytes = b"\xEF\xBB\xBF".to_vec();
+    bytes.extend(serde_json::to_vec(&plan).expect("json"));
+    std::fs::write(&path, bytes).expect("write plan");
+    let out = solscope_check(&path);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+}
+
+#[test]
+fn empty_windows_are_warned_about() {
+    let plan = plan_with(json!([{ "id": "a", "priority": 1, "duration": 60, "windows": [] }]));
+    let warnings = check_warnings("empty-windows.json", &plan);
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(
+        warnings[0].starts_with("activities[0].windows: \"a\" has an empty list of windows"),
+        "{warnings:?}"
+    );
 }

@@ -247,7 +247,12 @@ const EXPECTED: &[(&str, &str, &str)] = &[
     (
         "deeply-nested.json",
         "activities[0].resources[0]",
-        "invalid type: sequence",
+        "nested more than 128 levels deep",
+    ),
+    (
+        "top-level-deeply-nested.json",
+        "$",
+        "nested more than 128 levels deep",
     ),
     (
         "trailing-garbage.json",

@@ -396,7 +396,7 @@ impl SolscopeApp {
     }
 
     fn open_now(&mut self, path: &Path) {
-        let text = match std::fs::read_to_string(path) {
+        let text = match solscope_engine::read_plan_text(path, solscope_engine::MAX_PLAN_BYTES) {
             Ok(t) => t,
             Err(e) => {
                 self.ui.messages.error = Some(format!("Could not open {}: {e}", path.display()));

@@ -239,6 +239,18 @@ fn invalid(path: impl Display, reason: impl Into<String>) -> Error {
     Error::invalid(path.to_string(), reason)
 }
 
+/// A number as a planner reads it: plain decimals, or scientific notation when
+/// plain decimals would run longer than 20 characters (a denormal such as 5e-324
+/// has hundreds of digits).
+fn short(x: f64) -> String {
+    let plain = format!("{x}");
+    if plain.len() > 20 {
+        format!("{x:e}")
+    } else {
+        plain
+    }
+}
+
 /// `a, b, c` for an error message listing the allowed names.
 fn list<'a>(items: impl IntoIterator<Item = &'a String>) -> String {
     items
@@ -274,14 +286,17 @@ impl<'p> Validator<'p> {
     /// warns when it is rounded to the fixed-point resolution.
     fn number(&mut self, path: impl Display, x: f64, q: Quantity, sign: Sign) -> Result<(), Error> {
         if !x.is_finite() {
-            return Err(invalid(path, format!("must be a finite number (got {x})")));
+            return Err(invalid(
+                path,
+                format!("must be a finite number (got {})", short(x)),
+            ));
         }
         match sign {
             Sign::NonNegative if x < 0.0 => {
-                return Err(invalid(path, format!("must be >= 0 (got {x})")));
+                return Err(invalid(path, format!("must be >= 0 (got {})", short(x))));
             }
             Sign::Positive if x <= 0.0 => {
-                return Err(invalid(path, format!("must be > 0 (got {x})")));
+                return Err(invalid(path, format!("must be > 0 (got {})", short(x))));
             }
             _ => {}
         }
@@ -289,9 +304,10 @@ impl<'p> Validator<'p> {
             return Err(invalid(
                 path,
                 format!(
-                    "must be at most {} {} in magnitude (got {x})",
+                    "must be at most {} {} in magnitude (got {})",
                     q.max(),
-                    q.unit()
+                    q.unit(),
+                    short(x)
                 ),
             ));
         }
@@ -301,7 +317,9 @@ impl<'p> Validator<'p> {
             self.warn(
                 path,
                 format!(
-                    "{x} {unit} is more precise than {res} and is rounded to {back} {unit}",
+                    "{} {unit} is more precise than {res} and is rounded to {} {unit}",
+                    short(x),
+                    short(back),
                     unit = q.unit(),
                     res = q.resolution()
                 ),
@@ -675,6 +693,15 @@ impl<'p> Validator<'p> {
         }
 
         self.duration(&base, a.duration)?;
+        if a.windows.as_ref().is_some_and(Vec::is_empty) {
+            self.warn(
+                format_args!("{base}.windows"),
+                format!(
+                    "\"{id}\" has an empty list of windows, so it can never be scheduled \
+                     (leave out \"windows\" to allow the whole horizon)"
+                ),
+            );
+        }
         for (w, window) in a.windows.iter().flatten().enumerate() {
             self.window(format_args!("{base}.windows[{w}]"), window)?;
         }
@@ -1733,6 +1760,30 @@ mod tests {
             w.iter().all(|w| w.path != "activities[1].requires[0]"),
             "{w:?}"
         );
+    }
+
+    #[test]
+    fn warns_empty_windows() {
+        let w = warnings(|v| v["activities"][0]["windows"] = json!([]));
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert_eq!(w[0].path, "activities[0].windows");
+        assert!(
+            w[0].message.contains("can never be scheduled"),
+            "{}",
+            w[0].message
+        );
+    }
+
+    #[test]
+    fn denormal_values_print_short() {
+        let w = warnings(|v| v["activities"][0]["energy_rate"] = json!(5e-324));
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(
+            w[0].message.starts_with("5e-324 W is more precise"),
+            "{}",
+            w[0].message
+        );
+        assert!(w[0].message.len() < 100, "{}", w[0].message);
     }
 
     #[test]
