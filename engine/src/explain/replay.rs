@@ -345,7 +345,7 @@ pub(super) fn failure_probes(
                     // window span, and redo the failing probe over the whole horizon
                     // only when the relaxations need it (starts outside the windows).
                     match run_step(&state, a, step_of[a], &scope, Detail::Trace) {
-                        (_, Some(ev)) => ev,
+                        (record, Some(ev)) => sturdier_witness(&state, &scope, &record, ev),
                         (record, None) => {
                             let record = if record.outcome
                                 == Outcome::Failed(FailurePhase::ValidIntervals)
@@ -373,4 +373,22 @@ pub(super) fn failure_probes(
         }
         state.replay(&sched.steps[k]);
     }
+}
+
+/// A witness that later placements are less likely to disturb than the
+/// scheduler's choice `ev`: of the scheduler's start and the first and last
+/// candidate starts of the probe (same duration), the one that fits with the
+/// largest energy margin. Any placement that fits answers the probe; a larger
+/// margin keeps the witness valid for more steps of the run (`next_check`).
+fn sturdier_witness(state: &State<'_>, scope: &Scope, record: &Step, ev: Evaluated) -> Evaluated {
+    let (a, d, chosen) = (ev.placement.act, ev.placement.duration, ev.placement.start);
+    let ends = [
+        record.intersection.first(),
+        record.intersection.intervals().last().map(|iv| iv.hi),
+    ];
+    ends.into_iter()
+        .flatten()
+        .filter(|&s| s != chosen)
+        .filter_map(|s| state.fitting(a, s, d, scope))
+        .fold(ev, |best, x| if x.margin > best.margin { x } else { best })
 }
