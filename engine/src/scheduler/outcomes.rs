@@ -2,13 +2,20 @@
 //! without the step trace and without searching the steps whose outcome is known
 //! from a one-point check. Suggestion verification asks only that.
 //!
-//! Two shortcuts, each exact:
+//! Three shortcuts, each exact:
 //!
 //! - The ideal placement. The greedy step picks, among the feasible (start,
 //!   duration) pairs, the longest duration, then the first window, then the start
 //!   nearest the window's preferred time. If the longest duration at the preferred
 //!   time (clamped into the first window that admits it) fits, nothing can beat it:
 //!   it is the outcome, whatever the rest of the state.
+//! - A plan-wide limit relaxed (`battery.min_soc` or `handover.min_soc` lowered,
+//!   `power.max_peak`, `data.capacity` or `handover.max_data_volume` raised), as
+//!   the explainer's least-relaxation search does: while every step so far came
+//!   out as in the original run, the state is the same, a relaxation only adds
+//!   feasible starts, and a step's outcome can change only where its recorded
+//!   tries failed on the relaxed limit by less than the relaxation
+//!   ([`Relaxation::keeps`]).
 //! - Steps after a new placement. For an edit that makes activity `a` schedule,
 //!   the steps after `a`'s see one difference from the original run: `a`'s
 //!   placement (and what it generates). When that difference can only take starts
@@ -161,9 +168,32 @@ impl<'p> Run<'p> {
                 placed_a = ev;
             }
         }
+        // While every step so far came out as in `prev`, the state is the same as
+        // there, and a plan-wide relaxation can change a step only through the
+        // tries its record shows failing on the relaxed limit.
+        let relaxed = Relaxation::between(&prev.problem, problem);
+        let mut same_so_far = true;
         for (k, &j) in problem.order.iter().enumerate().take(until).skip(common) {
-            if let Some(ev) = outcome_step(&state, j, k + 1) {
-                placements[j] = Some(span(&ev.placement));
+            let before = &prev.steps[k];
+            if same_so_far && relaxed.is_some_and(|r| r.keeps(problem, before)) {
+                placements[j] = before.outcome.placement();
+                let ev = state.replay(before);
+                debug_assert_eq!(
+                    outcome_step(&state_before(prev, problem, k), j, k + 1)
+                        .map(|ev| span(&ev.placement)),
+                    placements[j],
+                    "a step the relaxation {relaxed:?} keeps changed: {before:?}"
+                );
+                if j == a {
+                    placed_a = ev;
+                }
+                continue;
+            }
+            let ev = outcome_step(&state, j, k + 1);
+            let placement = ev.as_ref().map(|ev| span(&ev.placement));
+            same_so_far &= before.activity == j && placement == before.outcome.placement();
+            if let Some(ev) = ev {
+                placements[j] = placement;
                 state.apply(k + 1, &ev.placement);
                 if j == a {
                     placed_a = Some(ev);
@@ -177,6 +207,130 @@ impl<'p> Run<'p> {
             done: until,
         }
     }
+}
+
+/// The state of `problem` before step `k + 1` when its first `k` steps came out
+/// as `prev`'s (debug builds' cross-check of kept steps).
+fn state_before<'p>(prev: &Schedule, problem: &'p super::Problem, k: usize) -> State<'p> {
+    let mut state = State::new(problem);
+    for step in &prev.steps[..k] {
+        state.replay(step);
+    }
+    state
+}
+
+/// One plan-wide limit relaxed, everything else equal: the edits the explainer
+/// searches to the least relaxation that works.
+#[derive(Clone, Copy, Debug)]
+enum Relaxation {
+    /// `battery.min_soc` lowered to this (mJ).
+    MinSoc(i128),
+    /// `power.max_peak` raised to this (mW).
+    MaxPeak(i64),
+    /// `data.capacity` raised.
+    DataCap,
+    /// `handover.min_soc` lowered.
+    HandoverSoc,
+    /// `handover.max_data_volume` raised.
+    HandoverData,
+}
+
+impl Relaxation {
+    /// The relaxation that turns `old` into `new`, if that is all that differs.
+    fn between(old: &super::Problem, new: &super::Problem) -> Option<Self> {
+        let with = |f: &dyn Fn(&mut super::Problem)| {
+            let mut x = new.clone();
+            f(&mut x);
+            x == *old
+        };
+        if new.min_soc < old.min_soc && with(&|x| x.min_soc = old.min_soc) {
+            return Some(Self::MinSoc(new.min_soc));
+        }
+        if let (Some(n), Some(o)) = (new.max_peak, old.max_peak) {
+            if n > o && with(&|x| x.max_peak = old.max_peak) {
+                return Some(Self::MaxPeak(n));
+            }
+        }
+        if let (Some(n), Some(o)) = (new.data_cap, old.data_cap) {
+            if n > o && with(&|x| x.data_cap = old.data_cap) {
+                return Some(Self::DataCap);
+            }
+        }
+        if let (Some(n), Some(o)) = (new.handover_soc, old.handover_soc) {
+            if n < o && with(&|x| x.handover_soc = old.handover_soc) {
+                return Some(Self::HandoverSoc);
+            }
+        }
+        if let (Some(n), Some(o)) = (new.handover_data, old.handover_data) {
+            if n > o && with(&|x| x.handover_data = old.handover_data) {
+                return Some(Self::HandoverData);
+            }
+        }
+        None
+    }
+
+    /// Whether the step recorded in `step` (run on the same state under the
+    /// stricter limit) comes out the same under this relaxation. A relaxation only
+    /// adds feasible starts, so the recorded choice stays feasible; it stays the
+    /// choice, and a failure stays a failure, when every try the record shows
+    /// failing still fails: only those failing on the relaxed limit could pass,
+    /// and a merged range's numbers are those of its closest start (the highest
+    /// lowest state of charge, the lowest peak) except where the failing part of a
+    /// cell touches its passing part. The record keeps the tries of one
+    /// duration, so an expanding activity that failed or got less than its
+    /// longest duration is not kept. Phase 1 does not look at energy or peak
+    /// power; the data limits change it only where the record shows the data
+    /// category excluding some start of the window span.
+    fn keeps(self, problem: &super::Problem, step: &super::Step) -> bool {
+        let act = &problem.acts[step.activity];
+        if act.dur_min != act.dur_max && step.duration != act.dur_max {
+            return false;
+        }
+        if act.dur_min != act.dur_max && step.outcome.placement().is_none() {
+            return false;
+        }
+        let handover_binds = !act.mandatory && problem.handover_time.is_some();
+        match self {
+            Self::MinSoc(min) => {
+                // With a handover limit on the activity, a range's reported numbers
+                // are those of its best margin, not of its highest state of charge.
+                // A cell whose feasible part is a sub-range reports the rest with
+                // the numbers of its far end, not its closest start: a failing range
+                // touching a passing one is not trusted.
+                let touches_pass = |t: &super::Try| {
+                    step.tries.iter().any(|p| {
+                        p.reason.is_none()
+                            && (p.starts.hi.saturating_add(1) == t.starts.lo
+                                || t.starts.hi.saturating_add(1) == p.starts.lo)
+                    })
+                };
+                !(handover_binds && problem.handover_soc.is_some())
+                    && step.tries.iter().all(|t| match t.reason {
+                        Some(super::Phase2Reason::MinSoc { soc_mj, .. }) => {
+                            i128::from(soc_mj) < min && !touches_pass(t)
+                        }
+                        _ => true,
+                    })
+            }
+            Self::MaxPeak(max) => step.tries.iter().all(|t| match t.reason {
+                Some(super::Phase2Reason::MaxPeakPower { peak_mw, .. }) => peak_mw > max,
+                _ => true,
+            }),
+            Self::DataCap => act.data <= 0 || data_unbound(problem, step),
+            Self::HandoverSoc => !handover_binds,
+            Self::HandoverData => act.mandatory || data_unbound(problem, step),
+        }
+    }
+}
+
+/// Whether the data-volume category of `step`'s record excluded no start of the
+/// activity's window span (so a looser data limit cannot add one).
+fn data_unbound(problem: &super::Problem, step: &super::Step) -> bool {
+    let (lo, hi) = super::window_span(problem, step.activity);
+    step.categories.iter().any(|c| {
+        c.category == super::Category::DataVolume
+            && c.valid.intervals() == [crate::timeline::Interval::new(lo, hi)]
+    })
 }
 
 /// The placement step `step_no` (activity `a`) makes in `state`: the ideal one
