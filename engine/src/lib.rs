@@ -26,8 +26,8 @@ pub use edit::apply_edit;
 pub use error::{Error, Warning};
 pub use explain::{
     Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,
-    Suggestion, energy_consumers, explain, explain_text, explanation_notes, minimal_conflicts,
-    peak_users, reason_line, suggestion_line, verified_suggestions,
+    Suggestion, energy_consumers, explain, explain_text, explanation_notes, involved,
+    minimal_conflicts, peak_users, reason_line, suggestion_line, verified_suggestions,
 };
 pub use generate::{Profile, generate_plan, generate_plan_with};
 pub use load::{LoadedPlan, MAX_PLAN_BYTES, load_plan, load_plan_file, read_plan_text};

@@ -326,3 +326,42 @@ fn a_dependency_is_loosened_before_it_is_dropped() {
     );
     assert!(first.side_effects.is_empty());
 }
+
+/// Every view names the same culprits: the text's "Involved" line lists exactly
+/// `involved(ex)`, which the app's clickable list also shows (issue 14: the
+/// inspector used to list ten where the text named six).
+#[test]
+fn text_and_app_name_the_same_culprits() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let text = std::fs::read_to_string(root.join("assets/default-plan.json")).expect("read");
+    let plan = load_plan(&text).expect("valid").plan;
+    let s = schedule(&plan).expect("schedules");
+    let opts = ExplainOptions {
+        activity: None,
+        no_suggestions: true,
+    };
+    let all = explain(&plan, &s, &opts).expect("explains");
+    let many = all
+        .iter()
+        .find(|ex| ex.culprits.len() > solscope_engine::involved(ex).len())
+        .expect("an explanation with more culprits than a view names");
+    let named: Vec<String> = solscope_engine::involved(many)
+        .iter()
+        .map(|c| {
+            format!(
+                "{} (step {}",
+                plan.activities[c.activity].display_name(),
+                c.step
+            )
+        })
+        .collect();
+    let notes = solscope_engine::explanation_notes(&plan, &s.problem, many);
+    let line = notes
+        .iter()
+        .find(|n| n.starts_with("Involved: "))
+        .expect("an Involved line");
+    assert_eq!(line.matches(" (step ").count(), named.len(), "{line}");
+    for n in &named {
+        assert!(line.contains(n.as_str()), "{n} missing from {line}");
+    }
+}

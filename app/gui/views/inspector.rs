@@ -108,7 +108,7 @@ fn activity_ui(
         }
         if !ex.culprits.is_empty() {
             ui.label(RichText::new("Involved (click to select and jump to its step)").strong());
-            for c in ex.culprits.iter().take(10) {
+            for c in solscope_engine::involved(ex) {
                 let text = format!(
                     "{} (step {}, {})",
                     m.doc.plan.activities[c.activity].id,

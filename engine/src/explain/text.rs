@@ -1,6 +1,6 @@
 //! Planner-facing sentences for explanations. Pure formatting: no decisions here.
 
-use super::{Explanation, Phase, ReasonRange};
+use super::{Culprit, Explanation, Phase, ReasonRange};
 use crate::model::Plan;
 use crate::scheduler::{Category, Phase2Reason, Problem, Schedule};
 use crate::timeline::IntervalSet;
@@ -250,15 +250,22 @@ pub fn explanation_notes(plan: &Plan, problem: &Problem, ex: &Explanation) -> Ve
         }
     }
     if !ex.culprits.is_empty() {
-        let names: Vec<String> = ex
-            .culprits
+        let names: Vec<String> = involved(ex)
             .iter()
-            .take(6)
             .map(|c| format!("{} (step {}, {})", name(c.activity), c.step, c.blame.name()))
             .collect();
         notes.push(format!("Involved: {}.", names.join(", ")));
     }
     notes
+}
+
+/// How many culprits a view for planners names.
+const INVOLVED: usize = 6;
+
+/// The culprits every view for planners names, in the explanation's order (the
+/// text, and the app's clickable list): the first few. The JSON has them all.
+pub fn involved(ex: &Explanation) -> &[Culprit] {
+    &ex.culprits[..ex.culprits.len().min(INVOLVED)]
 }
 
 /// Planner-facing text for a set of explanations.

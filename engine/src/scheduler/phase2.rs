@@ -537,9 +537,9 @@ impl State<'_> {
     /// and every try made.
     ///
     /// A cell that an upper bound on its lowest state of charge
-    /// ([`State::failing_soc_bound`]) proves to fail on `min_soc` everywhere is not
+    /// (`State::failing_soc_bound`) proves to fail on `min_soc` everywhere is not
     /// searched: its try carries the bound as its closeness (`Some`), and
-    /// [`merge_tries_with`] computes exact numbers only for the cells that could
+    /// `merge_tries_with` (in `trace.rs`) computes exact numbers only for the cells that could
     /// end up reported (with [`State::cell_tries`]).
     pub fn search(
         &self,
