@@ -24,6 +24,10 @@ struct Cli {
     command: Option<Command>,
     /// Plan to open in the app (default: the bundled plan).
     plan: Option<PathBuf>,
+    /// Largest plan file `schedule`, `explain` and `check` read, in bytes
+    /// (default: 33554432, i.e. 32 MiB).
+    #[arg(long, global = true, value_name = "BYTES")]
+    max_plan_bytes: Option<usize>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -130,7 +134,10 @@ fn main() -> ExitCode {
     {
         return screenshot(&plan, &out, step, select, probe, &size);
     }
-    match run(command) {
+    let limit = cli
+        .max_plan_bytes
+        .unwrap_or(solscope_engine::MAX_PLAN_BYTES);
+    match run(command, limit) {
         Ok(text) => {
             let mut out = std::io::stdout().lock();
             match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
@@ -234,10 +241,14 @@ fn screenshot(
 
 /// Runs a command to completion and returns everything it prints on standard output,
 /// so that nothing is printed when it fails.
-fn run(command: Command) -> Result<String, Failure> {
+fn run(command: Command, limit: usize) -> Result<String, Failure> {
+    let load = |plan: &std::path::Path| {
+        let text = solscope_engine::read_plan_text(plan, limit)?;
+        solscope_engine::load_plan_limited(&text, limit)
+    };
     match command {
         Command::Schedule { plan } => {
-            let loaded = solscope_engine::load_plan_file(&plan)?;
+            let loaded = load(&plan)?;
             let schedule = solscope_engine::schedule(&loaded.plan)?;
             let doc = solscope_engine::schedule_document(&loaded, &schedule, &default_name(&plan));
             to_json(&doc)
@@ -248,7 +259,7 @@ fn run(command: Command) -> Result<String, Failure> {
             text,
             no_suggestions,
         } => {
-            let loaded = solscope_engine::load_plan_file(&plan)?;
+            let loaded = load(&plan)?;
             let schedule = solscope_engine::schedule(&loaded.plan)?;
             let opts = solscope_engine::ExplainOptions {
                 activity,
@@ -289,7 +300,7 @@ fn run(command: Command) -> Result<String, Failure> {
             to_json(&plan)
         }
         Command::Check { plan } => {
-            let loaded = solscope_engine::load_plan_file(&plan)?;
+            let loaded = load(&plan)?;
             let mut out = String::new();
             for w in &loaded.warnings {
                 out.push_str(&format!("warning: {w}\n"));

@@ -316,3 +316,26 @@ fn empty_windows_are_warned_about() {
         "{warnings:?}"
     );
 }
+
+#[test]
+fn the_size_limit_can_be_set() {
+    let plan = plan_with(json!([{ "id": "a", "priority": 1, "duration": 60 }]));
+    let path = write_plan("limit.json", &plan);
+    let size = std::fs::metadata(&path).expect("size").len();
+    let with_limit = |limit: u64| {
+        Command::new(env!("CARGO_BIN_EXE_solscope"))
+            .args(["check", "--max-plan-bytes", &limit.to_string()])
+            .arg(&path)
+            .output()
+            .expect("solscope runs")
+    };
+    let refused = with_limit(size - 1);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(stdout(&refused).is_empty());
+    assert!(
+        stderr(&refused).contains(&format!("larger than {} bytes", size - 1)),
+        "{}",
+        stderr(&refused)
+    );
+    assert_eq!(with_limit(size).status.code(), Some(0));
+}

@@ -30,7 +30,9 @@ pub use explain::{
     minimal_conflicts, peak_users, reason_line, suggestion_line, verified_suggestions,
 };
 pub use generate::{Profile, generate_plan, generate_plan_with};
-pub use load::{LoadedPlan, MAX_PLAN_BYTES, load_plan, load_plan_file, read_plan_text};
+pub use load::{
+    LoadedPlan, MAX_PLAN_BYTES, load_plan, load_plan_file, load_plan_limited, read_plan_text,
+};
 pub use model::{
     Activity, AwakeMode, Battery, Data, Dependency, Duration, EffectAt, Handover, Horizon,
     LocalTime, MARS_SOL, OperablePeriod, PLAN_FORMAT, Plan, Power, PreheatEntry, Sleep, StateDef,

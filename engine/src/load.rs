@@ -20,13 +20,19 @@ pub const MAX_PLAN_BYTES: usize = 32 * 1024 * 1024;
 /// Parses and validates a plan from JSON text (a leading UTF-8 byte-order mark is
 /// ignored). Errors name the JSON path.
 pub fn load_plan(text: &str) -> Result<LoadedPlan, Error> {
+    load_plan_limited(text, MAX_PLAN_BYTES)
+}
+
+/// [`load_plan`] with another size limit than [`MAX_PLAN_BYTES`] (the command
+/// line's `--max-plan-bytes`).
+pub fn load_plan_limited(text: &str, limit: usize) -> Result<LoadedPlan, Error> {
     // A UTF-8 byte-order mark (Windows editors write one) is not part of the JSON.
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    if text.len() > MAX_PLAN_BYTES {
+    if text.len() > limit {
         return Err(Error::invalid(
             "$",
             format!(
-                "the plan is {} bytes; plans are limited to {MAX_PLAN_BYTES} bytes",
+                "the plan is {} bytes; plans are limited to {limit} bytes",
                 text.len()
             ),
         ));
