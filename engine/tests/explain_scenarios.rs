@@ -365,3 +365,66 @@ fn text_and_app_name_the_same_culprits() {
         assert!(line.contains(n.as_str()), "{n} missing from {line}");
     }
 }
+
+/// `preheat_outside_plan`: the window [100, 500] closes before an 800 s preheat
+/// fits after the plan start, so every start fails; moving the window to open at
+/// 800 fixes it (issue 14: this failure got no suggestion).
+#[test]
+fn preheat_outside_plan_suggests_a_later_window() {
+    let p = plan(
+        json!({ "local_time": { "sol_length": 10000, "offset": 0 },
+                "thermal_zones": { "arm": { "preheat": [ { "from": 0, "duration": 800 } ],
+                    "preheat_power": 40.0, "maintenance_power": 10.0 } } }),
+        json!([
+            { "id": "z", "priority": 1, "duration": 100, "awake": "any", "thermal_zones": ["arm"],
+              "windows": [ { "start": 100, "end": 500 } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "z");
+    assert_eq!(ex.phase, Some(Phase::Placement));
+    assert!(
+        ex.reasons
+            .iter()
+            .all(|r| matches!(r.reason, Phase2Reason::PreheatOutsidePlan { zone: 0, .. }))
+    );
+    let fix = ex
+        .suggestions
+        .iter()
+        .find(|s| {
+            s.description
+                .starts_with("Move the windows of z to open no earlier than 800")
+        })
+        .unwrap_or_else(|| panic!("{:?}", ex.suggestions));
+    assert_eq!(fix.set["windows"], json!([{ "start": 800, "end": 1200 }]));
+}
+
+/// `min_awake` with no room: the plan is 3000 s long and asks for awake periods of
+/// 5000 s, so no start of the activity can have one; shortening `min_awake` to
+/// what fits from its wakeup to the plan end fixes it.
+#[test]
+fn min_awake_without_room_suggests_a_shorter_one() {
+    let p = plan(
+        json!({ "horizon": { "start": 0, "end": 3000 },
+                "sleep": { "wakeup_duration": 100, "shutdown_duration": 100, "min_awake": 5000 } }),
+        json!([
+            { "id": "m", "priority": 1, "duration": 200, "awake": "required",
+              "windows": [ { "start": 500, "end": 900 } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "m");
+    assert_eq!(ex.phase, Some(Phase::Placement));
+    assert!(
+        ex.reasons
+            .iter()
+            .all(|r| matches!(r.reason, Phase2Reason::MinAwake { sleep: None }))
+    );
+    let fix = ex
+        .suggestions
+        .iter()
+        .find(|s| {
+            s.description
+                .starts_with("Shorten the minimum awake period to 2600 s")
+        })
+        .unwrap_or_else(|| panic!("{:?}", ex.suggestions));
+    assert_eq!(fix.set["sleep"]["min_awake"], json!(2600));
+}

@@ -22,6 +22,11 @@ struct Closest {
     peak: Option<i64>,
     /// The first preheat outside its zone's operable periods: zone, start.
     operability: Option<(usize, i64)>,
+    /// The longest preheat that would have to start before the plan (s).
+    before_plan: Option<i64>,
+    /// The earliest start that found no room for an awake period of `min_awake`
+    /// in the plan.
+    no_room_awake: Option<i64>,
 }
 
 impl Closest {
@@ -41,6 +46,13 @@ impl Closest {
                     preheat_start,
                 } => {
                     c.operability.get_or_insert((zone, preheat_start));
+                }
+                Phase2Reason::PreheatOutsidePlan { preheat_start, .. } => {
+                    let length = r.probe.saturating_sub(preheat_start);
+                    c.before_plan = c.before_plan.max(Some(length));
+                }
+                Phase2Reason::MinAwake { sleep: None } => {
+                    c.no_room_awake = Some(c.no_room_awake.map_or(r.first, |f| f.min(r.first)));
                 }
                 _ => {}
             }
@@ -66,7 +78,76 @@ pub(super) fn candidates(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec
     if let Some((zone, preheat_start)) = closest.operability {
         out.extend(extend_operable(plan, sched, zone, preheat_start));
     }
+    if let Some(length) = closest.before_plan {
+        out.extend(start_after_preheat(plan, ex.activity, length));
+    }
+    if let Some(first) = closest.no_room_awake {
+        out.extend(shorten_min_awake(plan, first));
+    }
     out
+}
+
+/// `preheat_outside_plan`: let the activity start only once a preheat of `length`
+/// seconds fits after the plan start (windows that open earlier move later, keeping
+/// their length; an activity without windows gets one from then to the plan end).
+fn start_after_preheat(plan: &Plan, a: usize, length: i64) -> Option<Candidate> {
+    let activity = &plan.activities[a];
+    let earliest = plan.horizon.start.saturating_add(length);
+    let windows: Vec<Value> = match &activity.windows {
+        None => vec![json!({ "start": earliest, "end": plan.horizon.end })],
+        Some(windows) => windows
+            .iter()
+            .map(|w| {
+                // A window that opens too early moves later, keeping its length
+                // (within the plan); a cutoff it passes is dropped.
+                let mut w = *w;
+                if w.start < earliest {
+                    let shift = earliest - w.start;
+                    w.start = earliest;
+                    w.end = w
+                        .end
+                        .saturating_add(shift)
+                        .min(plan.horizon.end)
+                        .max(earliest);
+                    w.preferred = w
+                        .preferred
+                        .map(|p| p.saturating_add(shift).clamp(w.start, w.end));
+                    w.cutoff = w.cutoff.filter(|&c| c > w.start);
+                }
+                serde_json::to_value(w).unwrap_or(Value::Null)
+            })
+            .collect(),
+    };
+    if windows.is_empty() {
+        return None;
+    }
+    Some(Candidate::activity(
+        activity,
+        format!(
+            "Move the windows of {} to open no earlier than {earliest}, once its {length} s preheat fits in the plan",
+            activity.id
+        ),
+        "windows",
+        Value::Array(windows),
+    ))
+}
+
+/// `min_awake` with no room in the plan: shorten `sleep.min_awake` so that an awake
+/// period woken up for the earliest such start `first` fits before the plan end.
+fn shorten_min_awake(plan: &Plan, first: i64) -> Option<Candidate> {
+    let wake = first.saturating_sub(plan.sleep.wakeup_duration);
+    let longest = plan.horizon.end.saturating_sub(wake);
+    (0 < longest && longest < plan.sleep.min_awake).then(|| {
+        let mut sleep = serde_json::to_value(plan.sleep).unwrap_or(Value::Null);
+        sleep["min_awake"] = json!(longest);
+        Candidate::plan(
+            format!(
+                "Shorten the minimum awake period to {longest} s, so that one woken up at {wake} fits in the plan"
+            ),
+            "sleep",
+            sleep,
+        )
+    })
 }
 
 /// `min_soc`: the least lowering of `battery.min_soc` that makes it schedule.
