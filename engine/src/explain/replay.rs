@@ -333,10 +333,11 @@ pub(super) fn failure_probes(
             let grouped = problem.acts[a]
                 .group
                 .is_some_and(|g| state.group_member[g].is_some());
-            let kept = witness[i]
-                .as_ref()
-                .filter(|_| !grouped)
-                .and_then(|w| state.fitting(a, w.start, w.duration, &scope));
+            let kept = witness[i].as_ref().filter(|_| !grouped).and_then(|w| {
+                state
+                    .fitting(a, w.start, w.duration, &scope)
+                    .or_else(|| elsewhere(&state, &scope, a, w.duration))
+            });
             let ev = match kept {
                 Some(ev) => ev,
                 None => {
@@ -391,4 +392,21 @@ fn sturdier_witness(state: &State<'_>, scope: &Scope, record: &Step, ev: Evaluat
         .filter(|&s| s != chosen)
         .filter_map(|s| state.fitting(a, s, d, scope))
         .fold(ev, |best, x| if x.margin > best.margin { x } else { best })
+}
+
+/// A placement of activity `a` with duration `d` at one of a few starts far from
+/// where witnesses usually sit (the last and the middle start of each window's
+/// range), if one fits: a probe whose witness stopped fitting is answered by any
+/// placement that fits, and a point check costs far less than the search.
+fn elsewhere(state: &State<'_>, scope: &Scope, a: usize, d: i64) -> Option<Evaluated> {
+    let act = &state.problem.acts[a];
+    act.windows.iter().find_map(|w| {
+        let range = state.window_range(a, w, d);
+        if range.is_empty() {
+            return None;
+        }
+        [range.hi, range.lo + (range.hi - range.lo) / 2]
+            .into_iter()
+            .find_map(|s| state.fitting(a, s, d, scope))
+    })
 }
