@@ -32,13 +32,7 @@ pub fn apply_edit(
             .and_then(Value::as_object_mut)
             .ok_or_else(|| Error::UnknownActivity(id.to_string()))?
     };
-    for (k, x) in set {
-        if x.is_null() {
-            obj.remove(k);
-        } else {
-            obj.insert(k.clone(), x.clone());
-        }
-    }
+    merge_set(obj, set);
     load_plan(&v.to_string()).map(|loaded| loaded.plan)
 }
 
@@ -57,13 +51,7 @@ pub(crate) fn edited(
         let i = plan.activities.iter().position(|a| a.id == id)?;
         let mut v = serde_json::to_value(&plan.activities[i]).ok()?;
         let obj = v.as_object_mut()?;
-        for (k, x) in set {
-            if x.is_null() {
-                obj.remove(k);
-            } else {
-                obj.insert(k.clone(), x.clone());
-            }
-        }
+        merge_set(obj, set);
         check_activity_shape(obj, "").ok()?;
         let activity: Activity = serde_json::from_value(v).ok()?;
         let mut out = plan.clone();
@@ -93,13 +81,7 @@ pub(crate) fn edited(
         };
         let mut v = serde_json::to_value(&shell).ok()?;
         let obj = v.as_object_mut()?;
-        for (k, x) in set {
-            if x.is_null() {
-                obj.remove(k);
-            } else {
-                obj.insert(k.clone(), x.clone());
-            }
-        }
+        merge_set(obj, set);
         check_json_shape(&v).ok()?;
         let mut out: Plan = serde_json::from_value(v).ok()?;
         out.activities = plan.activities.clone();
@@ -117,4 +99,15 @@ pub(crate) fn edited(
         "the quick edit disagrees with apply_edit"
     );
     out
+}
+
+/// The spec's `set`: each field replaces the object's, and `null` removes it.
+fn merge_set(obj: &mut serde_json::Map<String, Value>, set: &serde_json::Map<String, Value>) {
+    for (k, x) in set {
+        if x.is_null() {
+            obj.remove(k);
+        } else {
+            obj.insert(k.clone(), x.clone());
+        }
+    }
 }
