@@ -75,11 +75,7 @@ impl Schedule {
     /// Rebuilds the state of every timeline after step `k` (0 = before step 1) by
     /// replaying the placements of steps `1..=k`.
     pub fn state_after(&self, k: usize) -> State<'_> {
-        let mut state = State::new(&self.problem);
-        for step in self.steps.iter().take(k) {
-            state.replay(step);
-        }
-        state
+        State::replayed(&self.problem, &self.steps[..k.min(self.steps.len())])
     }
 
     /// The energy margin (`min(lowest soc - min_soc, handover soc - handover
@@ -159,10 +155,7 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>, until: usiz
         alive
     };
     {
-        let mut state = State::new(&problem);
-        for step in &steps {
-            state.replay(step);
-        }
+        let mut state = State::replayed(&problem, &steps);
         for (k, &a) in problem
             .order
             .iter()

@@ -75,11 +75,10 @@ pub(crate) fn placements_if_placed(
     let drain = placed_a.energy;
     let mut old = (problem.differs_only_in(&prev.problem, a) && restrictive(&problem, &placed_a))
         .then(|| {
-            let mut old = State::new(&prev.problem);
-            for step in &prev.steps[..done] {
-                old.replay(step);
-            }
-            (old, placed_a.placement)
+            (
+                State::replayed(&prev.problem, &prev.steps[..done]),
+                placed_a.placement,
+            )
         });
     for (k, &j) in problem.order.iter().enumerate().skip(done) {
         let step_no = k + 1;
@@ -179,7 +178,7 @@ impl<'p> Run<'p> {
                 placements[j] = before.outcome.placement();
                 let ev = state.replay(before);
                 debug_assert_eq!(
-                    outcome_step(&state_before(prev, problem, k), j, k + 1)
+                    outcome_step(&State::replayed(problem, &prev.steps[..k]), j, k + 1)
                         .map(|ev| span(&ev.placement)),
                     placements[j],
                     "a step the relaxation {relaxed:?} keeps changed: {before:?}"
@@ -209,16 +208,6 @@ impl<'p> Run<'p> {
     }
 }
 
-/// The state of `problem` before step `k + 1` when its first `k` steps came out
-/// as `prev`'s (debug builds' cross-check of kept steps).
-fn state_before<'p>(prev: &Schedule, problem: &'p super::Problem, k: usize) -> State<'p> {
-    let mut state = State::new(problem);
-    for step in &prev.steps[..k] {
-        state.replay(step);
-    }
-    state
-}
-
 /// One plan-wide limit relaxed, everything else equal: the edits the explainer
 /// searches to the least relaxation that works.
 #[derive(Clone, Copy, Debug)]
@@ -238,10 +227,14 @@ enum Relaxation {
 impl Relaxation {
     /// The relaxation that turns `old` into `new`, if that is all that differs.
     fn between(old: &super::Problem, new: &super::Problem) -> Option<Self> {
+        if old.acts != new.acts || old.order != new.order {
+            return None;
+        }
+        let (old, new) = (old.plan_wide(), new.plan_wide());
         let with = |f: &dyn Fn(&mut super::Problem)| {
             let mut x = new.clone();
             f(&mut x);
-            x == *old
+            x == old
         };
         if new.min_soc < old.min_soc && with(&|x| x.min_soc = old.min_soc) {
             return Some(Self::MinSoc(new.min_soc));

@@ -188,16 +188,21 @@ impl Problem {
     /// Whether `other` has the same number of activities and the same plan-wide
     /// parameters (everything but the activities and their order).
     fn same_plan_wide(&self, other: &Problem) -> bool {
-        let plan_wide = |p: &Problem| Problem {
+        self.acts.len() == other.acts.len() && self.plan_wide() == other.plan_wide()
+    }
+
+    /// The plan-wide parameters alone: this problem without its activities and
+    /// their order (cheap to copy and compare).
+    pub(crate) fn plan_wide(&self) -> Problem {
+        Problem {
             acts: Vec::new(),
             order: Vec::new(),
             step_of: Vec::new(),
-            zones: p.zones.clone(),
-            zone_names: p.zone_names.clone(),
-            state_initial: p.state_initial.clone(),
-            ..*p
-        };
-        self.acts.len() == other.acts.len() && plan_wide(self) == plan_wide(other)
+            zones: self.zones.clone(),
+            zone_names: self.zone_names.clone(),
+            state_initial: self.state_initial.clone(),
+            ..*self
+        }
     }
 
     /// Whether `other` differs from this problem in activity `a`'s definition at

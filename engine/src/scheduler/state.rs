@@ -107,6 +107,16 @@ impl<'p> State<'p> {
         }
     }
 
+    /// The state after the recorded `steps` (the first steps of a run of
+    /// `problem`), replayed in order.
+    pub fn replayed(problem: &'p Problem, steps: &[super::Step]) -> Self {
+        let mut state = Self::new(problem);
+        for step in steps {
+            state.replay(step);
+        }
+        state
+    }
+
     /// Adds `delta` mW of load on `[a, b)` (drains charge, adds peak).
     fn add_load(&mut self, a: i64, b: i64, energy: i64, peak: i64) {
         self.soc.add_rate(a, b, -energy);
