@@ -29,13 +29,21 @@ fn stderr(out: &Output) -> String {
     String::from_utf8(out.stderr.clone()).expect("UTF-8 stderr")
 }
 
-/// Writes `plan` to a scratch file named `name` and returns its path.
-fn write_plan(name: &str, plan: &Value) -> PathBuf {
+/// Writes `bytes` to a scratch file named `name` and returns its path.
+fn write_scratch(name: &str, bytes: &[u8]) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli_check");
     std::fs::create_dir_all(&dir).expect("scratch dir");
     let path = dir.join(name);
-    std::fs::write(&path, serde_json::to_string_pretty(plan).expect("json")).expect("write plan");
+    std::fs::write(&path, bytes).expect("write scratch file");
     path
+}
+
+/// Writes `plan` to a scratch file named `name` and returns its path.
+fn write_plan(name: &str, plan: &Value) -> PathBuf {
+    write_scratch(
+        name,
+        serde_json::to_string_pretty(plan).expect("json").as_bytes(),
+    )
 }
 
 /// A valid plan with the given activities.
@@ -296,13 +304,9 @@ fn a_device_without_end_is_refused_at_the_size_limit() {
 #[test]
 fn a_byte_order_mark_is_accepted() {
     let plan = plan_with(json!([{ "id": "a", "priority": 1, "duration": 60 }]));
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli_check");
-    std::fs::create_dir_all(&dir).expect("scratch dir");
-    let path = dir.join("bom.json");
     let mut bytes = b"\xEF\xBB\xBF".to_vec();
     bytes.extend(serde_json::to_vec(&plan).expect("json"));
-    std::fs::write(&path, bytes).expect("write plan");
-    let out = solscope_check(&path);
+    let out = solscope_check(&write_scratch("bom.json", &bytes));
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
 }
 
@@ -322,13 +326,9 @@ fn the_size_limit_can_be_set() {
     let plan = plan_with(json!([{ "id": "a", "priority": 1, "duration": 60 }]));
     let path = write_plan("limit.json", &plan);
     let size = std::fs::metadata(&path).expect("size").len();
-    let with_limit = |limit: u64| {
-        Command::new(env!("CARGO_BIN_EXE_solscope"))
-            .args(["check", "--max-plan-bytes", &limit.to_string()])
-            .arg(&path)
-            .output()
-            .expect("solscope runs")
-    };
+    let path_text = path.to_str().expect("UTF-8 path");
+    let with_limit =
+        |limit: u64| solscope(&["check", "--max-plan-bytes", &limit.to_string(), path_text]);
     let refused = with_limit(size - 1);
     assert_eq!(refused.status.code(), Some(2));
     assert!(stdout(&refused).is_empty());
