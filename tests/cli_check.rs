@@ -1,7 +1,9 @@
 //! `solscope check` through the real binary: the shared examples are valid, each
 //! loader warning is printed with its path, a missing file is an error, a file
 //! without end (`/dev/zero`) is refused at the size limit, and a byte-order mark is
-//! accepted. Also `solscope generate`: its realistic plans check, and it refuses
+//! accepted. The execution extension's plan additions (`execution`,
+//! `duration_model`) check, and their invalid values are refused at their path.
+//! Also `solscope generate`: its realistic plans check, and it refuses
 //! zero sols.
 
 // Test helpers outside `#[test]` functions are not covered by clippy.toml's
@@ -338,4 +340,91 @@ fn the_size_limit_can_be_set() {
         stderr(&refused)
     );
     assert_eq!(with_limit(size).status.code(), Some(0));
+}
+
+#[test]
+fn execution_example_is_valid() {
+    let plan = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("assets/execution-examples/uncertain-drive.json");
+    let out = solscope_check(&plan);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        stdout(&out).ends_with("with 4 activities and 0 warning(s)\n"),
+        "{}",
+        stdout(&out)
+    );
+}
+
+/// Each invalid execution addition: exit 2, nothing on stdout, the JSON path and
+/// the reason on stderr.
+#[test]
+fn invalid_execution_additions_are_refused_at_their_path() {
+    let drive = |extra: Value| {
+        let mut a = json!({ "id": "drive", "priority": 1, "duration": 600 });
+        for (k, v) in extra.as_object().expect("object") {
+            a[k] = v.clone();
+        }
+        a
+    };
+    let cases = [
+        (
+            "expanding-model",
+            plan_with(json!([drive(json!({
+                "duration": { "min": 300, "max": 600 },
+                "duration_model": { "min": 300, "max": 900 }
+            }))])),
+            "activities[0].duration_model: an expanding activity cannot have a duration_model",
+        ),
+        (
+            "model-min-above-max",
+            plan_with(json!([drive(
+                json!({ "duration_model": { "min": 900, "max": 300 } })
+            )])),
+            "activities[0].duration_model.max: must be >= min (got 300 < 900)",
+        ),
+        (
+            "model-zero-min",
+            plan_with(json!([drive(
+                json!({ "duration_model": { "min": 0, "max": 300 } })
+            )])),
+            "activities[0].duration_model.min: must be > 0 (got 0)",
+        ),
+        (
+            "model-as-array",
+            plan_with(json!([drive(json!({ "duration_model": [300, 900] }))])),
+            "activities[0].duration_model: invalid type: array, expected a JSON object",
+        ),
+        (
+            "model-unknown-field",
+            plan_with(json!([drive(
+                json!({ "duration_model": { "min": 1, "max": 2, "mode": 3 } })
+            )])),
+            "activities[0].duration_model",
+        ),
+        (
+            "zero-period",
+            {
+                let mut p = plan_with(json!([drive(json!({}))]));
+                p["execution"] = json!({ "replan_period": 0 });
+                p
+            },
+            "execution.replan_period: must be > 0 (got 0)",
+        ),
+        (
+            "execution-unknown-field",
+            {
+                let mut p = plan_with(json!([drive(json!({}))]));
+                p["execution"] = json!({ "replan_every": 60 });
+                p
+            },
+            "execution",
+        ),
+    ];
+    for (name, plan, want) in cases {
+        let out = solscope_check(&write_plan(&format!("{name}.json"), &plan));
+        let se = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{name}: {se}");
+        assert!(out.stdout.is_empty(), "{name}: {}", stdout(&out));
+        assert!(se.contains(want), "{name}: {se}");
+    }
 }

@@ -78,6 +78,7 @@ pub(crate) fn edited(
             states: plan.states.clone(),
             thermal_zones: plan.thermal_zones.clone(),
             activities: Vec::new(),
+            execution: plan.execution,
         };
         let mut v = serde_json::to_value(&shell).ok()?;
         let obj = v.as_object_mut()?;

@@ -73,6 +73,7 @@ fn activity(id: String, priority: i64, duration: i64) -> Activity {
         uhf_interactions: None,
         comm_kind: None,
         group: None,
+        duration_model: None,
     }
 }
 
@@ -378,6 +379,7 @@ pub fn generate_plan(activities: usize, sols: usize, seed: u64) -> Plan {
         states,
         thermal_zones: zones,
         activities: acts,
+        execution: None,
     }
 }
 
@@ -594,6 +596,7 @@ impl Realistic {
             states: realistic_states(),
             thermal_zones: realistic_zones(),
             activities: self.acts,
+            execution: None,
         }
     }
 

@@ -10,6 +10,7 @@
 //! `units` functions re-exported here ([`format_wh`], [`format_plan_time`], ...).
 #![deny(missing_docs)]
 
+mod actuals;
 mod edit;
 mod error;
 mod explain;
@@ -22,6 +23,7 @@ mod timeline;
 mod units;
 mod validate;
 
+pub use actuals::{ACTUALS_FORMAT, Actuals, load_actuals, sample_actuals};
 pub use edit::apply_edit;
 pub use error::{Error, Warning};
 pub use explain::{
@@ -34,9 +36,9 @@ pub use load::{
     LoadedPlan, MAX_PLAN_BYTES, load_plan, load_plan_file, load_plan_limited, read_plan_text,
 };
 pub use model::{
-    Activity, AwakeMode, Battery, Data, Dependency, Duration, EffectAt, Handover, Horizon,
-    LocalTime, MARS_SOL, OperablePeriod, PLAN_FORMAT, Plan, Power, PreheatEntry, Sleep, StateDef,
-    StateEffect, StateRequirement, ThermalZone, Window,
+    Activity, AwakeMode, Battery, Data, Dependency, Duration, DurationModel, EffectAt, Execution,
+    Handover, Horizon, LocalTime, MARS_SOL, OperablePeriod, PLAN_FORMAT, Plan, Power, PreheatEntry,
+    Sleep, StateDef, StateEffect, StateRequirement, ThermalZone, Window,
 };
 pub use report::{
     ActivityEntry, CulpritEntry, EditEntry, ExplainDoc, ExplanationEntry, GeneratedEntry,

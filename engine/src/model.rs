@@ -54,6 +54,33 @@ pub struct Plan {
     pub thermal_zones: BTreeMap<String, ThermalZone>,
     /// The activities, in file order.
     pub activities: Vec<Activity>,
+    /// When the onboard scheduler reruns during execution (execution extension).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub execution: Option<Execution>,
+}
+
+/// The `execution` section: when scheduling cycles happen while the plan runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Execution {
+    /// Seconds between cycles, counted from `horizon.start`; one cycle only when
+    /// absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub replan_period: Option<i64>,
+    /// Also start a cycle whenever an executing activity ends.
+    #[serde(default = "default_true")]
+    pub replan_on_end: bool,
+}
+
+/// An activity's `duration_model`: the actual duration is an integer in
+/// `[min, max]` (uniform when sampled).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DurationModel {
+    /// Shortest actual duration (s).
+    pub min: i64,
+    /// Longest actual duration (s).
+    pub max: i64,
 }
 
 /// Plan bounds `[start, end)` in plan seconds.
@@ -273,6 +300,9 @@ pub struct Activity {
     /// Single-selection group.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub group: Option<String>,
+    /// The range of actual durations (execution extension; fixed durations only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub duration_model: Option<DurationModel>,
 }
 
 fn default_true() -> bool {

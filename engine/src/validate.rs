@@ -57,7 +57,8 @@ use serde_json::Value;
 
 use crate::error::{Error, Warning};
 use crate::model::{
-    Activity, Dependency, Duration, EffectAt, PLAN_FORMAT, Plan, StateDef, ThermalZone, Window,
+    Activity, Dependency, Duration, DurationModel, EffectAt, PLAN_FORMAT, Plan, StateDef,
+    ThermalZone, Window,
 };
 
 /// Largest magnitude of any time (plan seconds), and of any duration or delay.
@@ -98,6 +99,7 @@ pub(crate) fn check_json_shape(doc: &Value) -> Result<(), Error> {
         "sleep",
         "data",
         "handover",
+        "execution",
     ] {
         if let Some(value) = root.get(key) {
             object(value, key)?;
@@ -125,6 +127,9 @@ pub(crate) fn check_json_shape(doc: &Value) -> Result<(), Error> {
 
 /// [`check_json_shape`] for one activity object at `path`.
 pub(crate) fn check_activity_shape(act: &Object, path: &str) -> Result<(), Error> {
+    if let Some(model) = act.get("duration_model") {
+        object(model, &join(path, "duration_model"))?;
+    }
     objects(act, path, "windows")?;
     string_enum(act, path, "awake")?;
     objects(act, path, "after")?;
@@ -392,6 +397,7 @@ impl<'p> Validator<'p> {
         self.sleep()?;
         self.data()?;
         self.handover()?;
+        self.execution()?;
         for (name, def) in &plan.states {
             self.state(name, def)?;
         }
@@ -693,6 +699,9 @@ impl<'p> Validator<'p> {
         }
 
         self.duration(&base, a.duration)?;
+        if let Some(m) = a.duration_model {
+            self.duration_model(&base, a.duration, m)?;
+        }
         if a.windows.as_ref().is_some_and(Vec::is_empty) {
             self.warn(
                 format_args!("{base}.windows"),
@@ -820,6 +829,33 @@ impl<'p> Validator<'p> {
                 self.length(format_args!("{base}.duration.max"), max, true)
             }
         }
+    }
+
+    /// An activity's `duration_model` (execution extension): fixed durations only,
+    /// `0 < min <= max`.
+    fn duration_model(&self, base: &str, d: Duration, m: DurationModel) -> Result<(), Error> {
+        if let Duration::Expanding { .. } = d {
+            return Err(invalid(
+                format!("{base}.duration_model"),
+                "an expanding activity cannot have a duration_model (the scheduler picks its duration)",
+            ));
+        }
+        self.length(format_args!("{base}.duration_model.min"), m.min, true)?;
+        if m.max < m.min {
+            return Err(invalid(
+                format!("{base}.duration_model.max"),
+                format!("must be >= min (got {} < {})", m.max, m.min),
+            ));
+        }
+        self.length(format_args!("{base}.duration_model.max"), m.max, true)
+    }
+
+    /// The `execution` section: a replan period, when given, is positive.
+    fn execution(&self) -> Result<(), Error> {
+        if let Some(p) = self.plan.execution.and_then(|e| e.replan_period) {
+            self.length("execution.replan_period", p, true)?;
+        }
+        Ok(())
     }
 
     fn window(&self, path: impl Display, w: &Window) -> Result<(), Error> {
