@@ -1,7 +1,7 @@
 //! `solscope`: explainable scheduling workstation for rover activity plans.
 //!
 //! `solscope [PLAN]` opens the desktop app (on the bundled default plan without an
-//! argument). Command line: `solscope schedule|explain|check PLAN`, and
+//! argument). Command line: `solscope schedule|explain|execute|check PLAN`, and
 //! `solscope screenshot PLAN --out FILE.png` for headless rendering. Invalid input
 //! prints a path-named message on standard error, nothing on standard output, and
 //! exits with status 2.
@@ -52,6 +52,23 @@ enum Command {
         /// dominates the time on large plans).
         #[arg(long)]
         no_suggestions: bool,
+    },
+    /// Execute a plan as the onboard scheduler would, with actual durations that
+    /// differ from the predicted ones, and print the execution JSON
+    /// (solscope.execution/1).
+    Execute {
+        /// The plan file (solscope.plan/1 JSON).
+        plan: PathBuf,
+        /// Actual durations (solscope.actuals/1 JSON); without it and without
+        /// --sample every activity runs exactly its duration.
+        #[arg(long, conflicts_with = "sample")]
+        actuals: Option<PathBuf>,
+        /// Draw the actual durations from the plan's duration_models with this seed.
+        #[arg(long)]
+        sample: Option<u64>,
+        /// Also write the actual durations used to this file (solscope.actuals/1).
+        #[arg(long, value_name = "FILE")]
+        write_actuals: Option<PathBuf>,
     },
     /// Validate a plan and print its warnings.
     Check {
@@ -276,6 +293,45 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
                 let doc = solscope_engine::explain_document(&loaded.plan, &schedule, &explanations);
                 to_json(&doc)
             }
+        }
+        Command::Execute {
+            plan,
+            actuals,
+            sample,
+            write_actuals,
+        } => {
+            let loaded = load(&plan)?;
+            let actuals = match (actuals, sample) {
+                (Some(path), _) => {
+                    let text = solscope_engine::read_plan_text(&path, limit)?;
+                    solscope_engine::load_actuals(&text, &loaded.plan).map_err(|e| match e {
+                        solscope_engine::Error::Invalid { path: p, reason } => {
+                            solscope_engine::Error::invalid(
+                                format!("{}: {p}", path.display()),
+                                reason,
+                            )
+                        }
+                        other => other,
+                    })?
+                }
+                (None, Some(seed)) => solscope_engine::sample_actuals(&loaded.plan, seed),
+                (None, None) => solscope_engine::Actuals::nominal(),
+            };
+            let execution = solscope_engine::execute(&loaded.plan, &actuals)?;
+            let doc = solscope_engine::execution_document(
+                &loaded.plan,
+                &execution,
+                &actuals,
+                &default_name(&plan),
+            );
+            let out = to_json(&doc)?;
+            if let Some(path) = write_actuals {
+                let text = to_json(&actuals)?;
+                std::fs::write(&path, text).map_err(|e| {
+                    Failure::Output(format!("{}: could not write: {e}", path.display()))
+                })?;
+            }
+            Ok(out)
         }
         Command::Screenshot { .. } => Ok(String::new()),
         Command::Generate {

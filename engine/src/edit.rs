@@ -33,7 +33,10 @@ pub fn apply_edit(
             .ok_or_else(|| Error::UnknownActivity(id.to_string()))?
     };
     merge_set(obj, set);
-    load_plan(&v.to_string()).map(|loaded| loaded.plan)
+    let mut out = load_plan(&v.to_string())?.plan;
+    // A cycle's starting state is not part of the file format: it stays.
+    out.cycle = plan.cycle.clone();
+    Ok(out)
 }
 
 /// [`apply_edit`] for the explainer's own candidate edits, where only whether the
@@ -79,6 +82,7 @@ pub(crate) fn edited(
             thermal_zones: plan.thermal_zones.clone(),
             activities: Vec::new(),
             execution: plan.execution,
+            cycle: plan.cycle.clone(),
         };
         let mut v = serde_json::to_value(&shell).ok()?;
         let obj = v.as_object_mut()?;

@@ -380,6 +380,7 @@ pub fn generate_plan(activities: usize, sols: usize, seed: u64) -> Plan {
         thermal_zones: zones,
         activities: acts,
         execution: None,
+        cycle: None,
     }
 }
 
@@ -597,6 +598,7 @@ impl Realistic {
             thermal_zones: realistic_zones(),
             activities: self.acts,
             execution: None,
+            cycle: None,
         }
     }
 

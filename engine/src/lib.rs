@@ -10,9 +10,9 @@
 //! `units` functions re-exported here ([`format_wh`], [`format_plan_time`], ...).
 #![deny(missing_docs)]
 
-mod actuals;
 mod edit;
 mod error;
+mod execute;
 mod explain;
 mod generate;
 mod load;
@@ -23,9 +23,12 @@ mod timeline;
 mod units;
 mod validate;
 
-pub use actuals::{ACTUALS_FORMAT, Actuals, load_actuals, sample_actuals};
 pub use edit::apply_edit;
 pub use error::{Error, Warning};
+pub use execute::{
+    ACTUALS_FORMAT, ActivityRun, Actuals, Cycle, Dropped, Event, ExecutedProfile, Execution, Guard,
+    RunOutcome, Trigger, Violation, ViolationKind, execute, load_actuals, sample_actuals,
+};
 pub use explain::{
     Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,
     Suggestion, energy_consumers, explain, explain_text, explanation_notes, involved,
@@ -36,13 +39,15 @@ pub use load::{
     LoadedPlan, MAX_PLAN_BYTES, load_plan, load_plan_file, load_plan_limited, read_plan_text,
 };
 pub use model::{
-    Activity, AwakeMode, Battery, Data, Dependency, Duration, DurationModel, EffectAt, Execution,
-    Handover, Horizon, LocalTime, MARS_SOL, OperablePeriod, PLAN_FORMAT, Plan, Power, PreheatEntry,
-    Sleep, StateDef, StateEffect, StateRequirement, ThermalZone, Window,
+    Activity, AwakeMode, Battery, CycleStart, Data, Dependency, Duration, DurationModel, EffectAt,
+    ExecutionSection, Handover, Horizon, LocalTime, MARS_SOL, OperablePeriod, PLAN_FORMAT, Plan,
+    Power, PreheatEntry, Sleep, StateDef, StateEffect, StateRequirement, ThermalZone, Window,
 };
 pub use report::{
-    ActivityEntry, CulpritEntry, EditEntry, ExplainDoc, ExplanationEntry, GeneratedEntry,
-    RelaxationEntry, ScheduleDoc, SuggestionEntry, explain_document, schedule_document,
+    ActivityEntry, CulpritEntry, CycleEntry, DroppedEntry, EXECUTION_FORMAT, EditEntry, EventEntry,
+    ExecutionDoc, ExplainDoc, ExplanationEntry, GeneratedEntry, RelaxationEntry, RunEntry,
+    ScheduleDoc, SuggestionEntry, SummaryEntry, TimedValue, ViolationEntry, execution_document,
+    explain_document, schedule_document,
 };
 pub use scheduler::{
     Act, Category, CategoryIntervals, FailurePhase, Generated, GeneratedKind, Outcome,

@@ -56,13 +56,56 @@ pub struct Plan {
     pub activities: Vec<Activity>,
     /// When the onboard scheduler reruns during execution (execution extension).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub execution: Option<Execution>,
+    pub execution: Option<ExecutionSection>,
+    /// What a scheduling cycle of an execution starts from; never read from or
+    /// written to a file (`execute` builds each cycle's plan with it).
+    #[serde(skip)]
+    pub cycle: Option<CycleStart>,
+}
+
+/// What a scheduling cycle at `horizon.start` starts from besides the plan's own
+/// fields (which the cycle's plan sets to the executed values): exact fixed-point
+/// figures, the activities still executing, and the awake period and heaters
+/// already on.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct CycleStart {
+    /// State of charge at the cycle (mJ), in place of `battery.initial`.
+    pub soc_mj: i128,
+    /// Onboard data volume at the cycle (bit), in place of `data.initial`.
+    pub data_bit: i128,
+    /// Data already produced towards `handover.max_data_volume` (bit).
+    pub produced_bit: i128,
+    /// Ids of the activities still executing: each is placed first, unchecked,
+    /// at its first window's start for its fixed duration, generating nothing.
+    pub held: Vec<String>,
+    /// The awake period the rover is in, `(start, planned end)`: its start may
+    /// lie before `horizon.start` (the wakeup is behind it).
+    pub awake: Option<(i64, i64)>,
+    /// Heaters on at the cycle, drawing until their planned end.
+    pub heaters: Vec<HeaterHold>,
+}
+
+/// A heater on when a cycle starts.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct HeaterHold {
+    /// The zone.
+    pub zone: String,
+    /// Its planned end: it draws `power_mw` until then.
+    pub end: i64,
+    /// Heater power (mW).
+    pub power_mw: i64,
+    /// The activity whose preheat it is (not yet started). For that activity
+    /// starting at `end` the preheat is this one; for the others the zone is on
+    /// from the owner's step, as when the owner's preheat was generated. Without
+    /// an owner (an activity keeping the zone warm ran into the second before the
+    /// cycle) the zone is on from the start.
+    pub owner: Option<String>,
 }
 
 /// The `execution` section: when scheduling cycles happen while the plan runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Execution {
+pub struct ExecutionSection {
     /// Seconds between cycles, counted from `horizon.start`; one cycle only when
     /// absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -1,10 +1,16 @@
 //! The output documents, built from the structured results: the schedule
-//! (`solscope.schedule/1`) and the explanation (`solscope.explain/1`). Each is
+//! (`solscope.schedule/1`), the explanation (`solscope.explain/1`) and the
+//! execution (`solscope.execution/1`). Each is
 //! built in one place; numbers go through `units`.
 
+mod execution;
 mod explain;
 mod schedule;
 
+pub use execution::{
+    CycleEntry, DroppedEntry, EXECUTION_FORMAT, EventEntry, ExecutionDoc, RunEntry, SummaryEntry,
+    TimedValue, ViolationEntry, execution_document,
+};
 pub use explain::{
     CulpritEntry, EditEntry, ExplainDoc, ExplanationEntry, RelaxationEntry, SuggestionEntry,
     explain_document,

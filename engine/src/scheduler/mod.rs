@@ -106,7 +106,20 @@ impl Schedule {
 pub fn schedule(plan: &Plan) -> Result<Schedule, Error> {
     let problem = Problem::compile(plan)?;
     let until = problem.order.len();
-    Ok(run(problem, Vec::new(), Vec::new(), until))
+    // A cycle of an execution starts in the awake period the rover is in.
+    let generated = problem
+        .awake0
+        .map(|(start, end)| Generated {
+            kind: GeneratedKind::Awake,
+            start,
+            end,
+            power_mw: problem.awake - problem.asleep,
+            added_at: 0,
+            retired_at: None,
+        })
+        .into_iter()
+        .collect();
+    Ok(run(problem, Vec::new(), generated, until))
 }
 
 /// Schedules an edited plan, reusing the steps of `prev` (the run of the plan
@@ -276,6 +289,15 @@ pub(crate) fn run_step(
         added: Vec::new(),
         retired: Vec::new(),
     };
+    if act.held {
+        let ev = state.held_placement(a);
+        let p = &ev.placement;
+        step.outcome = Outcome::Scheduled {
+            start: p.start,
+            end: p.start + p.duration,
+        };
+        return (step, Some(ev));
+    }
     if let Some(by) = act.group.and_then(|g| state.group_member[g]) {
         step.outcome = Outcome::Skipped { by };
         return (step, None);

@@ -240,7 +240,12 @@ impl State<'_> {
         } else {
             (0, 0)
         };
-        let lo = w.start.max(problem.h0.saturating_add(wake));
+        // The rover already awake at the start of a cycle needs no wakeup there.
+        let first = match problem.awake0 {
+            Some((w0, _)) if wake > 0 => w0.saturating_add(wake).max(problem.h0),
+            _ => problem.h0.saturating_add(wake),
+        };
+        let lo = w.start.max(first);
         let mut hi = w.end.min(problem.h1.saturating_sub(d).saturating_sub(shut));
         if let Some(c) = w.cutoff {
             hi = hi.min(c.saturating_sub(d));

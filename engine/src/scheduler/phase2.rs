@@ -169,7 +169,7 @@ impl State<'_> {
         // Heating.
         let mut preheats = Vec::new();
         for &z in &act.zones {
-            if self.heater_on(z, s - 1) {
+            if self.heater_on(z, s - 1) || problem.preheat_running(a, z, s) {
                 continue;
             }
             let p = problem.preheat_duration(z, s);

@@ -67,6 +67,9 @@ pub struct Act {
     pub comm: Option<usize>,
     /// Group (interned).
     pub group: Option<usize>,
+    /// Still executing when the cycle starts: placed first, unchecked, at its
+    /// first window's start (`CycleStart::held`).
+    pub held: bool,
 }
 
 impl Act {
@@ -109,6 +112,19 @@ pub struct Zone {
     pub maintenance: i64,
     /// Operable periods `(from, to)` in local time; `None` = always.
     pub operable: Option<Vec<(i64, i64)>>,
+}
+
+/// A heater on before step 1 (a cycle of an execution; `HeaterHold`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct HeatHold {
+    /// Zone index.
+    pub zone: usize,
+    /// Planned end.
+    pub end: i64,
+    /// Power (mW).
+    pub power: i64,
+    /// The activity whose preheat it is.
+    pub owner: Option<usize>,
 }
 
 /// The compiled plan the scheduler works on.
@@ -168,6 +184,13 @@ pub struct Problem {
     pub order: Vec<usize>,
     /// The inverse of `order`: `step_of[a]` is the step (1-based) of activity `a`.
     pub step_of: Vec<usize>,
+    /// Data already produced towards the handover limit (bit).
+    pub produced0: i128,
+    /// The awake period the rover is in before step 1 (a cycle of an
+    /// execution): `(start, planned end)`, its start possibly before `h0`.
+    pub awake0: Option<(i64, i64)>,
+    /// Heaters on before step 1.
+    pub heaters: Vec<HeatHold>,
 }
 
 impl Problem {
@@ -201,6 +224,7 @@ impl Problem {
             zones: self.zones.clone(),
             zone_names: self.zone_names.clone(),
             state_initial: self.state_initial.clone(),
+            heaters: self.heaters.clone(),
             ..*self
         }
     }
@@ -224,6 +248,14 @@ impl Problem {
         let table = &self.zones[z].table;
         let i = table.partition_point(|e| e.0 <= tod);
         i.checked_sub(1).map_or(0, |i| table[i].1)
+    }
+
+    /// Whether activity `a` starting at `s` finds its own preheat of zone `z`
+    /// already running (a cycle of an execution).
+    pub fn preheat_running(&self, a: usize, z: usize, s: i64) -> bool {
+        self.heaters
+            .iter()
+            .any(|h| h.owner == Some(a) && h.zone == z && h.end == s)
     }
 
     /// Whether a preheat of zone `z` may start at plan time `t`.
@@ -380,10 +412,15 @@ impl Problem {
                 uhf,
                 comm,
                 group,
+                held: plan
+                    .cycle
+                    .as_ref()
+                    .is_some_and(|c| c.held.contains(&a.id)),
             });
         }
+        // Activities still executing come first (they are not decided again).
         let mut order: Vec<usize> = (0..plan.activities.len()).collect();
-        order.sort_by_key(|&i| (plan.activities[i].priority, i));
+        order.sort_by_key(|&i| (!acts[i].held, plan.activities[i].priority, i));
         let zones = plan
             .thermal_zones
             .values()
@@ -409,12 +446,32 @@ impl Problem {
             .collect::<Result<_, _>>()?;
         let wh = |x: f64| i128::from(to_fixed(x, MJ_PER_WH));
         let mbit = |x: f64| i128::from(to_fixed(x, BIT_PER_MBIT));
+        let cycle = plan.cycle.clone().unwrap_or_default();
+        let mut heaters = Vec::new();
+        for h in &cycle.heaters {
+            let zone = zone_names
+                .iter()
+                .position(|n| *n == h.zone)
+                .ok_or_else(|| {
+                    Error::invalid("cycle.heaters", format!("unknown zone \"{}\"", h.zone))
+                })?;
+            heaters.push(HeatHold {
+                zone,
+                end: h.end,
+                power: h.power_mw,
+                owner: h.owner.as_deref().and_then(|id| ids.get(id).copied()),
+            });
+        }
         Ok(Problem {
             h0: horizon.start,
             h1: horizon.end,
             clock: plan.local_time,
             capacity: wh(plan.battery.capacity),
-            soc0: wh(plan.battery.initial),
+            soc0: if plan.cycle.is_some() {
+                cycle.soc_mj
+            } else {
+                wh(plan.battery.initial)
+            },
             min_soc: wh(plan.battery.min_soc),
             rtg: to_fixed(plan.power.rtg, MW_PER_W),
             asleep: to_fixed(plan.power.asleep, MW_PER_W),
@@ -426,7 +483,11 @@ impl Problem {
             min_sleep: plan.sleep.min_sleep,
             engines: plan.sequence_engines.map(i64::from),
             data_cap: plan.data.capacity.map(mbit),
-            data0: mbit(plan.data.initial),
+            data0: if plan.cycle.is_some() {
+                cycle.data_bit
+            } else {
+                mbit(plan.data.initial)
+            },
             handover_time: plan.handover.map(|h| h.time),
             handover_soc: plan.handover.and_then(|h| h.min_soc).map(wh),
             handover_data: plan.handover.and_then(|h| h.max_data_volume).map(mbit),
@@ -437,6 +498,9 @@ impl Problem {
             acts,
             step_of: step_numbers(&order),
             order,
+            produced0: cycle.produced_bit,
+            awake0: cycle.awake,
+            heaters,
         })
     }
 }

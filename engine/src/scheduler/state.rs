@@ -105,6 +105,59 @@ impl<'p> State<'p> {
             peak: StepFn::constant(problem.h0, problem.h1, problem.asleep),
             peak_max: Some((problem.asleep, problem.h0)),
         }
+        .with_cycle_start()
+    }
+
+    /// Applies what a cycle of an execution starts from (nothing otherwise): the
+    /// awake period the rover is in, the heaters already on, and the data already
+    /// produced towards the handover limit.
+    fn with_cycle_start(mut self) -> Self {
+        let problem = self.problem;
+        if let Some((w, e)) = problem.awake0 {
+            let extra = problem.awake - problem.asleep;
+            let (a, b) = (problem.h0, e.min(problem.h1));
+            if a < b {
+                self.add_load(a, b, extra, extra);
+            }
+            self.awake.push((w, e));
+        }
+        for h in &problem.heaters {
+            let end = h.end.min(problem.h1);
+            if problem.h0 < end {
+                self.raise_heat(h.zone, problem.h0, end, h.power);
+            }
+            // Without an owner the zone is on in the second before the cycle as
+            // well: an activity starting at the cycle needs no preheat.
+            if h.owner.is_none() {
+                insert_merged(
+                    &mut self.zone_on[h.zone],
+                    (problem.h0 - 1, end.max(problem.h0)),
+                );
+            }
+        }
+        self.produced += problem.produced0;
+        self.peak_max = self.peak.max_on(problem.h0, problem.h1);
+        self
+    }
+
+    /// Zone `z`'s heater asked for `power` mW over `[a, b)`: the zone draws the
+    /// largest power demanded of it at each instant.
+    fn demand_heat(&mut self, z: usize, a: i64, b: i64, power: i64) {
+        self.raise_heat(z, a, b, power);
+        insert_merged(&mut self.zone_on[z], (a, b));
+    }
+
+    /// Raises zone `z`'s draw to at least `power` mW over `[a, b)`.
+    fn raise_heat(&mut self, z: usize, a: i64, b: i64, power: i64) {
+        let raise: Vec<(i64, i64, i64)> = self.zone_draw[z]
+            .segments(a, b)
+            .filter(|seg| seg.2 < power)
+            .map(|(x, y, v)| (x, y, power - v))
+            .collect();
+        for (x, y, dv) in raise {
+            self.zone_draw[z].add(x, y, dv);
+            self.add_load(x, y, dv, dv);
+        }
     }
 
     /// The state after the recorded `steps` (the first steps of a run of
@@ -132,11 +185,35 @@ impl<'p> State<'p> {
         };
         // The placement's generated pieces do not depend on the state of charge, so
         // the levels are not derived here (a whole replay derives them once, on use).
-        let ev = self
-            .evaluate_inner(step.activity, start, end - start, false)
-            .ok()?;
+        let ev = if self.problem.acts[step.activity].held {
+            self.held_placement(step.activity)
+        } else {
+            self.evaluate_inner(step.activity, start, end - start, false)
+                .ok()?
+        };
         self.apply(step.step, &ev.placement);
         Some(ev)
+    }
+
+    /// The placement of an activity still executing when a cycle starts: at its
+    /// first window's start for its longest duration, generating nothing and
+    /// checking nothing (its loads are the problem's fixed loads).
+    pub fn held_placement(&self, a: usize) -> super::Evaluated {
+        let act = &self.problem.acts[a];
+        let start = act.windows.first().map_or(self.problem.h0, |w| w.start);
+        super::Evaluated {
+            placement: Placement {
+                act: a,
+                start,
+                duration: act.dur_max,
+                retire: Vec::new(),
+                new_awake: None,
+                preheats: Vec::new(),
+            },
+            margin: 0,
+            soc_reason: None,
+            energy: 0,
+        }
     }
 
     /// Applies a placement decided at `step`.
@@ -205,16 +282,11 @@ impl<'p> State<'p> {
                 demands.push((ps, pe, zone.preheat));
             }
             for (a, b, power) in demands {
-                let raise: Vec<(i64, i64, i64)> = self.zone_draw[z]
-                    .segments(a, b)
-                    .filter(|seg| seg.2 < power)
-                    .map(|(x, y, v)| (x, y, power - v))
-                    .collect();
-                for (x, y, dv) in raise {
-                    self.zone_draw[z].add(x, y, dv);
-                    self.add_load(x, y, dv, dv);
-                }
-                insert_merged(&mut self.zone_on[z], (a, b));
+                self.demand_heat(z, a, b, power);
+            }
+            // Its preheat was already running when the cycle started.
+            if problem.preheat_running(p.act, z, s) {
+                insert_merged(&mut self.zone_on[z], (problem.h0 - 1, s));
             }
         }
         self.add_load(s, e, act.energy, act.peak);

@@ -1,0 +1,216 @@
+//! The plan a scheduling cycle at time `t` runs: the activities not yet started,
+//! in the same step order, from the state the rover is really in at `t`
+//! (docs/semantics.md, "Execution").
+
+use crate::model::{CycleStart, Duration, EffectAt, Plan, Window};
+use crate::units::{BIT_PER_MBIT, MJ_PER_WH};
+
+/// Why an activity not yet started is left out of a cycle's plan (it can no
+/// longer run).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Dropped {
+    /// Another member of its group started (plan activity index).
+    GroupMemberRan(usize),
+    /// A dependency on an activity that ended at `end` leaves no start at or after
+    /// the cycle (plan activity index of the target).
+    DependencyPassed {
+        /// The activity it depends on.
+        on: usize,
+        /// When that one ended.
+        end: i64,
+    },
+    /// It depends on an activity that can no longer run.
+    DependsOnDropped(usize),
+}
+
+/// What the execution knows at the cycle about one activity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Status {
+    /// Not started.
+    Waiting,
+    /// Started at `start`, still executing at the cycle; holds until `hold`
+    /// (`max(start + duration, t + 1)`).
+    Executing { start: i64, hold: i64 },
+    /// Ended (completed or aborted) at `end`.
+    Ended { end: i64 },
+}
+
+/// The cycle's plan and, for each of its activities, the plan activity it is.
+pub(super) struct CyclePlan {
+    pub plan: Plan,
+    pub activity_of: Vec<usize>,
+    pub dropped: Vec<(usize, Dropped)>,
+}
+
+/// Builds the plan of the cycle at `t`.
+pub(super) fn cycle_plan(
+    plan: &Plan,
+    t: i64,
+    status: &[Status],
+    state_values: &[(String, String)],
+    start: CycleStart,
+) -> CyclePlan {
+    let n = plan.activities.len();
+    let ids: std::collections::BTreeMap<&str, usize> = plan
+        .activities
+        .iter()
+        .enumerate()
+        .map(|(i, a)| (a.id.as_str(), i))
+        .collect();
+    let started = |i: usize| !matches!(status[i], Status::Waiting);
+    let mut dropped: Vec<Option<Dropped>> = vec![None; n];
+    // Groups with a member that started keep no other member.
+    for (i, a) in plan.activities.iter().enumerate() {
+        if started(i) {
+            continue;
+        }
+        if let Some(g) = &a.group {
+            if let Some(by) =
+                (0..n).find(|&j| started(j) && plan.activities[j].group.as_ref() == Some(g))
+            {
+                dropped[i] = Some(Dropped::GroupMemberRan(by));
+            }
+        }
+    }
+    // Windows from `t` on, cut by dependencies on activities that ended.
+    let mut windows: Vec<Option<Vec<Window>>> = vec![None; n];
+    for (i, a) in plan.activities.iter().enumerate() {
+        if started(i) || dropped[i].is_some() {
+            continue;
+        }
+        let horizon_last = plan.horizon.end - 1;
+        let mut cut = a.windows.is_some();
+        let mut ranges: Vec<Window> = match &a.windows {
+            Some(ws) => ws.clone(),
+            None => vec![Window {
+                start: plan.horizon.start,
+                end: horizon_last,
+                preferred: None,
+                cutoff: None,
+            }],
+        };
+        for d in &a.after {
+            let Some(&j) = ids.get(d.activity.as_str()) else {
+                continue;
+            };
+            if let Status::Ended { end } = status[j] {
+                cut = true;
+                let (min, max) = if d.meets {
+                    (0, Some(0))
+                } else {
+                    (d.min_delay.unwrap_or(0), d.max_delay)
+                };
+                let lo = end.saturating_add(min);
+                let hi = max.map_or(i64::MAX, |m| end.saturating_add(m));
+                ranges = ranges.into_iter().filter_map(|w| clip(w, lo, hi)).collect();
+                if ranges.is_empty() {
+                    dropped[i] = Some(Dropped::DependencyPassed { on: j, end });
+                    break;
+                }
+            }
+        }
+        if dropped[i].is_some() {
+            continue;
+        }
+        // No start before the cycle: windows are clipped to `t` (a preferred time
+        // before `t` becomes `t`, which ranks the remaining starts the same way).
+        ranges = ranges
+            .into_iter()
+            .filter_map(|w| clip(w, t, i64::MAX))
+            .collect();
+        windows[i] = cut.then_some(ranges);
+    }
+    // Dependents of dropped activities can no longer run either.
+    loop {
+        let mut changed = false;
+        for (i, a) in plan.activities.iter().enumerate() {
+            if started(i) || dropped[i].is_some() {
+                continue;
+            }
+            if let Some(j) = a
+                .after
+                .iter()
+                .filter_map(|d| ids.get(d.activity.as_str()).copied())
+                .find(|&j| dropped[j].is_some())
+            {
+                dropped[i] = Some(Dropped::DependsOnDropped(j));
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let mut activities = Vec::new();
+    let mut activity_of = Vec::new();
+    for (i, a) in plan.activities.iter().enumerate() {
+        let mut a = a.clone();
+        match status[i] {
+            Status::Ended { .. } => continue,
+            Status::Executing { hold, .. } => {
+                a.duration = Duration::Fixed(hold - t);
+                a.windows = Some(vec![Window {
+                    start: t,
+                    end: t,
+                    preferred: None,
+                    cutoff: None,
+                }]);
+                a.after.clear();
+                a.effects.retain(|e| e.at == EffectAt::End);
+                a.duration_model = None;
+            }
+            Status::Waiting => {
+                if dropped[i].is_some() {
+                    continue;
+                }
+                a.windows = windows[i].take();
+                // Dependencies on ended activities became windows.
+                a.after.retain(|d| {
+                    ids.get(d.activity.as_str())
+                        .is_some_and(|&j| !matches!(status[j], Status::Ended { .. }))
+                });
+            }
+        }
+        activities.push(a);
+        activity_of.push(i);
+    }
+    let mut out = plan.clone();
+    out.horizon.start = t;
+    out.activities = activities;
+    out.battery.initial = (start.soc_mj as f64 / MJ_PER_WH).clamp(0.0, out.battery.capacity);
+    out.data.initial = (start.data_bit as f64 / BIT_PER_MBIT).max(0.0);
+    if let Some(cap) = out.data.capacity {
+        out.data.initial = out.data.initial.min(cap);
+    }
+    for (name, value) in state_values {
+        if let Some(def) = out.states.get_mut(name) {
+            def.initial = value.clone();
+        }
+    }
+    // A handover already past binds nothing any more.
+    if out.handover.is_some_and(|h| h.time < t) {
+        out.handover = None;
+    }
+    out.cycle = Some(start);
+    CyclePlan {
+        plan: out,
+        activity_of,
+        dropped: dropped
+            .into_iter()
+            .enumerate()
+            .filter_map(|(i, d)| Some((i, d?)))
+            .collect(),
+    }
+}
+
+/// Window `w` with its start range cut to `[lo, hi]`, if anything is left.
+fn clip(w: Window, lo: i64, hi: i64) -> Option<Window> {
+    let start = w.start.max(lo);
+    let end = w.end.min(hi);
+    (start <= end).then(|| Window {
+        start,
+        end,
+        preferred: Some(w.preferred_start().clamp(start, end)),
+        cutoff: w.cutoff,
+    })
+}

@@ -1,0 +1,574 @@
+//! Execution: what the onboard scheduler does while the plan runs, with actual
+//! durations that differ from the predicted ones (the execution extension of the
+//! format, `spec/execution.md`; readings in docs/semantics.md, "Execution").
+//!
+//! Scheduling cycles happen at `horizon.start`, every `replan_period`, and (with
+//! `replan_on_end`) whenever an executing activity ends. Each cycle runs the
+//! ordinary scheduler on a plan of its own ([`cycle`]): the activities not yet
+//! started, from the state the rover is really in, so the step trace and the
+//! explainer work on any cycle unchanged. Between cycles activities start at the
+//! latest cycle's start times when the dispatch guard lets them ([`dispatch`]),
+//! and run for their actual durations; the executed profiles are integrated from
+//! what really ran ([`record`]).
+
+mod actuals;
+mod cycle;
+mod record;
+
+pub use actuals::{ACTUALS_FORMAT, Actuals, load_actuals, sample_actuals};
+pub use cycle::Dropped;
+pub use record::{ExecutedProfile, Violation, ViolationKind};
+
+use crate::error::Error;
+use crate::model::{CycleStart, EffectAt, HeaterHold, Plan};
+use crate::scheduler::{GeneratedKind, Problem, Schedule, schedule};
+use cycle::{Status, cycle_plan};
+use record::{Integrator, Record, union};
+
+/// One execution of a plan.
+#[derive(Clone, Debug)]
+pub struct Execution {
+    /// The scheduling cycles, in time order.
+    pub cycles: Vec<Cycle>,
+    /// What happened to each plan activity (file order).
+    pub activities: Vec<ActivityRun>,
+    /// The executed state of charge, data volume and peak power.
+    pub profile: ExecutedProfile,
+    /// Limits the executed profile breaks, in the order first broken.
+    pub violations: Vec<Violation>,
+    /// Lowest executed state of charge (mJ) and its time.
+    pub lowest_soc: (i128, i64),
+    /// Executed state of charge at `handover.time` (mJ), when the plan has one.
+    pub handover_soc: Option<i128>,
+    /// The compiled plan (fixed-point figures the profiles are in).
+    pub problem: Problem,
+}
+
+/// Why a cycle ran.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Trigger {
+    /// The first cycle, at `horizon.start`.
+    Start,
+    /// A `replan_period` boundary.
+    Period,
+    /// An executing activity ended (plan activity index).
+    End(usize),
+}
+
+/// One scheduling cycle.
+#[derive(Clone, Debug)]
+pub struct Cycle {
+    /// When it ran.
+    pub time: i64,
+    /// Why.
+    pub trigger: Trigger,
+    /// The plan it scheduled (its activities are those not yet started, and the
+    /// ones still executing, placed first).
+    pub plan: Plan,
+    /// Its scheduler run, with the full step trace.
+    pub schedule: Schedule,
+    /// The plan activity index of each of the cycle plan's activities.
+    pub activity_of: Vec<usize>,
+    /// Activities not yet started that this cycle left out (they can no longer
+    /// run), with why.
+    pub dropped: Vec<(usize, Dropped)>,
+    /// What the dispatcher did until the next cycle.
+    pub events: Vec<Event>,
+}
+
+impl Cycle {
+    /// The cycle plan's index of plan activity `a`, if the cycle has it.
+    pub fn index_of(&self, a: usize) -> Option<usize> {
+        self.activity_of.iter().position(|&x| x == a)
+    }
+}
+
+/// A dispatch event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Event {
+    /// Activity started at `time`.
+    Started {
+        /// Plan activity index.
+        activity: usize,
+        /// When.
+        time: i64,
+    },
+    /// Activity was due at `time` but the guard held it back.
+    Held {
+        /// Plan activity index.
+        activity: usize,
+        /// When.
+        time: i64,
+        /// Why.
+        guard: Guard,
+    },
+}
+
+/// Why the dispatcher held an activity back.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Guard {
+    /// A dependency had not ended (or its `min_delay` had not passed).
+    Dependency(usize),
+    /// An activity sharing a unit resource was still executing.
+    Resource(usize),
+    /// A required state did not hold (state index, value index).
+    State(usize, usize),
+}
+
+/// How an activity ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RunOutcome {
+    /// Ran for its actual duration.
+    Completed,
+    /// Optional, ran longer than `duration`: stopped at `start + duration`.
+    Aborted,
+    /// Never started.
+    NotRun,
+}
+
+impl RunOutcome {
+    /// The name in the execution document.
+    pub fn name(self) -> &'static str {
+        match self {
+            RunOutcome::Completed => "completed",
+            RunOutcome::Aborted => "aborted",
+            RunOutcome::NotRun => "not_run",
+        }
+    }
+}
+
+/// What happened to one activity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ActivityRun {
+    /// Completed, aborted or not run.
+    pub outcome: RunOutcome,
+    /// Where the first cycle placed it.
+    pub predicted: Option<(i64, i64)>,
+    /// Actual start and end.
+    pub actual: Option<(i64, i64)>,
+    /// The cycle that dispatched it.
+    pub cycle: Option<usize>,
+    /// The duration it would run for if started (its actual duration).
+    pub duration: i64,
+    /// The last cycle whose plan had it, if it never started.
+    pub last_cycle: Option<usize>,
+}
+
+/// Executes `plan` with the actual durations of `actuals` (validated against the
+/// plan by [`load_actuals`]; an activity not listed runs its `duration`).
+pub fn execute(plan: &Plan, actuals: &Actuals) -> Result<Execution, Error> {
+    let problem = Problem::compile(plan)?;
+    let n = plan.activities.len();
+    let (h0, h1) = (problem.h0, problem.h1);
+    let period = plan.execution.and_then(|e| e.replan_period);
+    let on_end = plan.execution.is_none_or(|e| e.replan_on_end);
+    let actual: Vec<Option<i64>> = plan
+        .activities
+        .iter()
+        .map(|a| actuals.durations.get(&a.id).copied())
+        .collect();
+    let mut status = vec![Status::Waiting; n];
+    // Per started activity: (start, end, planned end, aborted, cycle, sequence).
+    let mut runs: Vec<Option<Started>> = vec![None; n];
+    let mut last_cycle: Vec<Option<usize>> = vec![None; n];
+    let mut record = Record::default();
+    let mut integ = Integrator::new(&problem);
+    let mut cycles: Vec<Cycle> = Vec::new();
+    let mut t = h0;
+    let mut trigger = Trigger::Start;
+    let mut prev_awake: Vec<(i64, i64)> = Vec::new();
+    let mut prev_heat: Vec<Heat> = Vec::new();
+    loop {
+        integ.advance(&problem, &record, t);
+        for (i, r) in runs.iter().enumerate() {
+            if let Some(r) = r {
+                status[i] = if r.end <= t {
+                    Status::Ended { end: r.end }
+                } else {
+                    Status::Executing {
+                        start: r.start,
+                        hold: r.planned_end.max(t + 1),
+                    }
+                };
+            }
+        }
+        let start = cycle_start(
+            &problem,
+            plan,
+            t,
+            &status,
+            &runs,
+            &record,
+            &integ,
+            &prev_awake,
+            &prev_heat,
+        );
+        let values = state_values(&problem, plan, &runs, t, true);
+        let cp = cycle_plan(plan, t, &status, &values, start);
+        let sched = schedule(&cp.plan)?;
+        let k = cycles.len();
+        for &a in &cp.activity_of {
+            if matches!(status[a], Status::Waiting) {
+                last_cycle[a] = Some(k);
+            }
+        }
+        // The next cycle: the next period boundary, or the first end after `t`.
+        let mut next = period.map_or(h1, |p| {
+            let done = (t - h0) / p;
+            h0.saturating_add(p.saturating_mul(done + 1))
+        });
+        next = next.min(h1);
+        let mut next_trigger = Trigger::Period;
+        if on_end {
+            if let Some((end, a)) = runs
+                .iter()
+                .enumerate()
+                .filter_map(|(a, r)| r.map(|r| (r.end, a)))
+                .filter(|&(end, _)| end > t)
+                .min()
+            {
+                if end < next {
+                    next = end;
+                    next_trigger = Trigger::End(a);
+                }
+            }
+        }
+        // Dispatch: the cycle's start times, in time then step order.
+        let mut due: Vec<(i64, usize, usize, i64)> = sched
+            .steps
+            .iter()
+            .filter_map(|st| {
+                let (s, e) = st.outcome.placement()?;
+                let a = cp.activity_of[st.activity];
+                matches!(status[a], Status::Waiting).then_some((s, st.step, a, e - s))
+            })
+            .collect();
+        due.sort_unstable();
+        let mut events = Vec::new();
+        let mut seq = runs.iter().flatten().count();
+        for (s, _, a, planned) in due {
+            if s >= next {
+                break;
+            }
+            if let Some(guard) = guard(&problem, plan, a, s, &runs) {
+                events.push(Event::Held {
+                    activity: a,
+                    time: s,
+                    guard,
+                });
+                continue;
+            }
+            let act = &plan.activities[a];
+            let mut end = s + actual[a].unwrap_or(planned);
+            let aborted = !act.mandatory && end > s + planned;
+            if aborted {
+                end = s + planned;
+            }
+            runs[a] = Some(Started {
+                start: s,
+                end,
+                planned_end: s + planned,
+                aborted,
+                cycle: k,
+                seq,
+            });
+            seq += 1;
+            status[a] = Status::Executing {
+                start: s,
+                hold: s + planned,
+            };
+            record.activity(&problem, a, s, end);
+            events.push(Event::Started {
+                activity: a,
+                time: s,
+            });
+            if on_end && end > t && end < next {
+                next = end;
+                next_trigger = Trigger::End(a);
+            }
+        }
+        // What this cycle's schedule generated runs until the next cycle, and so
+        // do the heaters that were already on.
+        prev_awake.clear();
+        prev_heat.clear();
+        for h in cp.plan.cycle.iter().flat_map(|c| &c.heaters) {
+            if let Some(z) = problem.zone_names.iter().position(|n| *n == h.zone) {
+                let owner = h
+                    .owner
+                    .as_ref()
+                    .and_then(|id| plan.activities.iter().position(|a| &a.id == id));
+                prev_heat.push(Heat {
+                    zone: z,
+                    start: t,
+                    end: h.end,
+                    power: h.power_mw,
+                    owner,
+                });
+                let b = h.end.min(next);
+                if t < b {
+                    record.heat.push((z, t, b, h.power_mw));
+                }
+            }
+        }
+        for g in sched.generated_after(sched.steps.len()) {
+            match g.kind {
+                GeneratedKind::Awake => {
+                    prev_awake.push((g.start, g.end));
+                    let (a, b) = (g.start.max(t), g.end.min(next));
+                    if a < b {
+                        record.awake.push((a, b));
+                    }
+                }
+                GeneratedKind::Preheat { zone, activity } => {
+                    prev_heat.push(Heat {
+                        zone,
+                        start: g.start,
+                        end: g.end,
+                        power: g.power_mw,
+                        owner: cp.activity_of.get(activity).copied(),
+                    });
+                    let (a, b) = (g.start.max(t), g.end.min(next));
+                    if a < b {
+                        record.heat.push((zone, a, b, g.power_mw));
+                    }
+                }
+                GeneratedKind::Maintenance { .. } => {}
+            }
+        }
+        cycles.push(Cycle {
+            time: t,
+            trigger,
+            plan: cp.plan,
+            schedule: sched,
+            activity_of: cp.activity_of,
+            dropped: cp.dropped,
+            events,
+        });
+        if next >= h1 {
+            break;
+        }
+        t = next;
+        trigger = next_trigger;
+    }
+    integ.advance(&problem, &record, h1);
+    let first = &cycles[0];
+    let activities = (0..n)
+        .map(|a| {
+            let predicted = first.index_of(a).and_then(|i| first.schedule.placement(i));
+            let run = runs[a];
+            ActivityRun {
+                outcome: match run {
+                    None => RunOutcome::NotRun,
+                    Some(r) if r.aborted => RunOutcome::Aborted,
+                    Some(_) => RunOutcome::Completed,
+                },
+                predicted,
+                actual: run.map(|r| (r.start, r.end)),
+                cycle: run.map(|r| r.cycle),
+                duration: actual[a].unwrap_or(plan.activities[a].duration.max()),
+                last_cycle: if run.is_none() { last_cycle[a] } else { None },
+            }
+        })
+        .collect();
+    let mut profile = std::mem::take(&mut integ.profile);
+    profile.awake = union(
+        record
+            .awake
+            .iter()
+            .map(|&(a, b)| (a.max(h0), b.min(h1)))
+            .filter(|(a, b)| a < b)
+            .collect(),
+    );
+    Ok(Execution {
+        cycles,
+        activities,
+        profile,
+        violations: integ.violations,
+        lowest_soc: integ.lowest,
+        handover_soc: integ.at_handover,
+        problem,
+    })
+}
+
+/// A started activity.
+#[derive(Clone, Copy, Debug)]
+struct Started {
+    start: i64,
+    /// Actual end (the abort time when aborted).
+    end: i64,
+    /// `start` + the duration the cycle placed it for.
+    planned_end: i64,
+    aborted: bool,
+    cycle: usize,
+    /// Dispatch order (breaks ties between effects at one instant).
+    seq: usize,
+}
+
+/// A heater demand of a cycle's schedule, or a heater already on at its start.
+#[derive(Clone, Copy, Debug)]
+struct Heat {
+    zone: usize,
+    start: i64,
+    end: i64,
+    power: i64,
+    /// The activity (plan index) whose preheat it is.
+    owner: Option<usize>,
+}
+
+/// What the cycle at `t` starts from.
+#[allow(clippy::too_many_arguments)]
+fn cycle_start(
+    problem: &Problem,
+    plan: &Plan,
+    t: i64,
+    status: &[Status],
+    runs: &[Option<Started>],
+    record: &Record,
+    integ: &Integrator,
+    prev_awake: &[(i64, i64)],
+    prev_heat: &[Heat],
+) -> CycleStart {
+    let held: Vec<usize> = (0..status.len())
+        .filter(|&a| matches!(status[a], Status::Executing { .. }))
+        .collect();
+    // The awake period the rover is in: on in the second before the cycle, to
+    // its planned end in the latest schedule, and at least while an activity
+    // that requires it is still executing (with its shutdown).
+    let awake = (t > problem.h0)
+        .then(|| record.awake_since(t - 1))
+        .flatten()
+        .and_then(|since| {
+            let planned = prev_awake
+                .iter()
+                .filter(|&&(a, b)| a < t && t <= b)
+                .map(|&(_, b)| b)
+                .max();
+            let running = held
+                .iter()
+                .filter(|&&a| problem.acts[a].awake == crate::model::AwakeMode::Required)
+                .filter_map(|&a| match status[a] {
+                    Status::Executing { hold, .. } => Some(hold + problem.shut),
+                    _ => None,
+                })
+                .max();
+            let end = planned.max(running)?;
+            (end > t).then_some((since, end))
+        });
+    let mut heaters: Vec<HeaterHold> = prev_heat
+        .iter()
+        .filter(|h| h.start < t && t <= h.end)
+        .map(|h| HeaterHold {
+            zone: problem.zone_names[h.zone].clone(),
+            end: h.end,
+            power_mw: h.power,
+            owner: h
+                .owner
+                .filter(|&o| matches!(status[o], Status::Waiting))
+                .map(|o| plan.activities[o].id.clone()),
+        })
+        .collect();
+    // A zone kept warm by an activity running in the second before the cycle is
+    // on then too (an activity starting at the cycle needs no preheat; one still
+    // executing keeps it on through its own placement).
+    for (a, r) in runs.iter().enumerate() {
+        let Some(r) = r else { continue };
+        if r.start < t && t <= r.end {
+            for &z in &problem.acts[a].zones {
+                heaters.push(HeaterHold {
+                    zone: problem.zone_names[z].clone(),
+                    end: t,
+                    power_mw: problem.zones[z].maintenance,
+                    owner: None,
+                });
+            }
+        }
+    }
+    CycleStart {
+        soc_mj: integ.soc,
+        data_bit: integ.data,
+        produced_bit: integ.produced,
+        held: held
+            .iter()
+            .map(|&a| plan.activities[a].id.clone())
+            .collect(),
+        awake,
+        heaters,
+    }
+}
+
+/// The executed value of every state at `t` (`(state, value)` names): effects
+/// at or before `t` (`inclusive`) or strictly before it, in time then dispatch
+/// order.
+fn state_values(
+    problem: &Problem,
+    plan: &Plan,
+    runs: &[Option<Started>],
+    t: i64,
+    inclusive: bool,
+) -> Vec<(String, String)> {
+    let mut values = problem.state_initial.clone();
+    let mut effects: Vec<(i64, usize, usize, usize)> = Vec::new();
+    for (a, r) in runs.iter().enumerate() {
+        let Some(r) = r else { continue };
+        for e in &problem.acts[a].effects {
+            let at = if e.at == EffectAt::Start {
+                r.start
+            } else {
+                r.end
+            };
+            if at < t || (inclusive && at == t) {
+                effects.push((at, r.seq, e.state, e.value));
+            }
+        }
+    }
+    effects.sort_unstable();
+    for (_, _, s, v) in effects {
+        values[s] = v;
+    }
+    plan.states
+        .iter()
+        .zip(values)
+        .map(|((name, def), v)| (name.clone(), def.values[v].clone()))
+        .collect()
+}
+
+/// Why activity `a` may not start at `s`, if it may not.
+fn guard(
+    problem: &Problem,
+    plan: &Plan,
+    a: usize,
+    s: i64,
+    runs: &[Option<Started>],
+) -> Option<Guard> {
+    let act = &problem.acts[a];
+    for d in &act.after {
+        let ended = runs[d.target].is_some_and(|r| r.end.saturating_add(d.min_delay) <= s);
+        if !ended {
+            return Some(Guard::Dependency(d.target));
+        }
+    }
+    for (b, r) in runs.iter().enumerate() {
+        let Some(r) = r else { continue };
+        if b != a
+            && r.start <= s
+            && s < r.end
+            && problem.acts[b]
+                .resources
+                .iter()
+                .any(|x| act.resources.contains(x))
+        {
+            return Some(Guard::Resource(b));
+        }
+    }
+    if !act.requires.is_empty() {
+        let values = state_values(problem, plan, runs, s, true);
+        for req in &act.requires {
+            let (name, def) = plan.states.iter().nth(req.state)?;
+            let now = &values.iter().find(|(n, _)| n == name)?.1;
+            if def.values[req.value] != *now {
+                return Some(Guard::State(req.state, req.value));
+            }
+        }
+    }
+    None
+}
