@@ -412,10 +412,7 @@ impl Problem {
                 uhf,
                 comm,
                 group,
-                held: plan
-                    .cycle
-                    .as_ref()
-                    .is_some_and(|c| c.held.contains(&a.id)),
+                held: plan.cycle.as_ref().is_some_and(|c| c.held.contains(&a.id)),
             });
         }
         // Activities still executing come first (they are not decided again).
