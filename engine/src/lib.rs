@@ -26,8 +26,9 @@ mod validate;
 pub use edit::apply_edit;
 pub use error::{Error, Warning};
 pub use execute::{
-    ACTUALS_FORMAT, ActivityRun, Actuals, Cycle, Dropped, Event, ExecutedProfile, Execution, Guard,
-    RunOutcome, Trigger, Violation, ViolationKind, execute, load_actuals, sample_actuals,
+    ACTUALS_FORMAT, ActivityRun, Actuals, Cycle, Dropped, Event, ExecuteOptions, ExecutedProfile,
+    Execution, Guard, RunOutcome, Trigger, Violation, ViolationKind, execute, execute_with,
+    load_actuals, sample_actuals,
 };
 pub use explain::{
     Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,
@@ -51,8 +52,8 @@ pub use report::{
 };
 pub use scheduler::{
     Act, Category, CategoryIntervals, FailurePhase, Generated, GeneratedKind, Outcome,
-    PartialSchedule, Phase2Reason, Placement, Problem, Profiles, ReasonKind, Schedule, State, Step,
-    Try, partial_schedule, reschedule, schedule, valid_intervals_at,
+    PartialSchedule, Phase2Reason, Placement, Problem, Profiles, ReasonKind, RunOutcomes, Schedule,
+    State, Step, Try, partial_schedule, reschedule, run_outcomes, schedule, valid_intervals_at,
 };
 pub use timeline::{Interval, IntervalSet};
 pub use units::{

@@ -44,7 +44,7 @@ fn actuals(durations: &[(&str, i64)]) -> Actuals {
 
 /// Whether the first cycle's schedule keeps the handover limits.
 fn keeps_handover(ex: &Execution) -> bool {
-    let sched = &ex.cycles[0].schedule;
+    let sched = ex.cycles[0].schedule().unwrap().unwrap();
     let p = &sched.problem;
     let Some(ht) = p.handover_time else {
         return true;
@@ -170,7 +170,7 @@ fn nominal_matches_first_cycle(text: &str) -> Result<bool, String> {
     // The executed profile is the predicted one: the same lowest state of charge,
     // and a limit broken exactly when the prediction breaks it (the rover's own
     // draw can, with nothing placed).
-    let sched = &ex.cycles[0].schedule;
+    let sched = ex.cycles[0].schedule().unwrap().unwrap();
     let state = sched.state_after(sched.steps.len());
     let p = &sched.problem;
     let lowest = state
@@ -431,8 +431,10 @@ fn a_long_drive_pushes_optional_science_out() {
     let last = &ex.cycles[ex.activities[1].last_cycle.unwrap()];
     assert_eq!(last.time, 7000);
     assert_eq!(last.trigger, Trigger::End(0));
+    assert_eq!(last.placement(1), None);
     let i = last.index_of(1).unwrap();
-    assert_eq!(last.schedule.placement(i), None);
+    let sched = last.schedule().unwrap().unwrap();
+    assert_eq!(sched.placement(i), None, "the trace agrees");
     // 5000 s: the drive ends at 6000, science starts then (1800 s, ends 7800).
     let ex = execute(&plan, &actuals(&[("drive", 5000)])).unwrap();
     assert_eq!(ex.activities[1].actual, Some((6000, 7800)));

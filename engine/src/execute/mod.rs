@@ -21,7 +21,7 @@ pub use record::{ExecutedProfile, Violation, ViolationKind};
 
 use crate::error::Error;
 use crate::model::{CycleStart, EffectAt, HeaterHold, Plan};
-use crate::scheduler::{GeneratedKind, Problem, Schedule, schedule};
+use crate::scheduler::{Problem, Schedule, run_outcomes, schedule};
 use cycle::{Status, cycle_plan};
 use record::{Integrator, Record, union};
 
@@ -63,10 +63,13 @@ pub struct Cycle {
     /// Why.
     pub trigger: Trigger,
     /// The plan it scheduled (its activities are those not yet started, and the
-    /// ones still executing, placed first).
-    pub plan: Plan,
-    /// Its scheduler run, with the full step trace.
-    pub schedule: Schedule,
+    /// ones still executing, placed first); `None` when the execution was run
+    /// without keeping them (Monte Carlo).
+    pub plan: Option<Plan>,
+    /// State of charge it started from (mJ).
+    pub soc: i128,
+    /// Where it placed each of its activities (by cycle-plan index).
+    pub placements: Vec<Option<(i64, i64)>>,
     /// The plan activity index of each of the cycle plan's activities.
     pub activity_of: Vec<usize>,
     /// Activities not yet started that this cycle left out (they can no longer
@@ -81,6 +84,25 @@ impl Cycle {
     pub fn index_of(&self, a: usize) -> Option<usize> {
         self.activity_of.iter().position(|&x| x == a)
     }
+
+    /// Where the cycle placed plan activity `a`.
+    pub fn placement(&self, a: usize) -> Option<(i64, i64)> {
+        self.placements[self.index_of(a)?]
+    }
+
+    /// The cycle's scheduler run with its full step trace (run again from the
+    /// cycle's plan: the execution keeps only the outcomes). `None` when the
+    /// plan was not kept.
+    pub fn schedule(&self) -> Option<Result<Schedule, Error>> {
+        self.plan.as_ref().map(schedule)
+    }
+}
+
+/// What [`execute_with`] keeps.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ExecuteOptions {
+    /// Drop each cycle's plan (a Monte Carlo run needs only the outcomes).
+    pub outcomes_only: bool,
 }
 
 /// A dispatch event.
@@ -157,6 +179,15 @@ pub struct ActivityRun {
 /// Executes `plan` with the actual durations of `actuals` (validated against the
 /// plan by [`load_actuals`]; an activity not listed runs its `duration`).
 pub fn execute(plan: &Plan, actuals: &Actuals) -> Result<Execution, Error> {
+    execute_with(plan, actuals, ExecuteOptions::default())
+}
+
+/// [`execute`], keeping what `options` says.
+pub fn execute_with(
+    plan: &Plan,
+    actuals: &Actuals,
+    options: ExecuteOptions,
+) -> Result<Execution, Error> {
     let problem = Problem::compile(plan)?;
     let n = plan.activities.len();
     let (h0, h1) = (problem.h0, problem.h1);
@@ -204,8 +235,9 @@ pub fn execute(plan: &Plan, actuals: &Actuals) -> Result<Execution, Error> {
             &prev_heat,
         );
         let values = state_values(&problem, plan, &runs, t, true);
+        let soc = start.soc_mj;
         let cp = cycle_plan(plan, t, &status, &values, start);
-        let sched = schedule(&cp.plan)?;
+        let run = run_outcomes(&cp.plan)?;
         let k = cycles.len();
         for &a in &cp.activity_of {
             if matches!(status[a], Status::Waiting) {
@@ -234,13 +266,14 @@ pub fn execute(plan: &Plan, actuals: &Actuals) -> Result<Execution, Error> {
             }
         }
         // Dispatch: the cycle's start times, in time then step order.
-        let mut due: Vec<(i64, usize, usize, i64)> = sched
-            .steps
+        let mut due: Vec<(i64, usize, usize, i64)> = run
+            .placements
             .iter()
-            .filter_map(|st| {
-                let (s, e) = st.outcome.placement()?;
-                let a = cp.activity_of[st.activity];
-                matches!(status[a], Status::Waiting).then_some((s, st.step, a, e - s))
+            .enumerate()
+            .filter_map(|(i, p)| {
+                let (s, e) = (*p)?;
+                let a = cp.activity_of[i];
+                matches!(status[a], Status::Waiting).then_some((s, run.step_of[i], a, e - s))
             })
             .collect();
         due.sort_unstable();
@@ -310,36 +343,33 @@ pub fn execute(plan: &Plan, actuals: &Actuals) -> Result<Execution, Error> {
                 }
             }
         }
-        for g in sched.generated_after(sched.steps.len()) {
-            match g.kind {
-                GeneratedKind::Awake => {
-                    prev_awake.push((g.start, g.end));
-                    let (a, b) = (g.start.max(t), g.end.min(next));
-                    if a < b {
-                        record.awake.push((a, b));
-                    }
-                }
-                GeneratedKind::Preheat { zone, activity } => {
-                    prev_heat.push(Heat {
-                        zone,
-                        start: g.start,
-                        end: g.end,
-                        power: g.power_mw,
-                        owner: cp.activity_of.get(activity).copied(),
-                    });
-                    let (a, b) = (g.start.max(t), g.end.min(next));
-                    if a < b {
-                        record.heat.push((zone, a, b, g.power_mw));
-                    }
-                }
-                GeneratedKind::Maintenance { .. } => {}
+        for &(a, b) in &run.awake {
+            prev_awake.push((a, b));
+            let (a, b) = (a.max(t), b.min(next));
+            if a < b {
+                record.awake.push((a, b));
+            }
+        }
+        for &(zone, start, end, act) in &run.preheats {
+            let power = problem.zones[zone].preheat;
+            prev_heat.push(Heat {
+                zone,
+                start,
+                end,
+                power,
+                owner: cp.activity_of.get(act).copied(),
+            });
+            let (a, b) = (start.max(t), end.min(next));
+            if a < b {
+                record.heat.push((zone, a, b, power));
             }
         }
         cycles.push(Cycle {
             time: t,
             trigger,
-            plan: cp.plan,
-            schedule: sched,
+            plan: (!options.outcomes_only).then_some(cp.plan),
+            soc,
+            placements: run.placements,
             activity_of: cp.activity_of,
             dropped: cp.dropped,
             events,
@@ -354,7 +384,7 @@ pub fn execute(plan: &Plan, actuals: &Actuals) -> Result<Execution, Error> {
     let first = &cycles[0];
     let activities = (0..n)
         .map(|a| {
-            let predicted = first.index_of(a).and_then(|i| first.schedule.placement(i));
+            let predicted = first.placement(a);
             let run = runs[a];
             ActivityRun {
                 outcome: match run {

@@ -186,12 +186,7 @@ pub fn execution_document(
         .iter()
         .enumerate()
         .map(|(index, c)| {
-            let placed = c
-                .schedule
-                .steps
-                .iter()
-                .filter(|s| s.outcome.placement().is_some())
-                .count();
+            let placed = c.placements.iter().filter(|p| p.is_some()).count();
             CycleEntry {
                 index,
                 time: c.time,
@@ -204,14 +199,14 @@ pub fn execution_document(
                     Trigger::End(a) => Some(id(a)),
                     _ => None,
                 },
-                soc: wh(c.plan.cycle.as_ref().map_or(0, |s| s.soc_mj)),
+                soc: wh(c.soc),
                 scheduled: placed,
                 failed: c
-                    .schedule
-                    .steps
+                    .placements
                     .iter()
-                    .filter(|s| s.outcome.placement().is_none())
-                    .map(|s| id(c.activity_of[s.activity]))
+                    .zip(&c.activity_of)
+                    .filter(|(p, _)| p.is_none())
+                    .map(|(_, &a)| id(a))
                     .collect(),
                 dropped: c
                     .dropped

@@ -141,6 +141,51 @@ pub(crate) fn placements_if_placed(
     Ok(Some(placements))
 }
 
+/// A whole run's outcome without its trace (what an execution cycle dispatches
+/// from): where each activity is placed, and the awake periods and preheats the
+/// run generated.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RunOutcomes {
+    /// Placement by activity index.
+    pub placements: Vec<Option<(i64, i64)>>,
+    /// The awake periods at the end of the run, sorted.
+    pub awake: Vec<(i64, i64)>,
+    /// Preheats `(zone, start, end, activity)`.
+    pub preheats: Vec<(usize, i64, i64, usize)>,
+    /// The step (1-based) of each activity.
+    pub step_of: Vec<usize>,
+}
+
+/// Schedules `plan` for its outcomes only: the same placements as [`schedule`]
+/// (debug builds check it), without the trace.
+///
+/// [`schedule`]: super::schedule
+pub fn run_outcomes(plan: &Plan) -> Result<RunOutcomes, Error> {
+    let problem = super::Problem::compile(plan)?;
+    let mut state = State::new(&problem);
+    let mut placements = vec![None; problem.acts.len()];
+    let mut preheats = Vec::new();
+    for (k, &a) in problem.order.iter().enumerate() {
+        if let Some(ev) = outcome_step(&state, a, k + 1) {
+            placements[a] = Some(span(&ev.placement));
+            preheats.extend(ev.placement.preheats.iter().map(|&(z, s, e)| (z, s, e, a)));
+            state.apply(k + 1, &ev.placement);
+        }
+    }
+    #[cfg(debug_assertions)]
+    if let Ok(full) = super::schedule(plan) {
+        let want: Vec<Option<(i64, i64)>> =
+            (0..problem.acts.len()).map(|x| full.placement(x)).collect();
+        debug_assert_eq!(placements, want, "the outcome-only run disagrees");
+    }
+    Ok(RunOutcomes {
+        placements,
+        awake: state.awake,
+        preheats,
+        step_of: problem.step_of.clone(),
+    })
+}
+
 /// The state and placements of an outcome-only run up to activity `a`'s step.
 struct Run<'p> {
     state: State<'p>,
