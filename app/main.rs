@@ -318,10 +318,12 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
                 (None, None) => solscope_engine::Actuals::nominal(),
             };
             let execution = solscope_engine::execute(&loaded.plan, &actuals)?;
+            let losses = solscope_engine::losses(&loaded.plan, &execution)?;
             let doc = solscope_engine::execution_document(
                 &loaded.plan,
                 &execution,
                 &actuals,
+                &losses,
                 &default_name(&plan),
             );
             let out = to_json(&doc)?;

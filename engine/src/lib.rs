@@ -26,13 +26,13 @@ mod validate;
 pub use edit::apply_edit;
 pub use error::{Error, Warning};
 pub use execute::{
-    ACTUALS_FORMAT, ActivityRun, Actuals, Cycle, Dropped, Event, ExecuteOptions, ExecutedProfile,
-    Execution, Guard, RunOutcome, Trigger, Violation, ViolationKind, execute, execute_with,
-    load_actuals, sample_actuals,
+    ACTUALS_FORMAT, ActivityRun, Actuals, Cause, Cycle, Dropped, Event, ExecuteOptions,
+    ExecutedProfile, Execution, Guard, Loss, RunOutcome, Trigger, Violation, ViolationKind,
+    execute, execute_with, load_actuals, loss, losses, sample_actuals,
 };
 pub use explain::{
     Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,
-    Suggestion, energy_consumers, explain, explain_text, explanation_notes, involved,
+    Suggestion, energy_consumers, explain, explain_text, explanation_notes, involved, loss_line,
     minimal_conflicts, peak_users, reason_line, suggestion_line, verified_suggestions,
 };
 pub use generate::{Profile, generate_plan, generate_plan_with};
@@ -45,10 +45,10 @@ pub use model::{
     Power, PreheatEntry, Sleep, StateDef, StateEffect, StateRequirement, ThermalZone, Window,
 };
 pub use report::{
-    ActivityEntry, CulpritEntry, CycleEntry, DroppedEntry, EXECUTION_FORMAT, EditEntry, EventEntry,
-    ExecutionDoc, ExplainDoc, ExplanationEntry, GeneratedEntry, RelaxationEntry, RunEntry,
-    ScheduleDoc, SuggestionEntry, SummaryEntry, TimedValue, ViolationEntry, execution_document,
-    explain_document, schedule_document,
+    ActivityEntry, ChangedEntry, CulpritEntry, CycleEntry, DroppedEntry, EXECUTION_FORMAT,
+    EditEntry, EventEntry, ExecutionDoc, ExplainDoc, ExplanationEntry, GeneratedEntry,
+    RelaxationEntry, RunEntry, ScheduleDoc, SuggestionEntry, SummaryEntry, TimedValue,
+    ViolationEntry, WhyEntry, execution_document, explain_document, schedule_document,
 };
 pub use scheduler::{
     Act, Category, CategoryIntervals, FailurePhase, Generated, GeneratedKind, Outcome,

@@ -14,10 +14,12 @@
 mod actuals;
 mod cycle;
 mod record;
+mod why;
 
 pub use actuals::{ACTUALS_FORMAT, Actuals, load_actuals, sample_actuals};
 pub use cycle::Dropped;
 pub use record::{ExecutedProfile, Violation, ViolationKind};
+pub use why::{Cause, Loss, loss, losses};
 
 use crate::error::Error;
 use crate::model::{CycleStart, EffectAt, HeaterHold, Plan};

@@ -4,7 +4,10 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use crate::execute::{Actuals, Dropped, Event, Execution, Guard, Trigger, ViolationKind};
+use crate::execute::{
+    Actuals, Cause, Dropped, Event, Execution, Guard, Loss, Trigger, ViolationKind,
+};
+use crate::explain::loss_line;
 use crate::model::Plan;
 use crate::scheduler::Profiles;
 use crate::units::{mbit, watts, wh};
@@ -90,6 +93,40 @@ pub struct RunEntry {
     /// For an activity that did not run: the last cycle that had it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub last_cycle: Option<usize>,
+    /// For an activity the first cycle placed that did not complete: why.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub why: Option<WhyEntry>,
+}
+
+/// Why an activity the first cycle placed did not complete.
+#[derive(Clone, Debug, Serialize)]
+pub struct WhyEntry {
+    /// The cycle that decided it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cycle: Option<usize>,
+    /// Its time.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time: Option<i64>,
+    /// The cause: `placement/min_soc`, `valid_intervals/unit_resource`,
+    /// `dropped/dependency_passed`, `aborted`, `held`, ...
+    pub cause: String,
+    /// The activities to blame.
+    pub culprits: Vec<String>,
+    /// Activities that ran before then for other than their predicted duration.
+    pub changed: Vec<ChangedEntry>,
+    /// The same in one sentence.
+    pub text: String,
+}
+
+/// An activity that ran for other than its predicted duration.
+#[derive(Clone, Debug, Serialize)]
+pub struct ChangedEntry {
+    /// Activity id.
+    pub activity: String,
+    /// Actual duration (s).
+    pub actual: i64,
+    /// Predicted duration (s).
+    pub duration: i64,
 }
 
 /// One scheduling cycle.
@@ -157,14 +194,39 @@ pub struct ViolationEntry {
     pub limit: f64,
 }
 
-/// The execution document of `execution` (of `plan`, run with `actuals`).
+/// The execution document of `execution` (of `plan`, run with `actuals`), with
+/// `losses` (from [`crate::losses`]) as each lost activity's `why`.
 pub fn execution_document(
     plan: &Plan,
     execution: &Execution,
     actuals: &Actuals,
+    losses: &[Loss],
     default_name: &str,
 ) -> ExecutionDoc {
     let id = |a: usize| plan.activities[a].id.clone();
+    let why = |a: usize| {
+        let loss = losses.iter().find(|l| l.activity == a)?;
+        let culprits = match &loss.cause {
+            Cause::Failed { culprits, .. } => culprits.iter().map(|&c| id(c)).collect(),
+            _ => Vec::new(),
+        };
+        Some(WhyEntry {
+            cycle: loss.cycle.map(|c| c.0),
+            time: loss.cycle.map(|c| c.1),
+            cause: loss.cause.key(),
+            culprits,
+            changed: loss
+                .changed
+                .iter()
+                .map(|&(b, actual, duration)| ChangedEntry {
+                    activity: id(b),
+                    actual,
+                    duration,
+                })
+                .collect(),
+            text: loss_line(plan, &execution.problem, loss),
+        })
+    };
     let activities: Vec<RunEntry> = execution
         .activities
         .iter()
@@ -178,6 +240,7 @@ pub fn execution_document(
             end: run.actual.map(|p| p.1),
             cycle: run.cycle,
             last_cycle: run.last_cycle,
+            why: why(a),
         })
         .collect();
     let count = |o: &str| activities.iter().filter(|r| r.outcome == o).count();

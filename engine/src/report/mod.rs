@@ -8,8 +8,8 @@ mod explain;
 mod schedule;
 
 pub use execution::{
-    CycleEntry, DroppedEntry, EXECUTION_FORMAT, EventEntry, ExecutionDoc, RunEntry, SummaryEntry,
-    TimedValue, ViolationEntry, execution_document,
+    ChangedEntry, CycleEntry, DroppedEntry, EXECUTION_FORMAT, EventEntry, ExecutionDoc, RunEntry,
+    SummaryEntry, TimedValue, ViolationEntry, WhyEntry, execution_document,
 };
 pub use explain::{
     CulpritEntry, EditEntry, ExplainDoc, ExplanationEntry, RelaxationEntry, SuggestionEntry,
