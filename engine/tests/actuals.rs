@@ -1,6 +1,7 @@
 //! The `solscope.actuals/1` document: strict reading with path-named errors, and
 //! sampling from `duration_model`s (deterministic per seed, inside each range).
 
+#![allow(clippy::panic, clippy::unwrap_used, clippy::expect_used)]
 use serde_json::json;
 use solscope_engine::{Actuals, Error, Plan, load_actuals, load_plan, sample_actuals};
 
