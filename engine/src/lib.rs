@@ -26,9 +26,12 @@ mod validate;
 pub use edit::apply_edit;
 pub use error::{Error, Warning};
 pub use execute::{
-    ACTUALS_FORMAT, ActivityRun, Actuals, Cause, Cycle, Dropped, Event, ExecuteOptions,
-    ExecutedProfile, Execution, Guard, Loss, RunOutcome, Trigger, Violation, ViolationKind,
-    execute, execute_with, load_actuals, loss, losses, sample_actuals,
+    ACTUALS_FORMAT, ActivityRun, ActivitySummary, Actuals, Campaign, Cause, CauseCount, Cycle,
+    Distribution, Dropped, Event, ExecuteOptions, ExecutedProfile, Execution, Guard, LimitSummary,
+    Loss, LossRecord, LostSummary, MONTECARLO_FORMAT, MONTECARLO_RUNS_FORMAT, PairSummary,
+    Predictor, Quantiles, RunOutcome, RunRecord, RunsDoc, Summary, Trigger, Violation,
+    ViolationKind, campaign, campaign_runs, execute, execute_with, load_actuals, loss, losses,
+    merge_parts, run_record, sample_actuals, sample_run, summarize,
 };
 pub use explain::{
     Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,

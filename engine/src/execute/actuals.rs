@@ -78,10 +78,19 @@ pub fn load_actuals(text: &str, plan: &Plan) -> Result<Actuals, Error> {
 
 /// One execution's actual durations drawn from the `duration_model`s: each
 /// activity with a model gets an integer uniform in `[min, max]`, in file order,
-/// from one ChaCha8 stream seeded with `seed` (the same seed gives the same
+/// from the ChaCha8 generator seeded with `seed` (the same seed gives the same
 /// durations on every machine).
 pub fn sample_actuals(plan: &Plan, seed: u64) -> Actuals {
+    sample_run(plan, seed, 0)
+}
+
+/// The actual durations of Monte Carlo run `run` of a campaign seeded with
+/// `seed`: stream `run` of the ChaCha8 generator seeded with `seed`, so each run
+/// draws the same durations whichever machine, thread or shard runs it (run 0
+/// is [`sample_actuals`]).
+pub fn sample_run(plan: &Plan, seed: u64, run: u64) -> Actuals {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(run);
     let mut durations = BTreeMap::new();
     for a in &plan.activities {
         if let Some(m) = a.duration_model {

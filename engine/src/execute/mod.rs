@@ -13,11 +13,17 @@
 
 mod actuals;
 mod cycle;
+mod montecarlo;
 mod record;
 mod why;
 
-pub use actuals::{ACTUALS_FORMAT, Actuals, load_actuals, sample_actuals};
+pub use actuals::{ACTUALS_FORMAT, Actuals, load_actuals, sample_actuals, sample_run};
 pub use cycle::Dropped;
+pub use montecarlo::{
+    ActivitySummary, Campaign, CauseCount, Distribution, LimitSummary, LossRecord, LostSummary,
+    MONTECARLO_FORMAT, MONTECARLO_RUNS_FORMAT, PairSummary, Predictor, Quantiles, RunRecord,
+    RunsDoc, Summary, campaign, campaign_runs, merge_parts, run_record, summarize,
+};
 pub use record::{ExecutedProfile, Violation, ViolationKind};
 pub use why::{Cause, Loss, loss, losses};
 

@@ -344,12 +344,7 @@ pub fn execution_document(
                 ViolationKind::DataCapacity => mbit(x),
             };
             ViolationEntry {
-                kind: match v.kind {
-                    ViolationKind::MinSoc => "min_soc",
-                    ViolationKind::MaxPeakPower => "max_peak_power",
-                    ViolationKind::DataCapacity => "data_capacity",
-                    ViolationKind::HandoverSoc => "handover_soc",
-                },
+                kind: v.kind.name(),
                 time: v.time,
                 worst: TimedValue {
                     time: v.worst.1,
