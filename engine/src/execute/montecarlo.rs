@@ -464,7 +464,7 @@ fn distribution(sorted_mj: &[i64]) -> Distribution {
     let (lo, hi) = (q.min, q.max);
     let bins = 20i128;
     let span = i128::from(hi) - i128::from(lo);
-    let mut counts = vec![0u64; 20];
+    let mut counts = [0u64; 20];
     for &x in sorted_mj {
         let k = if span == 0 {
             0
