@@ -1,5 +1,6 @@
 //! Why an activity the first cycle placed did not complete: the explainer's
-//! answer at the last cycle that had it, or the cycle's reason for leaving it
+//! answer at the cycle that dropped it from the schedule for good (the first after
+//! the last that placed it), or the cycle's reason for leaving it
 //! out, and what ran differently from the prediction before then.
 
 use super::{Dropped, Execution, RunOutcome};
@@ -109,12 +110,15 @@ pub fn loss(plan: &Plan, ex: &Execution, a: usize) -> Result<Loss, Error> {
             .find(|(x, _)| *x == a)
             .map(|(_, d)| d.clone());
         (Some(k), why.map_or(Cause::Held, Cause::Dropped))
-    } else if let Some(k) = run.last_cycle {
-        let c = &ex.cycles[k];
-        if c.placement(a).is_some() {
-            (Some(k), Cause::Held)
-        } else {
-            (Some(k), failed(plan, ex, k, a)?)
+    } else if let Some(last) = run.last_cycle {
+        // The cycle that dropped it from the schedule for good: the first one
+        // after the last that placed it (later cycles only find its windows
+        // passing).
+        let placed_last = (0..=last).rev().find(|&k| ex.cycles[k].placement(a).is_some());
+        let from = placed_last.map_or(0, |k| k + 1);
+        match (from..=last).find(|&k| ex.cycles[k].index_of(a).is_some()) {
+            Some(k) => (Some(k), failed(plan, ex, k, a)?),
+            None => (Some(last), Cause::Held),
         }
     } else {
         (None, Cause::Held)
