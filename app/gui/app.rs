@@ -8,12 +8,13 @@ use eframe::egui;
 use solscope_engine::{Plan, Suggestion};
 
 use super::commands::{Command, UiCommand};
-use super::derived::{DerivedCache, step_view};
+use super::derived::{DerivedCache, ExecKey, ExecutionCache, step_view};
 use super::document::{Analysis, Document, OutcomeDiff};
-use super::state::{Pending, Persisted, StepView, UiState};
+use super::execution::{ActualsSource, CycleRun, ExecutionRun};
+use super::state::{LAST_STEP, Mode, Navigation, Pending, Persisted, StepView, UiState};
 use super::theme::Theme;
 use super::time_axis::TimeAxis;
-use super::views::{self, Model, ViewCache, Widgets};
+use super::views::{self, ExecModel, Model, ViewCache, Widgets};
 
 /// The plan the app opens without arguments.
 pub const DEFAULT_PLAN: &str = include_str!("../../assets/default-plan.json");
@@ -30,6 +31,8 @@ pub enum Dialog {
     ExportSchedule,
     /// Choose where to write the view as PNG.
     ExportPng,
+    /// Choose an actuals file to execute the plan with.
+    OpenActuals,
 }
 
 /// The app: document, derived analysis, UI state, and the command queue.
@@ -51,8 +54,14 @@ pub struct SolscopeApp {
     pub background: bool,
     /// Bumped on every accepted change of the plan.
     pub revision: u64,
+    /// Where the execution's actual durations come from.
+    pub actuals: ActualsSource,
+    /// Bumped whenever `actuals` changes.
+    actuals_rev: u64,
     /// Explanation, valid intervals and suggestions of the selected activity.
     derived: DerivedCache,
+    /// The execution of the plan and its cycles' scheduler runs (execution mode).
+    execution: ExecutionCache,
     /// What the views keep between frames (built rows, the plots' x range).
     pub(crate) view_cache: ViewCache,
     /// Time of the last automatic step.
@@ -90,7 +99,10 @@ impl SolscopeApp {
             step_view,
             background: false,
             revision: 0,
+            actuals: ActualsSource::Nominal,
+            actuals_rev: 0,
             derived: DerivedCache::default(),
+            execution: ExecutionCache::default(),
             view_cache: ViewCache::default(),
             last_tick: 0.0,
             dialog: None,
@@ -135,15 +147,26 @@ impl SolscopeApp {
         let mut cmds = std::mem::take(&mut self.commands);
         views::shortcuts(ui, &mut cmds);
         views::dropped_files(ui, &mut cmds);
+        // Take what the execution workers finished (in any mode, so they are
+        // not polled for longer than they run).
+        if let Err(e) = self.execution.reap(self.exec_key()) {
+            self.ui.messages.error = Some(e);
+        }
+        if self.ui.nav.mode == Mode::Execution {
+            // The execution and the looked-at cycle's run, derived before
+            // drawing (on a worker in the desktop app).
+            self.derive_execution();
+        }
         if self.ui.nav.playing {
             let now = ui.input(|i| i.time);
             if now - self.last_tick > 0.15 {
                 self.last_tick = now;
-                if self.ui.nav.step < self.analysis.steps() {
-                    cmds.push(Command::SetStep(self.ui.nav.step + 1));
+                let (k, n) = self.step_and_steps();
+                cmds.push(if k < n {
+                    self.set_step_command(k + 1)
                 } else {
-                    cmds.push(Command::Play(false));
-                }
+                    Command::Play(false)
+                });
             }
             ui.ctx()
                 .request_repaint_after(std::time::Duration::from_millis(150));
@@ -155,7 +178,7 @@ impl SolscopeApp {
             self.derived.valid_for(&self.analysis, self.revision, a);
         }
         self.reap_worker();
-        if self.verifying().is_some() {
+        if self.verifying().is_some() || self.execution.busy() {
             // Poll the worker until its result is in.
             ui.ctx()
                 .request_repaint_after(std::time::Duration::from_millis(50));
@@ -170,7 +193,7 @@ impl SolscopeApp {
     /// The read-only model the views draw and the widget state they may write,
     /// for one frame (only what was derived for the selected activity at this
     /// revision).
-    fn model_and_widgets(&mut self) -> (Model<'_>, Widgets<'_>) {
+    pub(crate) fn model_and_widgets(&mut self) -> (Model<'_>, Widgets<'_>) {
         let (selected, revision) = (self.ui.nav.selected, self.revision);
         let derived = &self.derived;
         let m = Model {
@@ -186,6 +209,12 @@ impl SolscopeApp {
             valid: selected.and_then(|a| derived.valid(a, revision)),
             nav: &self.ui.nav,
             messages: &self.ui.messages,
+            exec: exec_model(
+                &self.execution,
+                &self.actuals,
+                &self.ui.nav,
+                self.exec_key(),
+            ),
         };
         let w = Widgets {
             text: &mut self.ui.text,
@@ -194,17 +223,126 @@ impl SolscopeApp {
         (m, w)
     }
 
+    /// The execution of the current plan revision with the current actuals, once
+    /// derived (and when it could be run).
+    pub fn execution_run(&self) -> Option<&ExecutionRun> {
+        self.execution
+            .run(self.exec_key())
+            .and_then(|r| r.as_ref().ok())
+    }
+
+    /// The looked-at cycle's scheduler run, once derived.
+    pub fn cycle_run(&self) -> Option<&CycleRun> {
+        let (k, _) = self.cycle_and_cycles()?;
+        self.execution.cycle(self.exec_key(), k)
+    }
+
+    /// The plan revision and actuals the execution is derived for.
+    fn exec_key(&self) -> ExecKey {
+        ExecKey {
+            revision: self.revision,
+            actuals: self.actuals_rev,
+        }
+    }
+
+    /// Derives the execution, the looked-at cycle's run and the profiles of its
+    /// step shown (each once per key; on workers with `background`).
+    fn derive_execution(&mut self) {
+        let key = self.exec_key();
+        self.execution
+            .request(&self.doc.plan, &self.actuals, key, self.background);
+        let cycle = match self.execution.run(key) {
+            Some(Ok(run)) => run.cycle_index(self.ui.nav.cycle),
+            _ => return,
+        };
+        self.execution.request_cycle(key, cycle, self.background);
+        if let Some(n) = self.execution.cycle(key, cycle).map(|c| c.steps()) {
+            self.execution
+                .derive_view(key, cycle, self.ui.nav.cycle_step.min(n));
+        }
+    }
+
+    /// The step shown and the number of steps of the run the step slider moves
+    /// through: the plan's schedule, or in execution mode the looked-at cycle's
+    /// run (no steps while it is derived).
+    fn step_and_steps(&self) -> (usize, usize) {
+        match self.ui.nav.mode {
+            Mode::Schedule => (self.ui.nav.step, self.analysis.steps()),
+            Mode::Execution => {
+                let m = exec_model(
+                    &self.execution,
+                    &self.actuals,
+                    &self.ui.nav,
+                    self.exec_key(),
+                );
+                (m.step, m.cycle_run.map_or(0, |c| c.steps()))
+            }
+        }
+    }
+
+    /// The command that shows step `k` of the run the step slider moves through.
+    fn set_step_command(&self, k: usize) -> Command {
+        match self.ui.nav.mode {
+            Mode::Schedule => Command::SetStep(k),
+            Mode::Execution => Command::SetCycleStep(k),
+        }
+    }
+
+    /// The cycle looked at (clamped to the current execution's) and how many
+    /// cycles it has, once the execution is derived.
+    fn cycle_and_cycles(&self) -> Option<(usize, usize)> {
+        match self.execution.run(self.exec_key()) {
+            Some(Ok(run)) => Some((
+                run.cycle_index(self.ui.nav.cycle),
+                run.execution.cycles.len(),
+            )),
+            _ => None,
+        }
+    }
+
+    /// Uses `source` for the actual durations if it fits the plan; otherwise
+    /// nothing changes and `what` is shown with the path-named error.
+    fn use_actuals(&mut self, source: ActualsSource, what: &str) {
+        match source.actuals(&self.doc.plan) {
+            Ok(_) => {
+                self.actuals = source;
+                self.actuals_rev += 1;
+                self.ui.messages.error = None;
+            }
+            Err(e) => self.ui.messages.error = Some(format!("{what}: {e}")),
+        }
+    }
+
     /// Carries out one command.
     pub fn apply(&mut self, cmd: Command) {
-        let steps = self.analysis.steps();
         match cmd {
             Command::Ui(cmd) => self.run(cmd),
             Command::SetStep(k) => self.set_step(k),
             Command::Play(on) => {
-                if on && self.ui.nav.step >= steps {
-                    self.set_step(0);
+                let (k, n) = self.step_and_steps();
+                if on && k >= n {
+                    let first = self.set_step_command(0);
+                    self.apply(first);
                 }
                 self.ui.nav.playing = on;
+            }
+            Command::SetCycle(k) => {
+                self.ui.nav.cycle = match self.cycle_and_cycles() {
+                    Some((_, n)) => k.min(n.saturating_sub(1)),
+                    None => k,
+                };
+                self.ui.nav.cycle_step = LAST_STEP;
+            }
+            Command::SetCycleStep(k) => self.ui.nav.cycle_step = k,
+            Command::OpenActuals(path) => {
+                let what = format!("Could not open actuals {}", path.display());
+                match solscope_engine::read_plan_text(&path, solscope_engine::MAX_PLAN_BYTES) {
+                    Ok(text) => self.use_actuals(ActualsSource::File { path, text }, &what),
+                    Err(e) => self.ui.messages.error = Some(format!("{what}: {e}")),
+                }
+            }
+            Command::SampleActuals(seed) => {
+                self.use_actuals(ActualsSource::Sampled(seed), "Could not sample actuals");
             }
             Command::Select(a) => self.ui.nav.selected = a,
             Command::GoToFailureStep(a) => {
@@ -258,7 +396,7 @@ impl SolscopeApp {
 
     /// Carries out a command given by name.
     fn run(&mut self, cmd: UiCommand) {
-        let (k, steps) = (self.ui.nav.step, self.analysis.steps());
+        let (k, steps) = self.step_and_steps();
         match cmd {
             UiCommand::Open => self.dialog = Some(Dialog::Open),
             UiCommand::Save => match self.doc.path.clone() {
@@ -287,18 +425,34 @@ impl SolscopeApp {
                     self.reanalyse(before, "Redo");
                 }
             }
-            UiCommand::FirstStep => self.set_step(0),
+            UiCommand::FirstStep => self.apply(self.set_step_command(0)),
             UiCommand::PreviousStep => {
                 if k > 0 {
-                    self.set_step(k - 1);
+                    self.apply(self.set_step_command(k - 1));
                 }
             }
             UiCommand::NextStep => {
                 if k < steps {
-                    self.set_step(k + 1);
+                    self.apply(self.set_step_command(k + 1));
                 }
             }
-            UiCommand::LastStep => self.set_step(steps),
+            UiCommand::LastStep => self.apply(self.set_step_command(steps)),
+            UiCommand::ShowSchedule => self.ui.nav.mode = Mode::Schedule,
+            UiCommand::ShowExecution => self.ui.nav.mode = Mode::Execution,
+            UiCommand::OpenActuals => self.dialog = Some(Dialog::OpenActuals),
+            UiCommand::NominalActuals => self.use_actuals(ActualsSource::Nominal, "Nominal"),
+            UiCommand::PreviousCycle | UiCommand::NextCycle => {
+                if let Some((c, n)) = self.cycle_and_cycles() {
+                    let next = if cmd == UiCommand::PreviousCycle {
+                        c.saturating_sub(1)
+                    } else {
+                        (c + 1).min(n.saturating_sub(1))
+                    };
+                    if next != c {
+                        self.apply(Command::SetCycle(next));
+                    }
+                }
+            }
         }
     }
 
@@ -407,6 +561,8 @@ impl SolscopeApp {
             Ok(mut fresh) => {
                 fresh.persisted = std::mem::take(&mut self.persisted);
                 fresh.background = self.background;
+                // The mode stays; the actuals were for the other plan.
+                fresh.ui.nav.mode = self.ui.nav.mode;
                 fresh.persisted.remember(path);
                 *self = fresh;
             }
@@ -440,6 +596,32 @@ impl SolscopeApp {
         if let Err(e) = write_json(&doc, path) {
             self.ui.messages.error = Some(format!("Could not write {}: {e}", path.display()));
         }
+    }
+}
+
+/// What execution mode draws, as far as it is derived at `key` (the current plan
+/// revision and actuals).
+fn exec_model<'a>(
+    execution: &'a ExecutionCache,
+    source: &'a ActualsSource,
+    nav: &Navigation,
+    key: ExecKey,
+) -> ExecModel<'a> {
+    let run = execution.run(key);
+    let cycle = match run {
+        Some(Ok(r)) => r.cycle_index(nav.cycle),
+        _ => nav.cycle,
+    };
+    let cycle_run = execution.cycle(key, cycle);
+    let step = cycle_run.map_or(0, |c| nav.cycle_step.min(c.steps()));
+    ExecModel {
+        source,
+        actuals_rev: key.actuals,
+        run,
+        cycle,
+        cycle_run,
+        step,
+        view: execution.view(key, cycle, step),
     }
 }
 

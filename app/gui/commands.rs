@@ -42,19 +42,40 @@ pub enum UiCommand {
     NextStep,
     /// Show the last step.
     LastStep,
+    /// Schedule mode: the scheduler's run over the plan.
+    ShowSchedule,
+    /// Execution mode: the plan executed cycle by cycle.
+    ShowExecution,
+    /// Choose an actuals file (`solscope.actuals/1`) to execute with.
+    OpenActuals,
+    /// Execute with every activity running its `duration`.
+    NominalActuals,
+    /// Show the previous scheduling cycle (execution mode).
+    PreviousCycle,
+    /// Show the next scheduling cycle (execution mode).
+    NextCycle,
 }
 
 impl UiCommand {
     /// Commands with a modifier shortcut, in the order the keyboard handling checks
     /// them (Redo before Undo: Cmd+Shift+Z also matches Cmd+Z logically).
-    pub const WITH_MODIFIERS: [Self; 4] = [Self::Redo, Self::Undo, Self::Save, Self::Open];
+    pub const WITH_MODIFIERS: [Self; 6] = [
+        Self::Redo,
+        Self::Undo,
+        Self::Save,
+        Self::Open,
+        Self::ShowSchedule,
+        Self::ShowExecution,
+    ];
 
     /// Commands on plain keys (stepping), taken only when no text field has focus.
-    pub const PLAIN_KEYS: [Self; 4] = [
+    pub const PLAIN_KEYS: [Self; 6] = [
         Self::PreviousStep,
         Self::NextStep,
         Self::FirstStep,
         Self::LastStep,
+        Self::PreviousCycle,
+        Self::NextCycle,
     ];
 
     /// The text of its button or menu item (also its accessibility label).
@@ -72,6 +93,12 @@ impl UiCommand {
             Self::PreviousStep => "< Previous",
             Self::NextStep => "Next >",
             Self::LastStep => "Last >|",
+            Self::ShowSchedule => "Schedule",
+            Self::ShowExecution => "Execution",
+            Self::OpenActuals => "Open actuals…",
+            Self::NominalActuals => "Nominal",
+            Self::PreviousCycle => "< Cycle",
+            Self::NextCycle => "Cycle >",
         }
     }
 
@@ -94,7 +121,16 @@ impl UiCommand {
             Self::PreviousStep => plain(Key::ArrowLeft),
             Self::NextStep => plain(Key::ArrowRight),
             Self::LastStep => plain(Key::End),
-            Self::SaveAs | Self::ExportSchedule | Self::ExportPng | Self::Quit => None,
+            Self::ShowSchedule => cmd(Key::Num1),
+            Self::ShowExecution => cmd(Key::Num2),
+            Self::PreviousCycle => plain(Key::PageUp),
+            Self::NextCycle => plain(Key::PageDown),
+            Self::SaveAs
+            | Self::ExportSchedule
+            | Self::ExportPng
+            | Self::Quit
+            | Self::OpenActuals
+            | Self::NominalActuals => None,
         }
     }
 }
@@ -142,6 +178,15 @@ pub enum Command {
     SetFilter(String),
     /// Show an error message (bad input in a view, a failed write in the host).
     ShowError(String),
+    /// Execution mode: look at scheduling cycle k (its last step).
+    SetCycle(usize),
+    /// Execution mode: show the state after this step of the cycle's run.
+    SetCycleStep(usize),
+    /// Execute with the actual durations of this file (the host sends it once a
+    /// file is chosen); an invalid file changes nothing and shows its error.
+    OpenActuals(PathBuf),
+    /// Execute with durations drawn from the duration models with this seed.
+    SampleActuals(u64),
     /// Hide the outcome banner.
     DismissBanner,
     /// Hide the error message.

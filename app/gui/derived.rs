@@ -1,13 +1,16 @@
 //! Values derived from the plan for the activity looked at: its explanation, valid
 //! intervals and verified suggestions, each kept with the activity and plan
 //! revision it was derived for, and the worker thread that verifies suggestions.
-//! Also the step profiles ([`step_view`]).
+//! Also the step profiles ([`step_view`]), and the execution of the plan with
+//! the scheduler runs of its cycles ([`ExecutionCache`], with its worker).
 
+use std::collections::BTreeMap;
 use std::sync::mpsc::{self, Receiver, TryRecvError};
 
 use solscope_engine::{CategoryIntervals, Explanation, Plan, Suggestion};
 
 use super::document::Analysis;
+use super::execution::{ActualsSource, CycleRun, ExecutionRun};
 use super::state::StepView;
 
 /// A value derived for one activity at one plan revision (its explanation, valid
@@ -190,21 +193,307 @@ impl DerivedCache {
 
 /// The profiles as of step `k`, as plot points.
 pub fn step_view(analysis: &Analysis, k: usize) -> StepView {
-    let profiles = analysis.schedule.profiles_after(k);
-    let points = |series: &[(i64, f64)]| -> Vec<[f64; 2]> {
-        series.iter().map(|&(t, v)| [t as f64, v]).collect()
-    };
-    // Peak power holds from each breakpoint to the next (the last one is the
-    // horizon end): two points per segment draw it as steps.
-    let peak = profiles
-        .peak_power
-        .windows(2)
-        .flat_map(|w| [[w[0].0 as f64, w[0].1], [w[1].0 as f64, w[0].1]])
-        .collect();
-    StepView {
-        step: k,
-        soc: points(&profiles.soc),
-        peak,
-        data: points(&profiles.data_volume),
+    StepView::from_profiles(k, &analysis.schedule.profiles_after(k))
+}
+
+/// What an execution is derived for: the plan revision and the actuals choice
+/// (bumped whenever the source of the actual durations changes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ExecKey {
+    /// The plan revision.
+    pub revision: u64,
+    /// The actuals revision.
+    pub actuals: u64,
+}
+
+/// What an execution worker sends back: the execution and the first cycle's run.
+type ExecResult = Result<(ExecutionRun, Option<CycleRun>), String>;
+
+/// At most this many cycles' scheduler runs are kept (each is one schedule of
+/// the plan's remaining activities).
+const KEPT_CYCLE_RUNS: usize = 16;
+
+/// A job on a worker thread: what it is for, and where its result comes.
+#[derive(Debug)]
+struct Job<K, T> {
+    key: K,
+    rx: Receiver<T>,
+}
+
+impl<K: Copy, T> Job<K, T> {
+    /// Runs `work` on a new thread.
+    fn spawn(key: K, work: impl FnOnce() -> T + Send + 'static) -> Self
+    where
+        T: Send + 'static,
+    {
+        let (tx, rx) = mpsc::channel();
+        std::thread::spawn(move || {
+            // A send fails only when the app let go of this job (another plan was
+            // opened): nobody waits for the result, which is dropped on purpose.
+            drop(tx.send(work()));
+        });
+        Self { key, rx }
+    }
+
+    /// The result if it is in: `Some(Ok)`, or `Some(Err(()))` when the worker
+    /// stopped without one (it panicked); `None` while it runs.
+    fn poll(&self) -> Option<Result<T, ()>> {
+        match self.rx.try_recv() {
+            Ok(v) => Some(Ok(v)),
+            Err(TryRecvError::Empty) => None,
+            Err(TryRecvError::Disconnected) => Some(Err(())),
+        }
+    }
+}
+
+/// The execution of the plan at one [`ExecKey`], the scheduler runs of the
+/// cycles looked at, and the profiles of the step shown inside one of them.
+/// Each value is read back only for the key it was derived for. With
+/// `background` the execution and the cycle runs are computed on a worker
+/// thread (one of each at a time; a result for an older key is dropped), so a
+/// large plan never stalls a frame.
+#[derive(Debug, Default)]
+pub struct ExecutionCache {
+    run: Option<(ExecKey, Result<ExecutionRun, String>)>,
+    pending: Option<Job<ExecKey, ExecResult>>,
+    /// Cycle runs of the execution in `run`, by cycle.
+    cycles: BTreeMap<usize, CycleRun>,
+    pending_cycle: Option<Job<(ExecKey, usize), Option<CycleRun>>>,
+    /// The profiles after one step of one cycle's run.
+    view: Option<((ExecKey, usize, usize), StepView)>,
+}
+
+impl ExecutionCache {
+    /// The execution at `key`, or why there is none, once derived.
+    pub fn run(&self, key: ExecKey) -> Option<&Result<ExecutionRun, String>> {
+        self.run.as_ref().filter(|(k, _)| *k == key).map(|(_, r)| r)
+    }
+
+    /// Starts deriving the execution of `plan` with `source` at `key` unless it
+    /// is known or a worker is busy.
+    pub fn request(&mut self, plan: &Plan, source: &ActualsSource, key: ExecKey, background: bool) {
+        if self.run(key).is_some() || self.pending.is_some() {
+            return;
+        }
+        if background {
+            let (plan, source) = (plan.clone(), source.clone());
+            self.pending = Some(Job::spawn(key, move || ExecutionRun::of(&plan, &source)));
+        } else {
+            self.store(key, ExecutionRun::of(plan, source));
+        }
+    }
+
+    fn store(&mut self, key: ExecKey, result: ExecResult) {
+        self.cycles.clear();
+        self.view = None;
+        let run = result.map(|(run, first)| {
+            if let Some(first) = first {
+                self.cycles.insert(0, first);
+            }
+            run
+        });
+        self.run = Some((key, run));
+    }
+
+    /// Takes finished workers' results: kept when they are for `key`, dropped
+    /// otherwise. A worker that stopped without a result is reported.
+    pub fn reap(&mut self, key: ExecKey) -> Result<(), String> {
+        let mut lost = None;
+        if let Some(job) = &self.pending {
+            if let Some(result) = job.poll() {
+                let current = job.key == key;
+                self.pending = None;
+                match result {
+                    Ok(r) if current => self.store(key, r),
+                    Ok(_) => {}
+                    Err(()) => {
+                        if current {
+                            let e =
+                                "Executing the plan failed: the worker stopped without a result";
+                            self.store(key, Err(e.into()));
+                            lost = Some(e.to_string());
+                        }
+                    }
+                }
+            }
+        }
+        if let Some(job) = &self.pending_cycle {
+            if let Some(result) = job.poll() {
+                let (job_key, k) = job.key;
+                self.pending_cycle = None;
+                let current = job_key == key && self.run(key).is_some();
+                match result {
+                    Ok(Some(run)) if current => self.keep_cycle(k, run),
+                    Ok(_) => {}
+                    Err(()) => {
+                        if current {
+                            let e = format!(
+                                "Scheduling cycle {k} again failed: the worker stopped without a result"
+                            );
+                            self.keep_cycle(
+                                k,
+                                CycleRun {
+                                    index: k,
+                                    schedule: Err(e.clone()),
+                                    activity_of: Vec::new(),
+                                },
+                            );
+                            lost = Some(e);
+                        }
+                    }
+                }
+            }
+        }
+        lost.map_or(Ok(()), Err)
+    }
+
+    fn keep_cycle(&mut self, k: usize, run: CycleRun) {
+        if self.cycles.len() >= KEPT_CYCLE_RUNS {
+            // Keep the first cycle (the prediction): forget the one furthest away.
+            let far = self
+                .cycles
+                .keys()
+                .copied()
+                .filter(|&c| c != 0)
+                .max_by_key(|&c| c.abs_diff(k));
+            if let Some(far) = far {
+                self.cycles.remove(&far);
+            }
+        }
+        self.cycles.insert(k, run);
+    }
+
+    /// Starts repeating cycle `k`'s scheduler run of the execution at `key`
+    /// unless it is known or a worker is busy.
+    pub fn request_cycle(&mut self, key: ExecKey, k: usize, background: bool) {
+        if self.cycle(key, k).is_some() || self.pending_cycle.is_some() {
+            return;
+        }
+        let Some(Ok(run)) = self.run(key) else {
+            return;
+        };
+        let Some(cycle) = run.execution.cycles.get(k) else {
+            return;
+        };
+        if background {
+            let cycle = cycle.clone();
+            self.pending_cycle = Some(Job::spawn((key, k), move || CycleRun::of(k, &cycle)));
+        } else if let Some(run) = CycleRun::of(k, cycle) {
+            self.keep_cycle(k, run);
+        }
+    }
+
+    /// Cycle `k`'s scheduler run of the execution at `key`, once derived.
+    pub fn cycle(&self, key: ExecKey, k: usize) -> Option<&CycleRun> {
+        self.run(key)?;
+        self.cycles.get(&k)
+    }
+
+    /// Derives the profiles after step `step` of cycle `k`'s run (at `key`), if
+    /// that run is known.
+    pub fn derive_view(&mut self, key: ExecKey, k: usize, step: usize) {
+        if self
+            .view
+            .as_ref()
+            .is_some_and(|(v, _)| *v == (key, k, step))
+        {
+            return;
+        }
+        let Some(Ok(schedule)) = self.cycle(key, k).map(|c| c.schedule.as_ref()) else {
+            return;
+        };
+        let view = StepView::from_profiles(step, &schedule.profiles_after(step));
+        self.view = Some(((key, k, step), view));
+    }
+
+    /// The profiles after step `step` of cycle `k`'s run, if derived.
+    pub fn view(&self, key: ExecKey, k: usize, step: usize) -> Option<&StepView> {
+        self.view
+            .as_ref()
+            .filter(|(v, _)| *v == (key, k, step))
+            .map(|(_, view)| view)
+    }
+
+    /// Whether a worker is running (the frame loop polls until it is done).
+    pub fn busy(&self) -> bool {
+        self.pending.is_some() || self.pending_cycle.is_some()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plan() -> Plan {
+        let text = include_str!("../../assets/execution-examples/uncertain-drive.json");
+        solscope_engine::load_plan(text).expect("example plan").plan
+    }
+
+    /// Reaps `cache` at `key` until its execution worker is done.
+    fn wait(cache: &mut ExecutionCache, key: ExecKey) {
+        for _ in 0..2000 {
+            cache.reap(key).expect("worker result");
+            if cache.pending.is_none() {
+                return;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        panic!("the worker never finished");
+    }
+
+    #[test]
+    fn an_execution_for_an_older_key_is_dropped() {
+        let plan = plan();
+        let mut cache = ExecutionCache::default();
+        let old = ExecKey {
+            revision: 0,
+            actuals: 0,
+        };
+        let new = ExecKey {
+            revision: 0,
+            actuals: 1,
+        };
+        cache.request(&plan, &ActualsSource::Nominal, old, true);
+        assert!(cache.busy());
+        // The actuals changed while it ran: its result is not kept.
+        wait(&mut cache, new);
+        assert!(cache.run(old).is_none() && cache.run(new).is_none());
+        cache.request(&plan, &ActualsSource::Sampled(7), new, true);
+        wait(&mut cache, new);
+        let run = cache.run(new).expect("derived").as_ref().expect("executed");
+        assert_eq!(run.actuals, solscope_engine::sample_actuals(&plan, 7));
+        // The first cycle's run came with it; another cycle is derived on request.
+        assert!(cache.cycle(new, 0).is_some());
+        assert!(cache.cycle(new, 3).is_none());
+        cache.request_cycle(new, 3, false);
+        let three = cache.cycle(new, 3).expect("cycle 3");
+        assert_eq!(three.index, 3);
+        assert!(three.schedule.is_ok());
+        cache.derive_view(new, 3, 1);
+        assert_eq!(cache.view(new, 3, 1).map(|v| v.step), Some(1));
+        assert!(cache.view(new, 3, 2).is_none());
+        assert!(cache.cycle(old, 3).is_none(), "read back only for its key");
+    }
+
+    #[test]
+    fn at_most_a_bounded_number_of_cycle_runs_are_kept() {
+        let plan = plan();
+        let mut cache = ExecutionCache::default();
+        let key = ExecKey {
+            revision: 0,
+            actuals: 0,
+        };
+        cache.request(&plan, &ActualsSource::Nominal, key, false);
+        let n = match cache.run(key) {
+            Some(Ok(run)) => run.execution.cycles.len(),
+            _ => panic!("executed"),
+        };
+        assert!(n > KEPT_CYCLE_RUNS);
+        for k in 0..n {
+            cache.request_cycle(key, k, false);
+            assert!(cache.cycle(key, k).is_some());
+        }
+        assert!(cache.cycles.len() <= KEPT_CYCLE_RUNS);
+        assert!(cache.cycle(key, 0).is_some(), "the prediction is kept");
     }
 }

@@ -45,6 +45,14 @@ impl SolscopeHost {
                     self.app.apply(Command::Open(p));
                 }
             }
+            Dialog::OpenActuals => {
+                if let Some(p) = rfd::FileDialog::new()
+                    .add_filter("solscope actuals", &["json"])
+                    .pick_file()
+                {
+                    self.app.apply(Command::OpenActuals(p));
+                }
+            }
             Dialog::SaveAs => {
                 if let Some(p) = plan_dialog().save_file() {
                     self.app.apply(Command::SaveTo(with_extension(p, "json")));

@@ -9,13 +9,14 @@
 //! saved by the eframe host ([`SolscopeHost`]).
 //!
 //! Modules, lowest first (each uses only those before it):
-//! `time_axis`, `theme` → `document` → `state`, `commands` → `derived` →
-//! `views` → `app` → `host`.
+//! `time_axis`, `theme` → `document` → `state`, `commands` → `execution` →
+//! `derived` → `views` → `app` → `host`.
 
 pub mod app;
 pub mod commands;
 mod derived;
 pub mod document;
+pub mod execution;
 pub mod host;
 pub mod state;
 pub mod theme;
@@ -25,7 +26,8 @@ mod views;
 pub use app::{DEFAULT_PLAN, Dialog, SolscopeApp};
 pub use commands::{Command, UiCommand};
 pub use document::{Analysis, Document, OutcomeDiff};
+pub use execution::{ActualsSource, CycleRun, ExecutionRun};
 pub use host::{SolscopeHost, run, save_color_image};
-pub use state::{Pending, Persisted, StepView, UiState};
+pub use state::{LAST_STEP, Mode, Pending, Persisted, StepView, UiState};
 pub use theme::Theme;
 pub use time_axis::TimeAxis;

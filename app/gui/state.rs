@@ -5,6 +5,8 @@
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
+use solscope_engine::Profiles;
+
 use super::document::OutcomeDiff;
 use super::time_axis::TimeAxis;
 
@@ -52,6 +54,38 @@ pub struct StepView {
     pub data: Vec<[f64; 2]>,
 }
 
+impl StepView {
+    /// Plot points of `profiles` (the profiles as of `step`).
+    pub fn from_profiles(step: usize, profiles: &Profiles) -> Self {
+        let points = |series: &[(i64, f64)]| -> Vec<[f64; 2]> {
+            series.iter().map(|&(t, v)| [t as f64, v]).collect()
+        };
+        // Peak power holds from each breakpoint to the next (the last one is the
+        // horizon end): two points per segment draw it as steps.
+        let peak = profiles
+            .peak_power
+            .windows(2)
+            .flat_map(|w| [[w[0].0 as f64, w[0].1], [w[1].0 as f64, w[0].1]])
+            .collect();
+        Self {
+            step,
+            soc: points(&profiles.soc),
+            peak,
+            data: points(&profiles.data_volume),
+        }
+    }
+}
+
+/// What the window shows: the plan's schedule, or its execution.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Mode {
+    /// The scheduler's run over the plan, step by step.
+    #[default]
+    Schedule,
+    /// The plan executed cycle by cycle with actual durations.
+    Execution,
+}
+
 /// Editor text buffers: field key (`target/key`) → (text, error).
 pub type EditorBuffers = BTreeMap<String, (String, Option<String>)>;
 
@@ -79,6 +113,9 @@ impl UiState {
                 probe: None,
                 since_full: false,
                 filter: String::new(),
+                mode: Mode::Schedule,
+                cycle: 0,
+                cycle_step: LAST_STEP,
             },
             messages: Messages::default(),
             text: TextBuffers::default(),
@@ -113,7 +150,19 @@ pub struct Navigation {
     pub since_full: bool,
     /// Activity filter text.
     pub filter: String,
+    /// Schedule or execution.
+    pub mode: Mode,
+    /// Execution mode: the scheduling cycle looked at (clamped to the cycles of
+    /// the current execution when read).
+    pub cycle: usize,
+    /// Execution mode: the step shown inside that cycle's scheduler run (clamped
+    /// to its steps when read; [`LAST_STEP`] shows its last).
+    pub cycle_step: usize,
 }
+
+/// The value of [`Navigation::cycle_step`] that shows a cycle's last step
+/// whatever its number of steps.
+pub const LAST_STEP: usize = usize::MAX;
 
 /// The messages shown (dismissed through commands).
 #[derive(Clone, Debug, Default)]
@@ -127,7 +176,7 @@ pub struct Messages {
 }
 
 /// The text buffers: the only UI state the views write.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct TextBuffers {
     /// Range text fields (start, end).
     pub range_text: [String; 2],
@@ -135,4 +184,17 @@ pub struct TextBuffers {
     pub editor: EditorBuffers,
     /// The activity and plan revision the editor buffers belong to.
     pub editor_for: Option<(Option<usize>, u64)>,
+    /// The seed field of "Sample" (execution mode).
+    pub seed_text: String,
+}
+
+impl Default for TextBuffers {
+    fn default() -> Self {
+        Self {
+            range_text: Default::default(),
+            editor: EditorBuffers::new(),
+            editor_for: None,
+            seed_text: "1".into(),
+        }
+    }
 }

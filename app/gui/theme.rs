@@ -41,6 +41,15 @@ pub struct Theme {
     pub banner: Color32,
     /// Error text.
     pub error: Color32,
+    /// Execution: the first cycle's prediction (bars under the executed ones, the
+    /// predicted profiles).
+    pub predicted: Color32,
+    /// Execution: activities aborted at `start + duration`.
+    pub aborted: Color32,
+    /// Execution: activities that never started (drawn over their prediction).
+    pub not_run: Color32,
+    /// Execution: the scheduling cycle markers.
+    pub cycle: Color32,
 }
 
 /// Height of one Gantt lane (points).
@@ -83,6 +92,17 @@ pub const FILTER_WIDTH: f32 = 140.0;
 pub const RANGE_FIELD_WIDTH: f32 = 80.0;
 /// Inner margin of the banner and error frames.
 pub const MESSAGE_MARGIN: f32 = 4.0;
+/// Height of the thin predicted bar under an executed one (execution mode).
+pub const BASELINE_HEIGHT: f32 = 5.0;
+/// Smallest width of a marker on the Gantt (cycles, violations), so it can be
+/// seen and hovered at any zoom.
+pub const MARKER_WIDTH: f32 = 3.0;
+/// Width of the line at the looked-at cycle's time (Gantt and plots).
+pub const CYCLE_LINE_STROKE: f32 = 1.5;
+/// Width of the seed field.
+pub const SEED_FIELD_WIDTH: f32 = 60.0;
+/// Width of the cycle slider.
+pub const CYCLE_SLIDER_WIDTH: f32 = 240.0;
 
 impl Theme {
     /// The palette for dark or light mode.
@@ -107,6 +127,10 @@ impl Theme {
                 valid: Color32::from_rgb(90, 170, 110),
                 banner: Color32::from_rgb(40, 60, 90),
                 error: Color32::from_rgb(255, 110, 100),
+                predicted: Color32::from_rgb(150, 165, 190),
+                aborted: Color32::from_rgb(200, 90, 200),
+                not_run: Color32::from_rgba_unmultiplied(220, 80, 70, 90),
+                cycle: Color32::from_gray(130),
             }
         } else {
             Self {
@@ -128,6 +152,10 @@ impl Theme {
                 valid: Color32::from_rgb(60, 150, 80),
                 banner: Color32::from_rgb(220, 230, 245),
                 error: Color32::from_rgb(190, 30, 20),
+                predicted: Color32::from_rgb(110, 125, 155),
+                aborted: Color32::from_rgb(170, 50, 170),
+                not_run: Color32::from_rgba_unmultiplied(200, 50, 40, 80),
+                cycle: Color32::from_gray(120),
             }
         }
     }

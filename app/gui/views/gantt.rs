@@ -2,15 +2,25 @@
 //! passes, scheduled activities packed into lanes, failed ones, and pending ones
 //! drawn as their allowed windows. Bars narrower than a pixel are merged, bars
 //! outside the view culled, so 10k activities stay fluid.
+//!
+//! In execution mode: the cycles and broken limits as markers, the executed
+//! awake periods, each activity's executed bar over a thin bar of where the
+//! first cycle predicted it, and the looked-at cycle's run as of the step shown.
 
-use eframe::egui::{self, Align2, Color32, FontId, Pos2, Rect, Sense, Stroke, StrokeKind};
-use solscope_engine::GeneratedKind;
+use eframe::egui::{
+    self, Align2, Color32, FontId, Pos2, Rect, RichText, Sense, Stroke, StrokeKind,
+};
+use solscope_engine::{GeneratedKind, Outcome, RunOutcome, Schedule};
 
+use super::execution::{trigger_text, violation_text};
 use super::{Model, Status, ViewCache};
 use crate::gui::commands::Command;
+use crate::gui::execution::{CycleRun, ExecutionRun};
+use crate::gui::state::Mode;
 use crate::gui::theme::{
-    BAR_FONT_SIZE, BAR_ROUNDING, CURRENT_STROKE, LABEL_MIN_WIDTH, LABEL_WIDTH, LANE_GAP,
-    LANE_HEIGHT, PROBE_LINE_STROKE, SELECTION_STROKE,
+    BAR_FONT_SIZE, BAR_ROUNDING, BASELINE_HEIGHT, CURRENT_STROKE, CYCLE_LINE_STROKE,
+    LABEL_MIN_WIDTH, LABEL_WIDTH, LANE_GAP, LANE_HEIGHT, MARKER_WIDTH, PROBE_LINE_STROKE,
+    SELECTION_STROKE,
 };
 
 /// One bar.
@@ -21,6 +31,27 @@ struct Bar {
     color: Color32,
     activity: Option<usize>,
     label: String,
+    /// Hover text instead of `label start–end`.
+    tip: Option<String>,
+    /// Clicking it looks at this scheduling cycle.
+    cycle: Option<usize>,
+    /// Drawn at least `MARKER_WIDTH` wide, never merged or hidden.
+    marker: bool,
+}
+
+impl Bar {
+    fn new(start: f64, end: f64, color: Color32, activity: Option<usize>, label: String) -> Self {
+        Self {
+            start,
+            end,
+            color,
+            activity,
+            label,
+            tip: None,
+            cycle: None,
+            marker: false,
+        }
+    }
 }
 
 /// One row: a label and its bars.
@@ -28,25 +59,46 @@ struct Bar {
 struct Row {
     label: String,
     bars: Vec<Bar>,
+    /// Its height (points).
+    height: f32,
+    /// Its bars follow the step slider (the current step's activity is outlined).
+    steps: bool,
 }
 
-/// Packs bars into as few lanes as possible (by start; first lane that is free).
-fn pack(mut bars: Vec<Bar>, label: &str, max_lanes: usize) -> Vec<Row> {
-    bars.sort_by(|a, b| a.start.total_cmp(&b.start).then(a.end.total_cmp(&b.end)));
-    let mut lanes: Vec<(f64, Vec<Bar>)> = Vec::new();
-    for bar in bars {
+impl Row {
+    fn new(label: String, bars: Vec<Bar>) -> Self {
+        Self {
+            label,
+            bars,
+            height: LANE_HEIGHT,
+            steps: true,
+        }
+    }
+}
+
+/// Packs items spanning `span` into as few lanes as possible (by start; first
+/// lane that is free), at most `max_lanes` (the last takes the overflow); at
+/// least one lane.
+fn lanes<T>(mut items: Vec<T>, span: impl Fn(&T) -> (f64, f64), max_lanes: usize) -> Vec<Vec<T>> {
+    items.sort_by(|a, b| {
+        let (a, b) = (span(a), span(b));
+        a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1))
+    });
+    let mut lanes: Vec<(f64, Vec<T>)> = Vec::new();
+    for item in items {
+        let (start, end) = span(&item);
         let n = lanes.len();
-        let free = lanes.iter().position(|l| l.0 <= bar.start);
+        let free = lanes.iter().position(|l| l.0 <= start);
         match free {
             Some(i) => {
-                lanes[i].0 = bar.end;
-                lanes[i].1.push(bar);
+                lanes[i].0 = end;
+                lanes[i].1.push(item);
             }
-            None if n < max_lanes => lanes.push((bar.end, vec![bar])),
+            None if n < max_lanes => lanes.push((end, vec![item])),
             None => {
                 if let Some(last) = lanes.last_mut() {
-                    last.0 = last.0.max(bar.end);
-                    last.1.push(bar);
+                    last.0 = last.0.max(end);
+                    last.1.push(item);
                 }
             }
         }
@@ -54,17 +106,24 @@ fn pack(mut bars: Vec<Bar>, label: &str, max_lanes: usize) -> Vec<Row> {
     if lanes.is_empty() {
         lanes.push((0.0, Vec::new()));
     }
-    lanes
+    lanes.into_iter().map(|(_, items)| items).collect()
+}
+
+/// The label of lane `i` of a group: the group's on the first.
+fn lane_label(i: usize, label: &str) -> String {
+    if i == 0 {
+        label.to_string()
+    } else {
+        String::new()
+    }
+}
+
+/// Packs bars into as few lanes as possible (by start; first lane that is free).
+fn pack(bars: Vec<Bar>, label: &str, max_lanes: usize) -> Vec<Row> {
+    lanes(bars, |b| (b.start, b.end), max_lanes)
         .into_iter()
         .enumerate()
-        .map(|(i, (_, bars))| Row {
-            label: if i == 0 {
-                label.to_string()
-            } else {
-                String::new()
-            },
-            bars,
-        })
+        .map(|(i, bars)| Row::new(lane_label(i, label), bars))
         .collect()
 }
 
@@ -78,27 +137,27 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
     let mut heat: Vec<Vec<Bar>> = vec![Vec::new(); problem.zone_names.len()];
     for g in m.analysis.schedule.generated_after(k) {
         match g.kind {
-            GeneratedKind::Awake => awake.push(Bar {
-                start: g.start as f64,
-                end: g.end as f64,
-                color: t.awake,
-                activity: None,
-                label: "awake".into(),
-            }),
-            GeneratedKind::Preheat { zone, activity } => heat[zone].push(Bar {
-                start: g.start as f64,
-                end: g.end as f64,
-                color: t.preheat,
-                activity: Some(activity),
-                label: format!("preheat {}", plan.activities[activity].id),
-            }),
-            GeneratedKind::Maintenance { zone, activity } => heat[zone].push(Bar {
-                start: g.start as f64,
-                end: g.end as f64,
-                color: t.maintenance,
-                activity: Some(activity),
-                label: format!("maint. {}", plan.activities[activity].id),
-            }),
+            GeneratedKind::Awake => awake.push(Bar::new(
+                g.start as f64,
+                g.end as f64,
+                t.awake,
+                None,
+                "awake".into(),
+            )),
+            GeneratedKind::Preheat { zone, activity } => heat[zone].push(Bar::new(
+                g.start as f64,
+                g.end as f64,
+                t.preheat,
+                Some(activity),
+                format!("preheat {}", plan.activities[activity].id),
+            )),
+            GeneratedKind::Maintenance { zone, activity } => heat[zone].push(Bar::new(
+                g.start as f64,
+                g.end as f64,
+                t.maintenance,
+                Some(activity),
+                format!("maint. {}", plan.activities[activity].id),
+            )),
         }
     }
     // Wakeup and shutdown drawn over the start and end of each awake period.
@@ -110,23 +169,14 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
             (bar.end - shut, bar.end, "shutdown"),
         ] {
             if end > start {
-                edges.push(Bar {
-                    start,
-                    end,
-                    color: t.wake,
-                    activity: None,
-                    label: label.into(),
-                });
+                edges.push(Bar::new(start, end, t.wake, None, label.into()));
             }
         }
     }
     awake.sort_by(|a, b| a.start.total_cmp(&b.start));
     edges.sort_by(|a, b| a.start.total_cmp(&b.start));
     awake.extend(edges);
-    rows.push(Row {
-        label: "Awake".into(),
-        bars: awake,
-    });
+    rows.push(Row::new("Awake".into(), awake));
     for (z, bars) in heat.into_iter().enumerate() {
         rows.extend(pack(bars, &format!("Heat: {}", problem.zone_names[z]), 3));
     }
@@ -136,17 +186,12 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
         let label = act.id.clone();
         match m.status(a, k) {
             Status::Scheduled(s, e) => {
-                let bar = Bar {
-                    start: s as f64,
-                    end: e as f64,
-                    color: if act.comm_kind.is_some() {
-                        t.comm
-                    } else {
-                        t.scheduled
-                    },
-                    activity: Some(a),
-                    label,
+                let color = if act.comm_kind.is_some() {
+                    t.comm
+                } else {
+                    t.scheduled
                 };
+                let bar = Bar::new(s as f64, e as f64, color, Some(a), label);
                 if act.comm_kind.is_some() {
                     comm.push(bar);
                 } else {
@@ -159,23 +204,8 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
                     Status::Skipped => t.skipped,
                     _ => t.pending,
                 };
-                let windows = act.windows.clone().unwrap_or_default();
-                let (lo, hi) = match windows.first() {
-                    Some(w) => (
-                        w.start,
-                        w.end
-                            .saturating_add(act.duration.max())
-                            .min(plan.horizon.end),
-                    ),
-                    None => (plan.horizon.start, plan.horizon.end),
-                };
-                let bar = Bar {
-                    start: lo as f64,
-                    end: hi as f64,
-                    color,
-                    activity: Some(a),
-                    label,
-                };
+                let (lo, hi) = window_span(plan, act);
+                let bar = Bar::new(lo as f64, hi as f64, color, Some(a), label);
                 if status == Status::Pending {
                     pending.push(bar);
                 } else {
@@ -193,6 +223,20 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
     rows.extend(pack(failed, "Failed / skipped", 8));
     rows.extend(pack(pending, "Pending (windows)", 8));
     rows
+}
+
+/// Where an activity that is not placed is drawn: from its first window's start
+/// to that window's end plus its longest duration, or the whole horizon.
+fn window_span(plan: &solscope_engine::Plan, act: &solscope_engine::Activity) -> (i64, i64) {
+    match act.windows.as_ref().and_then(|w| w.first()) {
+        Some(w) => (
+            w.start,
+            w.end
+                .saturating_add(act.duration.max())
+                .min(plan.horizon.end),
+        ),
+        None => (plan.horizon.start, plan.horizon.end),
+    }
 }
 
 /// Scheduled bars in one row per unit resource (resource names in order; an
@@ -224,24 +268,295 @@ fn by_resource(plan: &solscope_engine::Plan, scheduled: Vec<Bar>) -> Vec<Row> {
     rows
 }
 
+/// The rows of execution mode: cycle markers, broken limits, the executed awake
+/// periods, executed activities over their prediction, those never placed, and
+/// the looked-at cycle's run as of the step shown.
+fn execution_rows(m: &Model<'_>, run: &ExecutionRun) -> Vec<Row> {
+    let plan = &m.doc.plan;
+    let t = &m.theme;
+    let ex = &run.execution;
+    let mut rows = Vec::new();
+    let cycles = ex
+        .cycles
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            let color = if k == m.exec.cycle {
+                t.current
+            } else {
+                t.cycle
+            };
+            let mut bar = Bar::new(c.time as f64, c.time as f64, color, None, String::new());
+            bar.tip = Some(format!(
+                "cycle {k} at {}, {}, from {} (click to look at it)",
+                m.time(c.time),
+                trigger_text(m, c.trigger),
+                solscope_engine::format_wh(c.soc)
+            ));
+            bar.cycle = Some(k);
+            bar.marker = true;
+            bar
+        })
+        .collect();
+    rows.push(marker_row("Cycles", cycles));
+    if !ex.violations.is_empty() {
+        let marks = ex
+            .violations
+            .iter()
+            .map(|v| {
+                let end = v.worst.1.max(v.time);
+                let mut bar = Bar::new(v.time as f64, end as f64, t.limit, None, String::new());
+                bar.tip = Some(violation_text(m, v));
+                bar.marker = true;
+                bar
+            })
+            .collect();
+        rows.push(marker_row("Limits broken", marks));
+    }
+    let awake = ex
+        .profile
+        .awake
+        .iter()
+        .map(|&(a, b)| Bar::new(a as f64, b as f64, t.awake, None, "awake".into()))
+        .collect();
+    rows.push(Row {
+        steps: false,
+        ..Row::new("Awake".into(), awake)
+    });
+    // Each activity: its executed bar (or, not run, a faint one where it was
+    // predicted) over a thin bar of its prediction, packed by their union.
+    let mut items: Vec<(Bar, Option<Bar>)> = Vec::new();
+    let mut never = Vec::new();
+    for (a, r) in ex.activities.iter().enumerate() {
+        let act = &plan.activities[a];
+        let id = act.id.clone();
+        let predicted = r.predicted.map(|(s, e)| {
+            let mut bar = Bar::new(s as f64, e as f64, t.predicted, Some(a), String::new());
+            bar.tip = Some(format!(
+                "{id}: predicted {}–{} (cycle 0)",
+                m.time(s),
+                m.time(e)
+            ));
+            bar
+        });
+        let was = r.predicted.map_or(String::new(), |(s, e)| {
+            format!(" (predicted {}–{})", m.time(s), m.time(e))
+        });
+        let main = match (r.outcome, r.actual, r.predicted) {
+            (RunOutcome::NotRun, _, None) => {
+                let (lo, hi) = window_span(plan, act);
+                let mut bar = Bar::new(lo as f64, hi as f64, t.not_run, Some(a), id.clone());
+                bar.tip = Some(format!("{id}: not run, never placed (its window)"));
+                never.push(bar);
+                continue;
+            }
+            (RunOutcome::NotRun, _, Some((s, e))) | (_, None, Some((s, e))) => {
+                let mut bar = Bar::new(s as f64, e as f64, t.not_run, Some(a), id.clone());
+                bar.tip = Some(format!("{id}: not run{was}"));
+                bar
+            }
+            (outcome, Some((s, e)), _) => {
+                let (color, what) = match outcome {
+                    RunOutcome::Aborted => (t.aborted, "aborted"),
+                    _ if act.comm_kind.is_some() => (t.comm, "completed"),
+                    _ => (t.scheduled, "completed"),
+                };
+                let mut bar = Bar::new(s as f64, e as f64, color, Some(a), id.clone());
+                bar.tip = Some(format!(
+                    "{id}: {what}, ran {}–{}{was}",
+                    m.time(s),
+                    m.time(e)
+                ));
+                bar
+            }
+            (_, None, None) => continue,
+        };
+        items.push((main, predicted));
+    }
+    let span = |(main, pred): &(Bar, Option<Bar>)| match pred {
+        Some(p) => (main.start.min(p.start), main.end.max(p.end)),
+        None => (main.start, main.end),
+    };
+    for (i, lane) in lanes(items, span, 64).into_iter().enumerate() {
+        let (main, pred): (Vec<Bar>, Vec<Option<Bar>>) = lane.into_iter().unzip();
+        rows.push(Row {
+            steps: false,
+            ..Row::new(lane_label(i, "Executed"), main)
+        });
+        rows.push(Row {
+            height: BASELINE_HEIGHT,
+            steps: false,
+            ..Row::new(String::new(), pred.into_iter().flatten().collect())
+        });
+    }
+    if !never.is_empty() {
+        rows.extend(
+            pack(never, "Never placed", 8)
+                .into_iter()
+                .map(|r| Row { steps: false, ..r }),
+        );
+    }
+    if let (Some(cr), Some(sched)) = (m.exec.cycle_run, m.exec.schedule()) {
+        rows.extend(cycle_rows(m, run, cr, sched));
+    }
+    rows
+}
+
+/// A row of markers (never merged; hover for what they mark).
+fn marker_row(label: &str, bars: Vec<Bar>) -> Row {
+    Row {
+        steps: false,
+        ..Row::new(label.into(), bars)
+    }
+}
+
+/// The looked-at cycle's run as of the step shown: its awake periods, what it
+/// placed, and what it could not place (drawn as their windows).
+fn cycle_rows(m: &Model<'_>, run: &ExecutionRun, cr: &CycleRun, sched: &Schedule) -> Vec<Row> {
+    let t = &m.theme;
+    let k = m.exec.cycle;
+    let plan = &m.doc.plan;
+    let cycle_plan = run.execution.cycles.get(k).and_then(|c| c.plan.as_ref());
+    let mut rows = Vec::new();
+    let awake = sched
+        .generated_after(m.exec.step)
+        .filter(|g| g.kind == GeneratedKind::Awake)
+        .map(|g| Bar::new(g.start as f64, g.end as f64, t.awake, None, "awake".into()))
+        .collect();
+    rows.push(Row::new(format!("Cycle {k}: awake"), awake));
+    let (mut placed, mut failed) = (Vec::new(), Vec::new());
+    // By cycle-plan index: the run's own activity -> step index, O(1) each.
+    for (i, &a) in cr.activity_of.iter().enumerate() {
+        let act = &plan.activities[a];
+        let Some(step) = sched.step_of(i).filter(|st| st.step <= m.exec.step) else {
+            continue;
+        };
+        match step.outcome {
+            Outcome::Scheduled { start, end } => {
+                let color = if act.comm_kind.is_some() {
+                    t.comm
+                } else {
+                    t.scheduled
+                };
+                let bar = Bar::new(start as f64, end as f64, color, Some(a), act.id.clone());
+                placed.push(bar);
+            }
+            Outcome::Failed(_) | Outcome::Skipped { .. } => {
+                let color = if matches!(step.outcome, Outcome::Failed(_)) {
+                    t.failed
+                } else {
+                    t.skipped
+                };
+                // The windows the cycle gave it (from the cycle's time on).
+                let (lo, hi) = cycle_plan
+                    .and_then(|p| p.activities.get(i).map(|x| window_span(p, x)))
+                    .unwrap_or_else(|| window_span(plan, act));
+                failed.push(Bar::new(
+                    lo as f64,
+                    hi as f64,
+                    color,
+                    Some(a),
+                    act.id.clone(),
+                ));
+            }
+        }
+    }
+    rows.extend(pack(placed, &format!("Cycle {k}: placed"), 16));
+    if !failed.is_empty() {
+        rows.extend(pack(failed, &format!("Cycle {k}: failed"), 4));
+    }
+    rows
+}
+
+/// What the execution rows' colours mean.
+fn legend_ui(ui: &mut egui::Ui, m: &Model<'_>) {
+    let t = &m.theme;
+    ui.horizontal_wrapped(|ui| {
+        let colored = |text: &str, color| RichText::new(text).color(color);
+        ui.label(colored("Executed:", t.muted));
+        ui.label(colored("completed", t.scheduled));
+        ui.label(colored("aborted", t.aborted));
+        ui.label(colored("not run", t.failed));
+        ui.label(colored(
+            "· thin bar below: predicted by cycle 0 ·",
+            t.predicted,
+        ));
+        ui.label(colored(&format!("cycle {}", m.exec.cycle), t.current));
+        ui.label(colored("· hover a mark or bar for details", t.muted));
+    });
+}
+
+/// What the rows were built for: revision, step, grouping, palette and, in
+/// execution mode, the actuals, cycle, its step, and which parts were derived.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct RowsKey {
+    revision: u64,
+    step: usize,
+    by_resource: bool,
+    palette: Color32,
+    exec: Option<(u64, usize, usize, bool, bool)>,
+}
+
 /// The rows as of one step, kept between frames: building them sorts and packs
 /// every activity, which at 10k activities costs more than drawing them.
 #[derive(Clone, Debug)]
 pub struct GanttRows {
-    /// Plan revision, step, grouping and palette they were built for.
-    key: (u64, usize, bool, Color32),
+    key: RowsKey,
     rows: Vec<Row>,
+}
+
+/// What hovering a bar shows, and what clicking it does.
+struct Hovered {
+    text: String,
+    click: Option<Command>,
 }
 
 /// The Gantt chart.
 pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &mut Vec<Command>) {
     let k = m.nav.step;
-    let key = (m.revision, k, m.persisted.by_resource, m.theme.scheduled);
+    let run = match m.nav.mode {
+        Mode::Schedule => None,
+        Mode::Execution => match m.exec.run {
+            Some(Ok(run)) => Some(run),
+            Some(Err(_)) => {
+                ui.label("No execution to draw (see the error above).");
+                return;
+            }
+            None => {
+                ui.horizontal(|ui| {
+                    ui.spinner();
+                    ui.label("executing the plan…");
+                });
+                return;
+            }
+        },
+    };
+    if run.is_some() {
+        legend_ui(ui, m);
+    }
+    let key = RowsKey {
+        revision: m.revision,
+        step: k,
+        by_resource: m.persisted.by_resource,
+        palette: m.theme.scheduled,
+        exec: run.map(|_| {
+            (
+                m.exec.actuals_rev,
+                m.exec.cycle,
+                m.exec.step,
+                m.exec.cycle_run.is_some(),
+                m.exec.view.is_some(),
+            )
+        }),
+    };
     let rows = match cache.gantt.take() {
         Some(cached) if cached.key == key => cached.rows,
-        _ => rows(m, k),
+        _ => match run {
+            Some(run) => execution_rows(m, run),
+            None => rows(m, k),
+        },
     };
-    let height = rows.len() as f32 * (LANE_HEIGHT + LANE_GAP) + 4.0;
+    let height: f32 = rows.iter().map(|r| r.height + LANE_GAP).sum::<f32>() + 4.0;
     let (rect, response) = ui.allocate_exact_size(
         egui::vec2(ui.available_width(), height),
         Sense::click_and_drag(),
@@ -261,28 +576,38 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
         m.doc.plan.horizon.start as f64,
         m.doc.plan.horizon.end as f64,
     );
-    let current = m.activity_of_step(k);
+    let current = match run {
+        Some(_) => m
+            .exec
+            .cycle_run
+            .and_then(|c| c.activity_of_step(m.exec.step)),
+        None => m.activity_of_step(k),
+    };
     let font = FontId::proportional(BAR_FONT_SIZE);
-    let mut hovered: Option<(usize, String)> = None;
+    let mut hovered: Option<Hovered> = None;
     let pointer = response.hover_pos();
-    for (i, row) in rows.iter().enumerate() {
-        let y = rect.top() + i as f32 * (LANE_HEIGHT + LANE_GAP);
+    let mut offset = 0.0_f32;
+    for row in &rows {
+        let y = rect.top() + offset;
+        let h = row.height;
+        offset += h + LANE_GAP;
         if !row.label.is_empty() {
             painter.text(
-                Pos2::new(rect.left() + 2.0, y + LANE_HEIGHT / 2.0),
+                Pos2::new(rect.left() + 2.0, y + h / 2.0),
                 Align2::LEFT_CENTER,
                 &row.label,
                 font.clone(),
                 m.theme.muted,
             );
         }
+        let current = if row.steps { current } else { None };
         // Cull and merge: consecutive bars that fall in the same pixel column merge.
         let mut merged: Option<(f64, f64, Color32)> = None;
         let flush = |span: Option<(f64, f64, Color32)>| {
             if let Some((x0, x1, c)) = span {
                 let r = Rect::from_min_max(
                     Pos2::new(x0 as f32, y),
-                    Pos2::new((x1 as f32).max(x0 as f32 + 1.0), y + LANE_HEIGHT),
+                    Pos2::new((x1 as f32).max(x0 as f32 + 1.0), y + h),
                 );
                 painter.rect_filled(r, BAR_ROUNDING, c);
             }
@@ -296,34 +621,39 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
             if bar.end < axis.start || bar.start > axis.end {
                 continue;
             }
-            let x0 = axis.x(bar.start, timeline).max(f64::from(timeline.left()));
-            let x1 = axis.x(bar.end, timeline).min(f64::from(timeline.right()));
-            let marked = bar.activity.is_some()
-                && (bar.activity == current || bar.activity == m.nav.selected);
-            let (lo, hi, color) = painted;
-            if bar.color == color && lo <= x0 && x1 <= hi && !marked {
-                continue;
-            }
-            painted = if bar.color == color && x0 <= hi && lo <= x1 {
-                (lo.min(x0), hi.max(x1), color)
+            let mut x0 = axis.x(bar.start, timeline).max(f64::from(timeline.left()));
+            let mut x1 = axis.x(bar.end, timeline).min(f64::from(timeline.right()));
+            if bar.marker {
+                let w = f64::from(MARKER_WIDTH);
+                if x1 - x0 < w {
+                    let c = (x0 + x1) / 2.0;
+                    (x0, x1) = (c - w / 2.0, c + w / 2.0);
+                }
             } else {
-                (x0, x1, bar.color)
-            };
-            if x1 - x0 < 1.0 {
-                merged = match merged {
-                    Some((a, b, c)) if x0 <= b + 1.0 => Some((a, b.max(x1), c)),
-                    other => {
-                        flush(other);
-                        Some((x0, x1, bar.color))
-                    }
+                let marked = bar.activity.is_some()
+                    && (bar.activity == current || bar.activity == m.nav.selected);
+                let (lo, hi, color) = painted;
+                if bar.color == color && lo <= x0 && x1 <= hi && !marked {
+                    continue;
+                }
+                painted = if bar.color == color && x0 <= hi && lo <= x1 {
+                    (lo.min(x0), hi.max(x1), color)
+                } else {
+                    (x0, x1, bar.color)
                 };
-                continue;
+                if x1 - x0 < 1.0 {
+                    merged = match merged {
+                        Some((a, b, c)) if x0 <= b + 1.0 => Some((a, b.max(x1), c)),
+                        other => {
+                            flush(other);
+                            Some((x0, x1, bar.color))
+                        }
+                    };
+                    continue;
+                }
+                flush(merged.take());
             }
-            flush(merged.take());
-            let r = Rect::from_min_max(
-                Pos2::new(x0 as f32, y),
-                Pos2::new(x1 as f32, y + LANE_HEIGHT),
-            );
+            let r = Rect::from_min_max(Pos2::new(x0 as f32, y), Pos2::new(x1 as f32, y + h));
             painter.rect_filled(r, BAR_ROUNDING, bar.color);
             let is_current = bar.activity.is_some() && bar.activity == current;
             let is_selected = bar.activity.is_some() && bar.activity == m.nav.selected;
@@ -343,7 +673,7 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
                     StrokeKind::Outside,
                 );
             }
-            if r.width() >= LABEL_MIN_WIDTH {
+            if r.width() >= LABEL_MIN_WIDTH && h >= LANE_HEIGHT {
                 let text = painter.layout_no_wrap(bar.label.clone(), font.clone(), m.theme.label);
                 if text.size().x + 4.0 <= r.width() {
                     painter.galley(
@@ -353,35 +683,57 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
                     );
                 }
             }
-            if let (Some(p), Some(a)) = (pointer, bar.activity) {
-                if r.contains(p) {
-                    hovered = Some((
-                        a,
-                        format!(
-                            "{} {}–{}",
-                            bar.label,
-                            m.time(bar.start as i64),
-                            m.time(bar.end as i64)
-                        ),
-                    ));
+            if pointer.is_some_and(|p| r.contains(p)) {
+                let click = match (bar.activity, bar.cycle) {
+                    (Some(a), _) => Some(Command::Select(Some(a))),
+                    (None, Some(c)) => Some(Command::SetCycle(c)),
+                    (None, None) => None,
+                };
+                let text = bar.tip.clone().unwrap_or_else(|| {
+                    format!(
+                        "{} {}–{}",
+                        bar.label,
+                        m.time(bar.start as i64),
+                        m.time(bar.end as i64)
+                    )
+                });
+                if click.is_some() || bar.tip.is_some() {
+                    hovered = Some(Hovered { text, click });
                 }
             }
         }
         flush(merged);
     }
-    // The current time probe.
+    // The looked-at cycle's time.
+    if let Some(run) = run {
+        if let Some(c) = run.execution.cycles.get(m.exec.cycle) {
+            let x = axis.x(c.time as f64, timeline) as f32;
+            if timeline.x_range().contains(x) {
+                painter.vline(
+                    x,
+                    timeline.y_range(),
+                    Stroke::new(CYCLE_LINE_STROKE, m.theme.current),
+                );
+            }
+        }
+    }
+    // The current time probe (in execution mode the looked-at cycle has the
+    // highlight colour).
     if let Some(t) = m.nav.probe {
         let x = axis.x(t as f64, timeline) as f32;
-        painter.vline(
-            x,
-            timeline.y_range(),
-            Stroke::new(PROBE_LINE_STROKE, m.theme.current),
-        );
+        let color = if run.is_some() {
+            m.theme.muted
+        } else {
+            m.theme.current
+        };
+        painter.vline(x, timeline.y_range(), Stroke::new(PROBE_LINE_STROKE, color));
     }
-    if let Some((a, text)) = &hovered {
-        response.clone().on_hover_text_at_pointer(text.clone());
+    if let Some(h) = hovered {
+        response.clone().on_hover_text_at_pointer(h.text);
         if response.clicked() {
-            cmds.push(Command::Select(Some(*a)));
+            if let Some(c) = h.click {
+                cmds.push(c);
+            }
         }
     }
     // Pan by dragging, zoom with Ctrl+wheel (or pinch) about the pointer.
@@ -426,6 +778,15 @@ mod tests {
             valid: None,
             nav: &app.ui.nav,
             messages: &app.ui.messages,
+            exec: crate::gui::views::ExecModel {
+                source: &app.actuals,
+                actuals_rev: 0,
+                run: None,
+                cycle: 0,
+                cycle_run: None,
+                step: 0,
+                view: None,
+            },
         }
     }
 
@@ -535,5 +896,81 @@ mod tests {
         unique.dedup();
         assert_eq!(labels, unique, "a resource needed a second lane");
         assert!(labels.len() >= 3);
+    }
+
+    /// The app in execution mode after one frame (the execution derived in it).
+    fn executed(mut app: SolscopeApp) -> SolscopeApp {
+        app.apply(crate::gui::UiCommand::ShowExecution.into());
+        let ctx = egui::Context::default();
+        let mut out = ctx.run_ui(egui::RawInput::default(), |ui| app.frame_ui(ui));
+        out.textures_delta.clear();
+        app
+    }
+
+    #[test]
+    fn execution_rows_show_every_activity_once_with_its_prediction() {
+        let mut app = executed(SolscopeApp::with_default_plan().expect("default plan"));
+        let run = app.execution_run().expect("executed");
+        let n = app.doc.plan.activities.len();
+        let cycles = run.execution.cycles.len();
+        let runs = run.execution.activities.clone();
+        let (m, _) = app.model_and_widgets();
+        let run = m.exec.ready().expect("executed");
+        let rows = execution_rows(&m, run);
+        assert_eq!(rows[0].label, "Cycles");
+        assert_eq!(rows[0].bars.len(), cycles);
+        assert!(rows[0].bars.iter().all(|b| b.marker && b.cycle.is_some()));
+        // Each activity once: an executed (or not run) bar with its prediction
+        // below, or among those never placed.
+        let mut main = vec![0; n];
+        let mut predicted = vec![0; n];
+        let mut never = vec![0; n];
+        let mut group = String::new();
+        for r in &rows {
+            if !r.label.is_empty() {
+                group = r.label.clone();
+            }
+            for b in &r.bars {
+                let Some(a) = b.activity else { continue };
+                match group.as_str() {
+                    "Executed" if r.height < LANE_HEIGHT => predicted[a] += 1,
+                    "Executed" => main[a] += 1,
+                    "Never placed" => never[a] += 1,
+                    _ => {}
+                }
+            }
+        }
+        for (a, r) in runs.iter().enumerate() {
+            let placed = usize::from(r.predicted.is_some());
+            assert_eq!(predicted[a], placed, "activity {a}");
+            assert_eq!(main[a], placed, "activity {a}");
+            assert_eq!(never[a], 1 - placed, "activity {a}");
+        }
+        assert!(
+            never.iter().sum::<usize>() > 0,
+            "the default plan has failures"
+        );
+        // The looked-at cycle's run follows.
+        assert!(rows.iter().any(|r| r.label == "Cycle 0: placed"));
+    }
+
+    #[test]
+    fn cached_execution_rows_follow_the_cycle_and_its_step() {
+        let mut app = executed(SolscopeApp::with_default_plan().expect("default plan"));
+        let ctx = egui::Context::default();
+        let check = |app: &mut SolscopeApp| {
+            let mut out = ctx.run_ui(egui::RawInput::default(), |ui| app.frame_ui(ui));
+            out.textures_delta.clear();
+            let cached = app.view_cache.gantt.clone().expect("rows kept");
+            let (m, _) = app.model_and_widgets();
+            let fresh = execution_rows(&m, m.exec.ready().expect("executed"));
+            assert_eq!(shape(&cached.rows), shape(&fresh));
+        };
+        check(&mut app);
+        for (cycle, step) in [(3, 10), (3, 0), (20, 40), (0, 70)] {
+            app.apply(Command::SetCycle(cycle));
+            app.apply(Command::SetCycleStep(step));
+            check(&mut app);
+        }
     }
 }

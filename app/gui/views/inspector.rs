@@ -5,9 +5,9 @@ use eframe::egui::{self, Pos2, Rect, RichText, Sense, Stroke};
 use serde_json::{Map, Value};
 use solscope_engine::{CategoryIntervals, Phase, explanation_notes, reason_line, suggestion_line};
 
-use super::{Model, Status};
+use super::{Model, Status, execution};
 use crate::gui::commands::Command;
-use crate::gui::state::TextBuffers;
+use crate::gui::state::{Mode, TextBuffers};
 use crate::gui::theme::{
     FIELD_WIDTH, LABEL_WIDTH, TRACK_FONT_SIZE, TRACK_LINE_STROKE, TRACK_ROW_GAP, TRACK_ROW_HEIGHT,
 };
@@ -20,11 +20,22 @@ pub fn inspector_ui(
     cmds: &mut Vec<Command>,
 ) {
     ui.heading("Inspector");
-    match m.nav.selected {
-        None => {
+    match (m.nav.mode, m.nav.selected) {
+        (Mode::Execution, selected) => {
+            execution::inspector_ui(ui, m, selected, cmds);
+            if let Some(a) = selected {
+                ui.separator();
+                egui::CollapsingHeader::new("Edit activity")
+                    .default_open(false)
+                    .show(ui, |ui| {
+                        activity_editor_ui(ui, m, st, a, cmds);
+                    });
+            }
+        }
+        (Mode::Schedule, None) => {
             ui.label("Select an activity in the list or on the Gantt chart.");
         }
-        Some(a) => activity_ui(ui, m, st, a, cmds),
+        (Mode::Schedule, Some(a)) => activity_ui(ui, m, st, a, cmds),
     }
     ui.separator();
     egui::CollapsingHeader::new("Plan limits")
@@ -157,7 +168,7 @@ fn activity_ui(
 }
 
 /// One row per category with its valid starts, then their intersection.
-fn intervals_ui(ui: &mut egui::Ui, m: &Model<'_>, cats: &[CategoryIntervals]) {
+pub(super) fn intervals_ui(ui: &mut egui::Ui, m: &Model<'_>, cats: &[CategoryIntervals]) {
     let row_h = TRACK_ROW_HEIGHT;
     let n = cats.len() + 1;
     let (rect, _) = ui.allocate_exact_size(

@@ -6,17 +6,19 @@
 //! modules (`commands`, `document`, `state`, `theme`, `time_axis`), never the app,
 //! its derived-value cache or the host.
 
+mod execution;
 mod gantt;
 pub use gantt::GanttRows;
 mod inspector;
 mod plots;
 
 use eframe::egui::{self, RichText};
-use solscope_engine::{Outcome, Suggestion, format_local};
+use solscope_engine::{Outcome, RunOutcome, Suggestion, format_local};
 
 use crate::gui::commands::{Command, UiCommand};
 use crate::gui::document::{Analysis, Document};
-use crate::gui::state::{Messages, Navigation, Pending, Persisted, StepView, TextBuffers};
+use crate::gui::execution::{ActualsSource, CycleRun, ExecutionRun};
+use crate::gui::state::{Messages, Mode, Navigation, Pending, Persisted, StepView, TextBuffers};
 use crate::gui::theme::{
     FILTER_WIDTH, INSPECTOR_WIDTH, LIST_WIDTH, MESSAGE_MARGIN, RANGE_FIELD_WIDTH, Theme,
 };
@@ -48,6 +50,40 @@ pub struct Model<'a> {
     pub nav: &'a Navigation,
     /// The outcome banner, the error and the unsaved-changes question.
     pub messages: &'a Messages,
+    /// What execution mode draws.
+    pub exec: ExecModel<'a>,
+}
+
+/// What execution mode draws, each part once it is derived for the current plan
+/// revision and actuals (`None` meanwhile).
+#[derive(Clone, Copy, Debug)]
+pub struct ExecModel<'a> {
+    /// Where the actual durations come from.
+    pub source: &'a ActualsSource,
+    /// Bumped whenever the source changes.
+    pub actuals_rev: u64,
+    /// The execution, or why there is none.
+    pub run: Option<&'a Result<ExecutionRun, String>>,
+    /// The cycle looked at (clamped to the execution's cycles).
+    pub cycle: usize,
+    /// Its scheduler run with the step trace.
+    pub cycle_run: Option<&'a CycleRun>,
+    /// The step shown inside that run (clamped to its steps).
+    pub step: usize,
+    /// The run's profiles after that step.
+    pub view: Option<&'a StepView>,
+}
+
+impl<'a> ExecModel<'a> {
+    /// The execution, when derived without error.
+    pub fn ready(&self) -> Option<&'a ExecutionRun> {
+        self.run.and_then(|r| r.as_ref().ok())
+    }
+
+    /// The cycle's run, when it could be repeated.
+    pub fn schedule(&self) -> Option<&'a solscope_engine::Schedule> {
+        self.cycle_run.and_then(|c| c.schedule.as_ref().ok())
+    }
 }
 
 /// What the views keep between frames (their own, not the app's).
@@ -109,6 +145,21 @@ impl Model<'_> {
             Some(n) => format!("{} — {n}", act.id),
             None => act.id.clone(),
         }
+    }
+
+    /// Status of plan activity `a` after the step shown of the looked-at cycle's
+    /// run; `None` when that cycle's plan does not have it.
+    pub fn cycle_status(&self, a: usize) -> Option<Status> {
+        let st = self.exec.cycle_run?.step_of(a)?;
+        Some(if st.step <= self.exec.step {
+            match st.outcome {
+                Outcome::Scheduled { start, end } => Status::Scheduled(start, end),
+                Outcome::Failed(_) => Status::Failed,
+                Outcome::Skipped { .. } => Status::Skipped,
+            }
+        } else {
+            Status::Pending
+        })
     }
 
     /// Plan time as `t (hh:mm:ss)`.
@@ -181,7 +232,14 @@ pub fn dropped_files(ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
 pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &mut Vec<Command>) {
     egui::Panel::top("toolbar").show(ui, |ui| {
         toolbar_ui(ui, m, cmds);
-        steps_ui(ui, m, cmds);
+        match m.nav.mode {
+            Mode::Schedule => steps_ui(ui, m, cmds),
+            Mode::Execution => {
+                execution::actuals_ui(ui, m, &mut w.text.seed_text, cmds);
+                execution::cycles_ui(ui, m, cmds);
+                execution::cycle_steps_ui(ui, m, cmds);
+            }
+        }
         banner_ui(ui, m, cmds);
     });
     egui::Panel::left("activities")
@@ -270,41 +328,77 @@ fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
         {
             cmds.push(Command::SetFilter(filter));
         }
+        // The mode switch, at the right end (the other tools keep their place).
+        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+            for (cmd, mode) in [
+                (UiCommand::ShowExecution, Mode::Execution),
+                (UiCommand::ShowSchedule, Mode::Schedule),
+            ] {
+                mode_button(ui, cmd, m.nav.mode == mode, cmds);
+            }
+            ui.label("View");
+        });
     });
 }
 
-/// The step slider and its buttons.
+/// One side of the mode switch: selected when its mode is shown; its shortcut
+/// is its tooltip.
+fn mode_button(ui: &mut egui::Ui, cmd: UiCommand, selected: bool, cmds: &mut Vec<Command>) {
+    let mut resp = ui.selectable_label(selected, cmd.label());
+    if let Some(shortcut) = cmd.kb_shortcut() {
+        resp = resp.on_hover_text(ui.ctx().format_shortcut(&shortcut));
+    }
+    if resp.clicked() && !selected {
+        cmds.push(cmd.into());
+    }
+}
+
+/// The step slider and its buttons (schedule mode).
 fn steps_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
-    let n = m.analysis.steps();
     let nav = m.nav;
+    let what = match m.activity_of_step(nav.step) {
+        None => "before step 1: nothing placed".to_string(),
+        Some(a) => {
+            let outcome = match m.status(a, nav.step) {
+                Status::Scheduled(s, e) => format!("scheduled {}–{}", m.time(s), m.time(e)),
+                Status::Failed => "failed".into(),
+                Status::Skipped => "skipped".into(),
+                Status::Pending => String::new(),
+            };
+            format!("step {}: {} — {outcome}", nav.step, m.label(a))
+        }
+    };
+    step_row_ui(ui, m, m.analysis.steps(), nav.step, what, cmds);
+}
+
+/// Step buttons, play, and the slider over steps `0..=n` at step `k`, with
+/// `what` the step did: of the plan's schedule, or in execution mode of the
+/// looked-at cycle's run.
+fn step_row_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    n: usize,
+    k: usize,
+    what: String,
+    cmds: &mut Vec<Command>,
+) {
+    let playing = m.nav.playing;
     ui.horizontal_wrapped(|ui| {
         command_button(ui, UiCommand::FirstStep, true, cmds);
         command_button(ui, UiCommand::PreviousStep, true, cmds);
-        if ui
-            .button(if nav.playing { "Pause" } else { "Play" })
-            .clicked()
-        {
-            cmds.push(Command::Play(!nav.playing));
+        if ui.button(if playing { "Pause" } else { "Play" }).clicked() {
+            cmds.push(Command::Play(!playing));
         }
         command_button(ui, UiCommand::NextStep, true, cmds);
         command_button(ui, UiCommand::LastStep, true, cmds);
-        let mut k = nav.step;
+        let mut k = k;
         let slider = egui::Slider::new(&mut k, 0..=n).text("Step");
         if ui.add(slider).changed() {
-            cmds.push(Command::SetStep(k));
+            cmds.push(match m.nav.mode {
+                Mode::Schedule => Command::SetStep(k),
+                Mode::Execution => Command::SetCycleStep(k),
+            });
         }
-        let what = match m.activity_of_step(nav.step) {
-            None => "before step 1: nothing placed".to_string(),
-            Some(a) => {
-                let outcome = match m.status(a, nav.step) {
-                    Status::Scheduled(s, e) => format!("scheduled {}–{}", m.time(s), m.time(e)),
-                    Status::Failed => "failed".into(),
-                    Status::Skipped => "skipped".into(),
-                    Status::Pending => String::new(),
-                };
-                format!("step {}: {} — {outcome}", nav.step, m.label(a))
-            }
-        };
         ui.label(what);
     });
 }
@@ -358,11 +452,21 @@ fn activities_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
             for step in &shown[rows] {
                 let a = step.activity;
                 let act = &m.doc.plan.activities[a];
-                let (mark, color) = match m.status(a, m.nav.step) {
-                    Status::Scheduled(..) => ("+", m.theme.scheduled),
-                    Status::Failed => ("x", m.theme.failed),
-                    Status::Skipped => ("-", m.theme.skipped),
-                    Status::Pending => (".", m.theme.muted),
+                let (mark, color) = match m.nav.mode {
+                    Mode::Schedule => match m.status(a, m.nav.step) {
+                        Status::Scheduled(..) => ("+", m.theme.scheduled),
+                        Status::Failed => ("x", m.theme.failed),
+                        Status::Skipped => ("-", m.theme.skipped),
+                        Status::Pending => (".", m.theme.muted),
+                    },
+                    Mode::Execution => match m.exec.ready().and_then(|r| r.activity(a)) {
+                        Some(r) => match r.outcome {
+                            RunOutcome::Completed => ("+", m.theme.scheduled),
+                            RunOutcome::Aborted => ("!", m.theme.aborted),
+                            RunOutcome::NotRun => ("x", m.theme.failed),
+                        },
+                        None => (".", m.theme.muted),
+                    },
                 };
                 let text =
                     RichText::new(format!("{mark} {:>3} {}", step.step, act.id)).color(color);

@@ -1,37 +1,78 @@
 //! State of charge, peak power and data volume as of the current step, on the
-//! shared time axis; clicking a plot lists the consumers at that time.
+//! shared time axis; clicking a plot lists the consumers at that time. In
+//! execution mode: the executed profiles over the first cycle's prediction and
+//! the looked-at cycle's run as of the step shown, with the broken limits, and
+//! the executed and predicted values at the time clicked.
 
-use eframe::egui::{self, RichText};
-use egui_plot::{HLine, Line, Plot, PlotPoints, VLine};
+use eframe::egui::{self, Color32, RichText};
+use egui_plot::{HLine, Line, LineStyle, Plot, PlotPoints, VLine};
 use solscope_engine::{
-    Consumer, energy_consumers, format_plan_time, format_watts, format_wh, peak_users,
+    Consumer, MJ_PER_WH, MW_PER_W, ViolationKind, energy_consumers, format_plan_time, format_watts,
+    format_wh, peak_users,
 };
 
+use super::execution::kind_name;
 use super::{Model, ViewCache};
 use crate::gui::commands::Command;
-use crate::gui::theme::{LABEL_WIDTH, PLOT_HEIGHT};
+use crate::gui::execution::ExecutionRun;
+use crate::gui::state::{Mode, StepView};
+use crate::gui::theme::{CYCLE_LINE_STROKE, LABEL_WIDTH, PLOT_HEIGHT};
 
+/// One line on a plot.
+struct Series<'a> {
+    name: String,
+    points: &'a [[f64; 2]],
+    color: Color32,
+    dashed: bool,
+}
+
+/// Which of a [`StepView`]'s series.
+type Pick = fn(&StepView) -> &[[f64; 2]];
+
+/// A vertical line across a plot at a time.
+struct Mark {
+    name: String,
+    t: f64,
+    color: Color32,
+}
+
+/// One plot: its series over the shared time axis, horizontal limit lines and
+/// vertical marks.
+#[allow(clippy::too_many_arguments)]
 fn plot_ui(
     ui: &mut egui::Ui,
     m: &Model<'_>,
     cache: &mut ViewCache,
     id: &str,
-    series: &[[f64; 2]],
+    series: &[Series<'_>],
     limits: &[(&str, f64)],
+    marks: &[Mark],
     cmds: &mut Vec<Command>,
 ) {
-    let color = m.theme.scheduled;
     let limit_color = m.theme.limit;
     let axis = m.nav.axis;
     let probe = m.nav.probe;
     let width = cache
         .plot_x
         .map_or(f64::from(ui.available_width()), |(l, r)| f64::from(r - l));
-    let points: PlotPoints = decimate(series, axis.start, axis.end, width)
-        .into_iter()
+    let lines: Vec<Line<'_>> = series
+        .iter()
+        .map(|s| {
+            let points: PlotPoints = decimate(s.points, axis.start, axis.end, width)
+                .into_iter()
+                .collect();
+            let line = Line::new(s.name.as_str(), points)
+                .color(s.color)
+                .allow_band(false);
+            if s.dashed {
+                line.style(LineStyle::dashed_loose())
+            } else {
+                line
+            }
+        })
         .collect();
     let local = m.doc.plan.local_time;
-    let resp = Plot::new(id)
+    let plot = Plot::new(id)
         .x_axis_formatter(move |mark, _range| {
             let t = mark.value.round() as i64;
             format_plan_time(&local, t)
@@ -43,20 +84,29 @@ fn plot_ui(
         .allow_double_click_reset(false)
         .include_y(0.0)
         .y_axis_label(id)
-        .y_axis_min_width(LABEL_WIDTH - 30.0)
-        .show(ui, |plot_ui| {
-            plot_ui.set_plot_bounds_x(axis.start..=axis.end);
-            // egui_plot's own aggregation fills bands between buckets, which draws
-            // a step function as shaded triangles; `decimate` did the thinning.
-            plot_ui.line(Line::new(id, points).color(color).allow_band(false));
-            for &(name, y) in limits {
-                plot_ui.hline(HLine::new(name, y).color(limit_color));
-            }
-            if let Some(t) = probe {
-                plot_ui.vline(VLine::new("probe", t as f64));
-            }
-            plot_ui.pointer_coordinate()
-        });
+        .y_axis_min_width(LABEL_WIDTH - 30.0);
+    let resp = plot.show(ui, |plot_ui| {
+        plot_ui.set_plot_bounds_x(axis.start..=axis.end);
+        // egui_plot's own aggregation fills bands between buckets, which draws
+        // a step function as shaded triangles; `decimate` did the thinning.
+        for line in lines {
+            plot_ui.line(line);
+        }
+        for &(name, y) in limits {
+            plot_ui.hline(HLine::new(name, y).color(limit_color));
+        }
+        for mark in marks {
+            plot_ui.vline(
+                VLine::new(mark.name.as_str(), mark.t)
+                    .color(mark.color)
+                    .width(CYCLE_LINE_STROKE),
+            );
+        }
+        if let Some(t) = probe {
+            plot_ui.vline(VLine::new("probe", t as f64));
+        }
+        plot_ui.pointer_coordinate()
+    });
     let frame = resp.transform.frame();
     cache.plot_x = Some((frame.left(), frame.right()));
     if resp.response.clicked() {
@@ -111,49 +161,85 @@ pub fn decimate(series: &[[f64; 2]], start: f64, end: f64, width: f64) -> Vec<[f
     out
 }
 
-/// The three plots and the consumers at the probed time.
-pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &mut Vec<Command>) {
+/// The three plots' names (also their y-axis labels) and limit lines.
+const SOC: &str = "State of charge (Wh)";
+const PEAK: &str = "Peak power (W)";
+const DATA: &str = "Data volume (Mbit)";
+
+/// The limit lines of the three plots.
+fn limits(m: &Model<'_>) -> [Vec<(&'static str, f64)>; 3] {
     let plan = &m.doc.plan;
-    let sv = m.step_view;
-    let mut soc_limits = vec![
+    let mut soc = vec![
         ("min_soc", plan.battery.min_soc),
         ("capacity", plan.battery.capacity),
     ];
     if let Some(h) = plan.handover.and_then(|h| h.min_soc) {
-        soc_limits.push(("handover min_soc", h));
+        soc.push(("handover min_soc", h));
     }
-    ui.label(RichText::new(format!("State of charge (Wh) after step {}", sv.step)).strong());
-    plot_ui(
-        ui,
-        m,
-        cache,
-        "State of charge (Wh)",
-        &sv.soc,
-        &soc_limits,
-        cmds,
-    );
-    ui.label(RichText::new("Peak power (W)").strong());
-    let peak_limits: Vec<(&str, f64)> = plan
+    let peak = plan
         .power
         .max_peak
         .map(|p| ("max_peak", p))
         .into_iter()
         .collect();
-    plot_ui(ui, m, cache, "Peak power (W)", &sv.peak, &peak_limits, cmds);
-    ui.label(RichText::new("Data volume (Mbit)").strong());
-    let data_limits: Vec<(&str, f64)> = plan
+    let data = plan
         .data
         .capacity
         .map(|c| ("capacity", c))
         .into_iter()
         .collect();
+    [soc, peak, data]
+}
+
+/// The three plots and the consumers at the probed time.
+pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &mut Vec<Command>) {
+    if m.nav.mode == Mode::Execution {
+        if let Some(run) = m.exec.ready() {
+            execution_plots_ui(ui, m, run, cache, cmds);
+        }
+        return;
+    }
+    let sv = m.step_view;
+    let [soc_limits, peak_limits, data_limits] = limits(m);
+    let one = |name: &str, points| {
+        [Series {
+            name: name.into(),
+            points,
+            color: m.theme.scheduled,
+            dashed: false,
+        }]
+    };
+    ui.label(RichText::new(format!("State of charge (Wh) after step {}", sv.step)).strong());
     plot_ui(
         ui,
         m,
         cache,
-        "Data volume (Mbit)",
-        &sv.data,
+        SOC,
+        &one(SOC, &sv.soc),
+        &soc_limits,
+        &[],
+        cmds,
+    );
+    ui.label(RichText::new(PEAK).strong());
+    plot_ui(
+        ui,
+        m,
+        cache,
+        PEAK,
+        &one(PEAK, &sv.peak),
+        &peak_limits,
+        &[],
+        cmds,
+    );
+    ui.label(RichText::new(DATA).strong());
+    plot_ui(
+        ui,
+        m,
+        cache,
+        DATA,
+        &one(DATA, &sv.data),
         &data_limits,
+        &[],
         cmds,
     );
 
@@ -206,6 +292,181 @@ pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
     });
 }
 
+/// Execution mode: each profile executed, as the first cycle predicted it, and
+/// as the looked-at cycle's run has it after the step shown; the looked-at
+/// cycle's time and the broken limits as vertical lines; at the time clicked,
+/// the executed and predicted values.
+fn execution_plots_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    run: &ExecutionRun,
+    cache: &mut ViewCache,
+    cmds: &mut Vec<Command>,
+) {
+    let [soc_limits, peak_limits, data_limits] = limits(m);
+    let k = m.exec.cycle;
+    let cycle_time = run.execution.cycles.get(k).map(|c| c.time as f64);
+    // The looked-at cycle's run, unless it is the prediction itself.
+    let last = m.exec.cycle_run.map_or(0, |c| c.steps());
+    let cycle_view = m.exec.view.filter(|_| k != 0 || m.exec.step != last);
+    let predicted = run.predicted.as_ref().ok();
+    let series = |pick: Pick| {
+        let mut out = vec![Series {
+            name: "executed".into(),
+            points: pick(&run.executed),
+            color: m.theme.scheduled,
+            dashed: false,
+        }];
+        if let Some(p) = predicted {
+            out.push(Series {
+                name: "predicted (cycle 0)".into(),
+                points: pick(p),
+                color: m.theme.predicted,
+                dashed: true,
+            });
+        }
+        if let Some(v) = cycle_view {
+            out.push(Series {
+                name: format!("cycle {k} after step {}", m.exec.step),
+                points: pick(v),
+                color: m.theme.current,
+                dashed: false,
+            });
+        }
+        out
+    };
+    let marks = |kinds: &[ViolationKind]| {
+        let mut out: Vec<Mark> = cycle_time
+            .map(|t| Mark {
+                name: format!("cycle {k}"),
+                t,
+                color: m.theme.current,
+            })
+            .into_iter()
+            .collect();
+        for v in &run.execution.violations {
+            if kinds.contains(&v.kind) {
+                out.push(Mark {
+                    name: format!("{} broken", kind_name(v.kind)),
+                    t: v.time as f64,
+                    color: m.theme.limit,
+                });
+            }
+        }
+        out
+    };
+    if let Err(e) = &run.predicted {
+        ui.colored_label(m.theme.error, format!("No prediction to compare with: {e}"));
+    }
+    legend_ui(ui, SOC, &series(|v| &v.soc));
+    let soc_marks = marks(&[ViolationKind::MinSoc, ViolationKind::HandoverSoc]);
+    plot_ui(
+        ui,
+        m,
+        cache,
+        SOC,
+        &series(|v| &v.soc),
+        &soc_limits,
+        &soc_marks,
+        cmds,
+    );
+    legend_ui(ui, PEAK, &series(|v| &v.peak));
+    let peak_marks = marks(&[ViolationKind::MaxPeakPower]);
+    plot_ui(
+        ui,
+        m,
+        cache,
+        PEAK,
+        &series(|v| &v.peak),
+        &peak_limits,
+        &peak_marks,
+        cmds,
+    );
+    legend_ui(ui, DATA, &series(|v| &v.data));
+    let data_marks = marks(&[ViolationKind::DataCapacity]);
+    plot_ui(
+        ui,
+        m,
+        cache,
+        DATA,
+        &series(|v| &v.data),
+        &data_limits,
+        &data_marks,
+        cmds,
+    );
+
+    let Some(t) = m.nav.probe else {
+        ui.label("Click a plot to compare the executed and predicted values at that time.");
+        return;
+    };
+    ui.horizontal(|ui| {
+        ui.label(RichText::new(format!("At {}", m.time(t))).strong());
+        if ui.button("Clear probe").clicked() {
+            cmds.push(Command::ProbePlot(None));
+        }
+    });
+    let x = t as f64;
+    /// A quantity of the probe table: its name, series and format.
+    type Quantity = (&'static str, Pick, fn(f64) -> String);
+    let rows: [Quantity; 3] = [
+        (
+            "State of charge",
+            |v| &v.soc,
+            |x| format_wh((x * MJ_PER_WH).round() as i128),
+        ),
+        (
+            "Peak power",
+            |v| &v.peak,
+            |x| format_watts((x * MW_PER_W).round() as i64),
+        ),
+        ("Data volume", |v| &v.data, |x| format!("{x:.1} Mbit")),
+    ];
+    egui::Grid::new("execution_probe")
+        .num_columns(4)
+        .striped(true)
+        .show(ui, |ui| {
+            for h in ["", "executed", "predicted", "executed − predicted"] {
+                ui.label(RichText::new(h).strong());
+            }
+            ui.end_row();
+            for (name, pick, fmt) in rows {
+                let done = value_at(pick(&run.executed), x);
+                let plan = predicted.and_then(|p| value_at(pick(p), x));
+                ui.label(name);
+                ui.label(done.map_or_else(|| "–".into(), fmt));
+                ui.label(plan.map_or_else(|| "–".into(), fmt));
+                let diff = done.zip(plan).map(|(a, b)| a - b);
+                ui.label(diff.map_or_else(|| "–".into(), fmt));
+                ui.end_row();
+            }
+        });
+}
+
+/// A plot's title with its series in their colours (a legend that never covers
+/// the data).
+fn legend_ui(ui: &mut egui::Ui, title: &str, series: &[Series<'_>]) {
+    ui.horizontal_wrapped(|ui| {
+        ui.label(RichText::new(title).strong());
+        for s in series {
+            let stroke = if s.dashed { "- - -" } else { "——" };
+            ui.label(RichText::new(format!("{stroke} {}", s.name)).color(s.color));
+        }
+    });
+}
+
+/// The value of a series (sorted by time, linear between points; at a jump,
+/// the value after it) at `x`; `None` outside it.
+fn value_at(series: &[[f64; 2]], x: f64) -> Option<f64> {
+    let i = series.partition_point(|p| p[0] <= x);
+    match (i.checked_sub(1).and_then(|j| series.get(j)), series.get(i)) {
+        (Some(a), Some(b)) if b[0] > a[0] => {
+            Some(a[1] + (b[1] - a[1]) * (x - a[0]) / (b[0] - a[0]))
+        }
+        (Some(a), _) => (a[0] == x || i < series.len()).then_some(a[1]),
+        (None, _) => None,
+    }
+}
+
 /// Sums consumers that read the same (e.g. several awake periods), ranked.
 fn merge_by_who(m: &Model<'_>, list: &[Consumer]) -> Vec<(String, i64)> {
     let mut out: Vec<(String, i64)> = Vec::new();
@@ -226,7 +487,19 @@ fn merge_by_who(m: &Model<'_>, list: &[Consumer]) -> Vec<(String, i64)> {
 
 #[cfg(test)]
 mod tests {
-    use super::decimate;
+    use super::{decimate, value_at};
+
+    #[test]
+    fn values_between_points_are_linear_and_a_jump_takes_the_later_value() {
+        let series = [[0.0, 10.0], [10.0, 20.0], [10.0, 5.0], [20.0, 5.0]];
+        assert_eq!(value_at(&series, -1.0), None);
+        assert_eq!(value_at(&series, 0.0), Some(10.0));
+        assert_eq!(value_at(&series, 5.0), Some(15.0));
+        assert_eq!(value_at(&series, 10.0), Some(5.0));
+        assert_eq!(value_at(&series, 20.0), Some(5.0));
+        assert_eq!(value_at(&series, 21.0), None);
+        assert_eq!(value_at(&[], 0.0), None);
+    }
 
     #[test]
     fn decimation_keeps_each_columns_envelope_and_time_order() {

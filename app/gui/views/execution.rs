@@ -1,0 +1,536 @@
+//! Execution mode's controls and inspector: where the actual durations come
+//! from, the cycle slider, the step slider inside the looked-at cycle's
+//! scheduler run, and for the selected activity what happened to it (outcome,
+//! predicted against actual times, the cycle that dispatched it, what held it
+//! back) and what the looked-at cycle's run did with it.
+
+use eframe::egui::{self, RichText};
+use solscope_engine::{
+    Dropped, Event, FailurePhase, Guard, Outcome, ReasonRange, RunOutcome, Trigger, Violation,
+    ViolationKind, format_watts, format_wh, mbit, reason_line, wh,
+};
+
+use super::{Model, Status, inspector, step_row_ui};
+use crate::gui::commands::{Command, UiCommand};
+use crate::gui::execution::ExecutionRun;
+use crate::gui::theme::{CYCLE_SLIDER_WIDTH, SEED_FIELD_WIDTH};
+
+/// How many of a failed step's reasons the inspector lists.
+const REASONS_SHOWN: usize = 4;
+
+/// Actuals: the source in use, nominal / open / sample, and the execution's
+/// summary.
+pub fn actuals_ui(ui: &mut egui::Ui, m: &Model<'_>, seed: &mut String, cmds: &mut Vec<Command>) {
+    ui.horizontal_wrapped(|ui| {
+        ui.label(RichText::new("Actuals:").strong());
+        ui.label(m.exec.source.describe());
+        super::command_button(ui, UiCommand::NominalActuals, true, cmds);
+        super::command_button(ui, UiCommand::OpenActuals, true, cmds);
+        let label = ui.label("Seed");
+        let field = ui
+            .add(egui::TextEdit::singleline(seed).desired_width(SEED_FIELD_WIDTH))
+            .labelled_by(label.id)
+            .on_hover_text("Draw the actual durations from the duration models with this seed");
+        let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+        if ui.button("Sample").clicked() || enter {
+            match seed.trim().parse::<u64>() {
+                Ok(s) => cmds.push(Command::SampleActuals(s)),
+                Err(_) => cmds.push(Command::ShowError(
+                    "Seed: enter a whole number from 0 to 18446744073709551615".into(),
+                )),
+            }
+        }
+        ui.separator();
+        match m.exec.run {
+            None => {
+                ui.spinner();
+                ui.label("executing the plan…");
+            }
+            Some(Err(e)) => {
+                ui.colored_label(m.theme.error, format!("Could not execute the plan: {e}"));
+            }
+            Some(Ok(run)) => summary_ui(ui, m, run),
+        }
+    });
+}
+
+/// `4 completed, 1 aborted, 0 not run · lowest 825.6 Wh at … · limits: …`.
+fn summary_ui(ui: &mut egui::Ui, m: &Model<'_>, run: &ExecutionRun) {
+    let (completed, aborted, not_run) = run.counts();
+    ui.label(format!(
+        "{completed} completed, {aborted} aborted, {not_run} not run"
+    ));
+    let (low, at) = run.execution.lowest_soc;
+    ui.label(format!("lowest {} at {}", format_wh(low), m.time(at)));
+    if let Some(h) = run.execution.handover_soc {
+        ui.label(format!("handover {}", format_wh(h)));
+    }
+    let v = run.execution.violations.len();
+    if v == 0 {
+        ui.label("no limit broken");
+    } else {
+        let names: Vec<&str> = run
+            .execution
+            .violations
+            .iter()
+            .map(|v| kind_name(v.kind))
+            .collect();
+        ui.colored_label(
+            m.theme.error,
+            format!("{v} limit(s) broken: {}", names.join(", ")),
+        );
+    }
+}
+
+/// The cycle slider: which cycle, when, why, from what state of charge.
+pub fn cycles_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
+    let Some(run) = m.exec.ready() else {
+        return;
+    };
+    let cycles = &run.execution.cycles;
+    let k = m.exec.cycle;
+    ui.horizontal_wrapped(|ui| {
+        super::command_button(ui, UiCommand::PreviousCycle, k > 0, cmds);
+        super::command_button(ui, UiCommand::NextCycle, k + 1 < cycles.len(), cmds);
+        let mut c = k;
+        ui.spacing_mut().slider_width = CYCLE_SLIDER_WIDTH;
+        let slider = egui::Slider::new(&mut c, 0..=cycles.len().saturating_sub(1)).text("Cycle");
+        if ui.add(slider).changed() {
+            cmds.push(Command::SetCycle(c));
+        }
+        if let Some(cycle) = cycles.get(k) {
+            let placed = cycle.placements.iter().filter(|p| p.is_some()).count();
+            let failed = cycle.placements.len() - placed;
+            ui.label(format!(
+                "cycle {k} of {}: at {}, {}, from {} — {placed} placed, {failed} not, {} dropped",
+                cycles.len(),
+                m.time(cycle.time),
+                trigger_text(m, cycle.trigger),
+                format_wh(cycle.soc),
+                cycle.dropped.len()
+            ));
+        }
+    });
+}
+
+/// The step slider inside the looked-at cycle's scheduler run.
+pub fn cycle_steps_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
+    if m.exec.ready().is_none() {
+        return;
+    }
+    let k = m.exec.cycle;
+    let Some(cr) = m.exec.cycle_run else {
+        ui.horizontal(|ui| {
+            ui.spinner();
+            ui.label(format!("scheduling cycle {k} again for its step trace…"));
+        });
+        return;
+    };
+    if let Err(e) = &cr.schedule {
+        ui.colored_label(
+            m.theme.error,
+            format!("Could not schedule cycle {k} again: {e}"),
+        );
+        return;
+    }
+    let j = m.exec.step;
+    let what = match cr.activity_of_step(j) {
+        None => format!("cycle {k}, before step 1: nothing placed"),
+        Some(a) => {
+            let outcome = match m.cycle_status(a) {
+                Some(Status::Scheduled(s, e)) => format!("placed {}–{}", m.time(s), m.time(e)),
+                Some(Status::Failed) => "failed".into(),
+                Some(Status::Skipped) => "skipped".into(),
+                Some(Status::Pending) | None => String::new(),
+            };
+            format!("cycle {k}, step {j}: {} — {outcome}", m.label(a))
+        }
+    };
+    step_row_ui(ui, m, cr.steps(), j, what, cmds);
+}
+
+/// Why a cycle ran.
+pub fn trigger_text(m: &Model<'_>, trigger: Trigger) -> String {
+    match trigger {
+        Trigger::Start => "at the plan start".into(),
+        Trigger::Period => "replan period".into(),
+        Trigger::End(a) => format!("after {} ended", m.doc.plan.activities[a].id),
+    }
+}
+
+/// Why the dispatcher held an activity back.
+fn guard_text(m: &Model<'_>, guard: Guard) -> String {
+    let id = |a: usize| m.doc.plan.activities[a].id.as_str();
+    match guard {
+        Guard::Dependency(b) => format!(
+            "dependency: {} had not ended (or its delay not passed)",
+            id(b)
+        ),
+        Guard::Resource(b) => format!("unit resource: {} was still executing", id(b)),
+        Guard::State(s, v) => {
+            let (name, value) = m
+                .doc
+                .plan
+                .states
+                .iter()
+                .nth(s)
+                .map_or(("?", "?"), |(n, d)| {
+                    (n.as_str(), d.values.get(v).map_or("?", String::as_str))
+                });
+            format!("state: {name} was not {value}")
+        }
+    }
+}
+
+/// The spec's name of a violated limit.
+pub fn kind_name(kind: ViolationKind) -> &'static str {
+    match kind {
+        ViolationKind::MinSoc => "min_soc",
+        ViolationKind::MaxPeakPower => "max_peak_power",
+        ViolationKind::DataCapacity => "data_capacity",
+        ViolationKind::HandoverSoc => "handover_soc",
+    }
+}
+
+/// A value of a violated limit's kind, in its planner unit.
+fn limit_value(kind: ViolationKind, x: i128) -> String {
+    match kind {
+        ViolationKind::MinSoc | ViolationKind::HandoverSoc => format_wh(x),
+        ViolationKind::MaxPeakPower => format_watts(i64::try_from(x).unwrap_or(i64::MAX)),
+        ViolationKind::DataCapacity => format!("{:.1} Mbit", mbit(x)),
+    }
+}
+
+/// A broken limit in one line: kind, when first broken, worst value, limit.
+pub fn violation_text(m: &Model<'_>, v: &Violation) -> String {
+    format!(
+        "{} broken from {}: worst {} at {} (limit {})",
+        kind_name(v.kind),
+        m.time(v.time),
+        limit_value(v.kind, v.worst.0),
+        m.time(v.worst.1),
+        limit_value(v.kind, v.limit)
+    )
+}
+
+/// Why a cycle left an activity out.
+fn dropped_text(m: &Model<'_>, why: &Dropped) -> String {
+    let id = |a: usize| m.doc.plan.activities[a].id.as_str();
+    match *why {
+        Dropped::GroupMemberRan(b) => format!("{} of its group ran", id(b)),
+        Dropped::DependencyPassed { on, end } => format!(
+            "its dependency {} ended at {}, leaving no start",
+            id(on),
+            m.time(end)
+        ),
+        Dropped::DependsOnDropped(b) => format!("it depends on {}, which can no longer run", id(b)),
+    }
+}
+
+/// `start – end` of a span.
+fn span(m: &Model<'_>, (s, e): (i64, i64)) -> String {
+    format!("{} – {}", m.time(s), m.time(e))
+}
+
+/// A signed difference of two times, in seconds.
+fn slip(d: i64) -> String {
+    match d {
+        0 => "on time".into(),
+        d if d > 0 => format!("{d} s late"),
+        d => format!("{} s early", -d),
+    }
+}
+
+/// The inspector in execution mode: the selected activity's execution, then its
+/// step in the looked-at cycle's run, then the cycle itself.
+pub fn inspector_ui(ui: &mut egui::Ui, m: &Model<'_>, a: Option<usize>, cmds: &mut Vec<Command>) {
+    let Some(run) = m.exec.ready() else {
+        ui.label("The execution is not available yet.");
+        return;
+    };
+    match a {
+        None => {
+            ui.label("Select an activity in the list or on the Gantt chart.");
+        }
+        Some(a) => {
+            activity_run_ui(ui, m, run, a, cmds);
+            ui.separator();
+            cycle_step_ui(ui, m, a, cmds);
+        }
+    }
+    ui.separator();
+    cycle_ui(ui, m, run, cmds);
+    if !run.execution.violations.is_empty() {
+        ui.separator();
+        ui.label(RichText::new("Limits broken").strong());
+        for v in &run.execution.violations {
+            ui.colored_label(m.theme.error, violation_text(m, v));
+        }
+    }
+}
+
+/// What happened to activity `a`.
+fn activity_run_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    run: &ExecutionRun,
+    a: usize,
+    cmds: &mut Vec<Command>,
+) {
+    ui.label(RichText::new(m.label(a)).strong());
+    let Some(r) = run.activity(a) else {
+        return;
+    };
+    let act = &m.doc.plan.activities[a];
+    let (outcome, color) = match r.outcome {
+        RunOutcome::Completed => ("completed".to_string(), m.theme.scheduled),
+        RunOutcome::Aborted => (
+            format!(
+                "aborted: ran past its duration {} s and was stopped (actual duration {} s)",
+                act.duration.max(),
+                r.duration
+            ),
+            m.theme.aborted,
+        ),
+        RunOutcome::NotRun => ("not run: it never started".to_string(), m.theme.error),
+    };
+    ui.colored_label(color, RichText::new(format!("Outcome: {outcome}")).strong());
+    egui::Grid::new("execution_times")
+        .num_columns(2)
+        .striped(true)
+        .show(ui, |ui| {
+            ui.label("Predicted (cycle 0)");
+            ui.label(r.predicted.map_or("not placed".into(), |p| span(m, p)));
+            ui.end_row();
+            ui.label("Actual");
+            ui.label(r.actual.map_or("did not start".into(), |p| span(m, p)));
+            ui.end_row();
+            if let (Some(p), Some(x)) = (r.predicted, r.actual) {
+                ui.label("Start, end");
+                ui.label(format!("{}, {}", slip(x.0 - p.0), slip(x.1 - p.1)));
+                ui.end_row();
+            }
+            ui.label("Actual duration");
+            let would = if r.outcome == RunOutcome::NotRun {
+                "would have been "
+            } else {
+                ""
+            };
+            ui.label(format!(
+                "{would}{} s (planned {} s)",
+                r.duration,
+                act.duration.max()
+            ));
+            ui.end_row();
+        });
+    if let Some(c) = r.cycle {
+        ui.horizontal_wrapped(|ui| {
+            let at = run.execution.cycles.get(c).map_or(0, |x| x.time);
+            ui.label(format!("Dispatched by cycle {c} (at {})", m.time(at)));
+            if c != m.exec.cycle && ui.button(format!("Show cycle {c}")).clicked() {
+                cmds.push(Command::SetCycle(c));
+            }
+        });
+    }
+    if r.outcome == RunOutcome::NotRun {
+        match r.last_cycle {
+            Some(c) => {
+                ui.horizontal_wrapped(|ui| {
+                    ui.label(format!("Last in the plan of cycle {c}"));
+                    if c != m.exec.cycle && ui.button(format!("Show cycle {c}")).clicked() {
+                        cmds.push(Command::SetCycle(c));
+                    }
+                });
+            }
+            None => {
+                ui.label("No cycle's plan had it.");
+            }
+        }
+        let dropped = run.execution.cycles.iter().enumerate().find_map(|(k, c)| {
+            c.dropped
+                .iter()
+                .find(|(x, _)| *x == a)
+                .map(|(_, why)| (k, why))
+        });
+        if let Some((k, why)) = dropped {
+            ui.label(format!("Cycle {k} dropped it: {}", dropped_text(m, why)));
+        }
+    }
+    // Every time the dispatcher held it back, with why and by whom.
+    let held: Vec<(usize, i64, Guard)> = run
+        .execution
+        .cycles
+        .iter()
+        .enumerate()
+        .flat_map(|(k, c)| {
+            c.events.iter().filter_map(move |e| match *e {
+                Event::Held {
+                    activity,
+                    time,
+                    guard,
+                } if activity == a => Some((k, time, guard)),
+                _ => None,
+            })
+        })
+        .collect();
+    if held.is_empty() {
+        ui.label("The dispatcher never held it back.");
+    } else {
+        ui.label(RichText::new("Held back by the dispatch guard").strong());
+        for (k, t, guard) in held {
+            ui.label(format!(
+                "at {} (cycle {k}): {}",
+                m.time(t),
+                guard_text(m, guard)
+            ));
+        }
+    }
+}
+
+/// What the looked-at cycle's run did with activity `a` (its step record).
+fn cycle_step_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Vec<Command>) {
+    let k = m.exec.cycle;
+    ui.label(RichText::new(format!("In cycle {k}'s scheduler run")).strong());
+    let Some(cr) = m.exec.cycle_run else {
+        ui.label("being scheduled again…");
+        return;
+    };
+    let (Some(sched), Some(step)) = (m.exec.schedule(), cr.step_of(a)) else {
+        ui.label("Not in this cycle's plan (it had started, ended, or could no longer run).");
+        return;
+    };
+    let Some(plan) = m
+        .exec
+        .ready()
+        .and_then(|r| r.execution.cycles.get(k))
+        .and_then(|c| c.plan.as_ref())
+    else {
+        return;
+    };
+    ui.horizontal_wrapped(|ui| {
+        let shown = if step.step <= m.exec.step {
+            match &step.outcome {
+                Outcome::Scheduled { start, end } => {
+                    format!("placed {}", span(m, (*start, *end)))
+                }
+                Outcome::Failed(FailurePhase::Dependency { on }) => format!(
+                    "failed: its dependency {} was not placed",
+                    cr.plan_activity(*on)
+                        .map_or("?", |x| m.doc.plan.activities[x].id.as_str())
+                ),
+                Outcome::Failed(FailurePhase::ValidIntervals) => {
+                    "failed: no start satisfies its constraints together".into()
+                }
+                Outcome::Failed(FailurePhase::Placement) => {
+                    "failed: every valid start breaks a power, energy or sleep limit".into()
+                }
+                Outcome::Skipped { by } => format!(
+                    "skipped: {} of its group was placed",
+                    cr.plan_activity(*by)
+                        .map_or("?", |x| m.doc.plan.activities[x].id.as_str())
+                ),
+            }
+        } else {
+            "pending".into()
+        };
+        ui.label(format!("Step {} of {}: {shown}", step.step, cr.steps()));
+        if step.step != m.exec.step && ui.button("Show its step").clicked() {
+            cmds.push(Command::SetCycleStep(step.step));
+        }
+    });
+    if step.step > m.exec.step {
+        return;
+    }
+    if !step.categories.is_empty() {
+        ui.label(
+            RichText::new(format!(
+                "Valid starts per constraint (within its windows, cycle {k} step {})",
+                step.step
+            ))
+            .strong(),
+        );
+        inspector::intervals_ui(ui, m, &step.categories);
+    }
+    let failing: Vec<ReasonRange> = step
+        .tries
+        .iter()
+        .filter_map(|t| {
+            Some(ReasonRange {
+                first: t.starts.lo,
+                last: t.starts.hi,
+                duration: t.duration,
+                reason: t.reason.clone()?,
+                probe: t.probe,
+            })
+        })
+        .collect();
+    if !failing.is_empty() && step.outcome.placement().is_none() {
+        ui.label(RichText::new("Rejected starts").strong());
+        for r in failing.iter().take(REASONS_SHOWN) {
+            ui.label(reason_line(plan, &sched.problem, r));
+        }
+        if failing.len() > REASONS_SHOWN {
+            ui.label(format!("and {} more ranges", failing.len() - REASONS_SHOWN));
+        }
+    }
+}
+
+/// The looked-at cycle: when, why, from what, and what its dispatcher did.
+fn cycle_ui(ui: &mut egui::Ui, m: &Model<'_>, run: &ExecutionRun, cmds: &mut Vec<Command>) {
+    let k = m.exec.cycle;
+    let Some(cycle) = run.execution.cycles.get(k) else {
+        return;
+    };
+    egui::CollapsingHeader::new(format!("Cycle {k}"))
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.label(format!(
+                "At {}, {}; started from {} ({:.0} % of capacity)",
+                m.time(cycle.time),
+                trigger_text(m, cycle.trigger),
+                format_wh(cycle.soc),
+                100.0 * wh(cycle.soc) / m.doc.plan.battery.capacity.max(f64::MIN_POSITIVE)
+            ));
+            let id = |a: usize| m.doc.plan.activities[a].id.as_str();
+            if !cycle.dropped.is_empty() {
+                ui.label(RichText::new("Left out (can no longer run)").strong());
+                for (a, why) in &cycle.dropped {
+                    if ui
+                        .link(format!("{}: {}", id(*a), dropped_text(m, why)))
+                        .clicked()
+                    {
+                        cmds.push(Command::Select(Some(*a)));
+                    }
+                }
+            }
+            if cycle.events.is_empty() {
+                ui.label("The dispatcher started nothing before the next cycle.");
+            } else {
+                ui.label(RichText::new("Dispatch until the next cycle").strong());
+                for e in &cycle.events {
+                    let (a, text) = match *e {
+                        Event::Started { activity, time } => (
+                            activity,
+                            format!("{} started {}", m.time(time), id(activity)),
+                        ),
+                        Event::Held {
+                            activity,
+                            time,
+                            guard,
+                        } => (
+                            activity,
+                            format!(
+                                "{} held {}: {}",
+                                m.time(time),
+                                id(activity),
+                                guard_text(m, guard)
+                            ),
+                        ),
+                    };
+                    if ui.link(text).clicked() {
+                        cmds.push(Command::Select(Some(a)));
+                    }
+                }
+            }
+        });
+}
