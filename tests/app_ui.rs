@@ -3,7 +3,7 @@
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
 use egui_kittest::kittest::Queryable;
-use solscope::gui::{Command, SolscopeApp};
+use solscope::gui::{Command, Mode, SolscopeApp, UiCommand};
 use solscope::screenshot::{SNAPSHOT_SIZE, View, harness};
 
 fn tutorial() -> SolscopeApp {
@@ -292,5 +292,277 @@ fn one_suggestion_worker_at_a_time() {
     assert!(
         list.iter().any(|s| s.description.contains("mast heating")),
         "{list:?}"
+    );
+}
+
+/// The example plan with uncertain durations.
+fn uncertain_drive() -> SolscopeApp {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/execution-examples/uncertain-drive.json"
+    );
+    let text = std::fs::read_to_string(path).unwrap();
+    SolscopeApp::from_text(&text, Some(path.into())).expect("uncertain drive")
+}
+
+/// A file `name` holding `text` in a fresh temporary directory of this test.
+fn scratch_file(test: &str, name: &str, text: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("solscope-ui-{test}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// `(completed, aborted, not run)` of the execution shown, once derived.
+fn counts(h: &egui_kittest::Harness<'static, SolscopeApp>) -> Option<(usize, usize, usize)> {
+    h.state().execution_run().map(|r| r.counts())
+}
+
+#[test]
+fn switching_to_execution_and_back() {
+    let mut h = harness(uncertain_drive(), SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    assert_eq!(h.state().ui.nav.mode, Mode::Schedule);
+    h.get_by_label("Execution").click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.mode, Mode::Execution);
+    // Nominal actuals by default: everything runs where the first cycle put it.
+    assert!(h.query_by_label("nominal").is_some());
+    assert_eq!(counts(&h), Some((4, 0, 0)));
+    assert!(
+        h.query_by_label("4 completed, 0 aborted, 0 not run")
+            .is_some()
+    );
+    assert!(h.query_by_label_contains("cycle 0 of 21").is_some());
+    // Cmd+1 goes back to the schedule; the step slider is the plan's again.
+    h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::Num1);
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.mode, Mode::Schedule);
+    assert!(h.query_by_label_contains("step 4: sky_survey").is_some());
+    h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::Num2);
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.mode, Mode::Execution);
+}
+
+#[test]
+fn the_cycle_slider_and_the_step_slider_inside_a_cycle() {
+    let mut app = uncertain_drive();
+    app.apply(UiCommand::ShowExecution.into());
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    h.get_by_label("Cycle >").click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.cycle, 1);
+    assert!(
+        h.query_by_label_contains("cycle 1 of 21: at 1800 (10:30:00), replan period")
+            .is_some()
+    );
+    // Page Down moves on; the cycle's run is shown at its last step.
+    for _ in 0..3 {
+        h.key_press(eframe::egui::Key::PageDown);
+        h.run_steps(2);
+    }
+    assert_eq!(h.state().ui.nav.cycle, 4);
+    // Cycle 4 runs when the drive ends at 6400; its plan holds the three
+    // activities not yet started, and its run is shown at its last step.
+    let run = h.state().execution_run().unwrap();
+    let cycle = &run.execution.cycles[4];
+    assert_eq!(cycle.time, 6400);
+    assert_eq!(cycle.activity_of.len(), 3);
+    assert_eq!(h.state().cycle_run().unwrap().steps(), 3);
+    assert!(
+        h.query_by_label_contains("cycle 4 of 21: at 6400 (11:46:40), after drive ended")
+            .is_some()
+    );
+    assert!(
+        h.query_by_label_contains("cycle 4, step 3: sky_survey")
+            .is_some()
+    );
+    // The step buttons step inside that run.
+    h.get_by_label("< Previous").click();
+    h.run_steps(3);
+    assert!(h.query_by_label_contains("cycle 4, step 2:").is_some());
+    h.key_press(eframe::egui::Key::Home);
+    h.run_steps(3);
+    assert!(
+        h.query_by_label_contains("cycle 4, before step 1: nothing placed")
+            .is_some()
+    );
+    // The plan's own step did not move.
+    assert_eq!(h.state().ui.nav.step, h.state().analysis.steps());
+    h.key_press(eframe::egui::Key::PageUp);
+    h.run_steps(2);
+    assert_eq!(h.state().ui.nav.cycle, 3);
+    assert!(h.query_by_label_contains("cycle 3, step 4:").is_some());
+}
+
+#[test]
+fn an_actuals_file_is_used_and_an_invalid_one_changes_nothing() {
+    let mut app = uncertain_drive();
+    app.apply(UiCommand::ShowExecution.into());
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    let good = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/execution-examples/uncertain-drive.actuals.json"
+    );
+    h.state_mut().push(Command::OpenActuals(good.into()));
+    h.run_steps(3);
+    assert!(h.query_by_label("uncertain-drive.actuals.json").is_some());
+    let drive = index(h.state(), "drive");
+    let run = h.state().execution_run().unwrap();
+    assert_eq!(run.execution.activities[drive].actual, Some((1000, 7300)));
+    let before = (h.state().actuals.clone(), counts(&h));
+    let cycles = run.execution.cycles.len();
+    // An unknown activity: the path-named error, and nothing changes.
+    let bad = scratch_file(
+        "bad-actuals",
+        "bad.actuals.json",
+        r#"{"format": "solscope.actuals/1", "durations": {"nope": 10}}"#,
+    );
+    h.state_mut().push(Command::OpenActuals(bad.clone()));
+    h.run_steps(3);
+    assert!(
+        h.query_by_label_contains("Could not open actuals")
+            .is_some()
+    );
+    assert!(
+        h.query_by_label_contains("durations.nope").is_some(),
+        "the path-named error is shown: {:?}",
+        h.state().ui.messages.error
+    );
+    assert_eq!((h.state().actuals.clone(), counts(&h)), before);
+    assert_eq!(
+        h.state().execution_run().unwrap().execution.cycles.len(),
+        cycles
+    );
+    assert!(h.query_by_label("uncertain-drive.actuals.json").is_some());
+    // Neither does a file that is not there.
+    h.state_mut()
+        .push(Command::OpenActuals(bad.with_file_name("missing.json")));
+    h.run_steps(3);
+    assert!(h.query_by_label_contains("missing.json").is_some());
+    assert_eq!((h.state().actuals.clone(), counts(&h)), before);
+}
+
+#[test]
+fn sampling_with_a_seed_names_the_source() {
+    let mut app = uncertain_drive();
+    app.apply(UiCommand::ShowExecution.into());
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    h.get_by_label("Seed").focus();
+    h.run_steps(2);
+    h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::A);
+    h.get_by_label("Seed").type_text("7");
+    h.run_steps(2);
+    h.get_by_label("Sample").click();
+    h.run_steps(3);
+    assert!(h.query_by_label("sampled, seed 7").is_some());
+    let want = solscope_engine::sample_actuals(&h.state().doc.plan, 7);
+    assert_eq!(h.state().execution_run().unwrap().actuals, want);
+    // A seed that is not a number is an error, and the source stays.
+    h.get_by_label("Seed").focus();
+    h.run_steps(2);
+    h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::A);
+    h.get_by_label("Seed").type_text("seven");
+    h.run_steps(2);
+    h.get_by_label("Sample").click();
+    h.run_steps(3);
+    assert!(
+        h.query_by_label_contains("Seed: enter a whole number")
+            .is_some()
+    );
+    assert!(h.query_by_label("sampled, seed 7").is_some());
+    h.get_by_label("Nominal").click();
+    h.run_steps(3);
+    assert!(h.query_by_label("nominal").is_some());
+}
+
+#[test]
+fn an_edit_reruns_the_execution_and_the_inspector_shows_what_happened() {
+    let mut app = uncertain_drive();
+    app.apply(UiCommand::ShowExecution.into());
+    let long = scratch_file(
+        "edit",
+        "long.actuals.json",
+        r#"{"format": "solscope.actuals/1", "durations": {"drive": 6600, "sky_survey": 1500}}"#,
+    );
+    app.apply(Command::OpenActuals(long));
+    let post = index(&app, "post_drive_imaging");
+    app.apply(Command::Select(Some(post)));
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    assert_eq!(counts(&h), Some((3, 1, 0)));
+    // The drive ran long: post-drive imaging was held back by it.
+    assert!(
+        h.query_by_label_contains("held post_drive_imaging: dependency: drive had not ended")
+            .is_none(),
+        "cycle 0 does not hold it"
+    );
+    assert!(
+        h.query_by_label_contains("(cycle 3): dependency: drive had not ended")
+            .is_some()
+    );
+    assert!(h.query_by_label("Outcome: completed").is_some());
+    // Raising the minimum state of charge: the long drive now breaks it, and
+    // less runs.
+    let mut set = serde_json::Map::new();
+    set.insert(
+        "battery".into(),
+        serde_json::json!({"capacity": 1600.0, "initial": 1300.0, "min_soc": 950.0}),
+    );
+    h.state_mut().push(Command::Edit {
+        target: "plan".into(),
+        set,
+        description: "Raise min_soc".into(),
+    });
+    h.run_steps(3);
+    assert_eq!(counts(&h), Some((1, 1, 2)));
+    assert!(
+        h.query_by_label_contains("1 limit(s) broken: min_soc")
+            .is_some()
+    );
+    assert!(
+        h.query_by_label_contains("min_soc broken from 7030 (11:57:10): worst 915.1 Wh")
+            .is_some()
+    );
+    assert!(
+        h.query_by_label("Outcome: not run: it never started")
+            .is_some()
+    );
+    assert!(
+        h.query_by_label_contains("Last in the plan of cycle 18")
+            .is_some()
+    );
+}
+
+#[test]
+fn the_execution_is_derived_off_the_frame_and_never_stale() {
+    let mut app = uncertain_drive();
+    app.background = true;
+    app.apply(UiCommand::ShowExecution.into());
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    let wait = |h: &mut egui_kittest::Harness<'static, SolscopeApp>| {
+        for _ in 0..1000 {
+            if h.state().execution_run().is_some() && h.state().cycle_run().is_some() {
+                return;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(10));
+            h.run_steps(1);
+        }
+        panic!("the execution never arrived");
+    };
+    wait(&mut h);
+    assert_eq!(counts(&h), Some((4, 0, 0)));
+    h.state_mut().push(Command::SampleActuals(7));
+    h.run_steps(1);
+    // The execution of the nominal actuals is not shown for the sampled ones.
+    if let Some(run) = h.state().execution_run() {
+        assert_eq!(
+            run.actuals,
+            solscope_engine::sample_actuals(&h.state().doc.plan, 7)
+        );
+    }
+    wait(&mut h);
+    assert_eq!(
+        h.state().execution_run().unwrap().actuals,
+        solscope_engine::sample_actuals(&h.state().doc.plan, 7)
     );
 }
