@@ -5,7 +5,7 @@
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
 use serde_json::json;
-use solscope::gui::{Command, SolscopeApp};
+use solscope::gui::{Command, SolscopeApp, UiCommand};
 use solscope::screenshot::{SNAPSHOT_SIZE, View, harness, snapshot_options};
 
 fn app() -> SolscopeApp {
@@ -82,6 +82,93 @@ fn gantt_grouped_by_resource() {
         app,
         View {
             step: Some(35),
+            ..View::default()
+        },
+    );
+}
+
+/// The uncertain-drive example with the minimum state of charge raised to 950 Wh,
+/// in execution mode, executed with a drive 1,200 s longer than planned and a
+/// sky survey 300 s longer: the drive breaks the minimum, post-drive imaging is
+/// held back and never runs, contact science never fits, the survey is aborted.
+fn long_drive() -> SolscopeApp {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/execution-examples/uncertain-drive.json"
+    );
+    let text = std::fs::read_to_string(path).expect("example plan");
+    let mut app = SolscopeApp::from_text(&text, Some(path.into())).expect("example plan");
+    let mut set = serde_json::Map::new();
+    set.insert(
+        "battery".into(),
+        json!({"capacity": 1600.0, "initial": 1300.0, "min_soc": 950.0}),
+    );
+    app.apply(Command::Edit {
+        target: "plan".into(),
+        set,
+        description: "Raise min_soc to 950 Wh".into(),
+    });
+    app.apply(Command::DismissBanner);
+    // The file name is shown: a fixed name in a directory of this process.
+    let dir = std::env::temp_dir().join(format!("solscope-shots-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let actuals = dir.join("long-drive.actuals.json");
+    std::fs::write(
+        &actuals,
+        r#"{"format": "solscope.actuals/1", "durations": {"drive": 6600, "sky_survey": 1500}}"#,
+    )
+    .expect("actuals file");
+    app.apply(UiCommand::ShowExecution.into());
+    app.apply(Command::OpenActuals(actuals));
+    assert!(
+        app.ui.messages.error.is_none(),
+        "{:?}",
+        app.ui.messages.error
+    );
+    app
+}
+
+#[test]
+fn execution_with_a_long_drive() {
+    let mut app = long_drive();
+    // Cycle 3, whose dispatcher held post-drive imaging back for the drive.
+    app.apply(Command::SetCycle(3));
+    check(
+        "execution_long_drive",
+        app,
+        View {
+            select: Some("post_drive_imaging".into()),
+            ..View::default()
+        },
+    );
+}
+
+#[test]
+fn execution_step_inside_the_first_cycle() {
+    let mut app = long_drive();
+    app.apply(Command::SetCycle(0));
+    // Contact science's own step in the first cycle's run, where it fails.
+    app.apply(Command::SetCycleStep(3));
+    check(
+        "execution_cycle_step",
+        app,
+        View {
+            select: Some("arm_science".into()),
+            ..View::default()
+        },
+    );
+}
+
+#[test]
+fn execution_of_the_default_plan() {
+    let mut app = app();
+    app.apply(UiCommand::ShowExecution.into());
+    app.apply(Command::SetCycle(20));
+    check(
+        "execution_default_plan",
+        app,
+        View {
+            probe: Some(150_000),
             ..View::default()
         },
     );
