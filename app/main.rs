@@ -1,7 +1,7 @@
 //! `solscope`: explainable scheduling workstation for rover activity plans.
 //!
 //! `solscope [PLAN]` opens the desktop app (on the bundled default plan without an
-//! argument). Command line: `solscope schedule|explain|execute|check PLAN`, and
+//! argument). Command line: `solscope schedule|explain|execute|montecarlo|check PLAN`, and
 //! `solscope screenshot PLAN --out FILE.png` for headless rendering. Invalid input
 //! prints a path-named message on standard error, nothing on standard output, and
 //! exits with status 2.
@@ -69,6 +69,36 @@ enum Command {
         /// Also write the actual durations used to this file (solscope.actuals/1).
         #[arg(long, value_name = "FILE")]
         write_actuals: Option<PathBuf>,
+        /// With --sample: the Monte Carlo run index to replay (its durations are
+        /// stream RUN of the seed).
+        #[arg(long, default_value_t = 0, requires = "sample")]
+        run: u64,
+    },
+    /// Run many executions with durations drawn from the plan's duration_models
+    /// and print the summary JSON (solscope.montecarlo/1). Run indices are the
+    /// unit of work: --shard I/K runs every K-th of them (from I) and prints their
+    /// records (solscope.montecarlo-runs/1); `solscope montecarlo merge PARTS...`
+    /// combines the parts into exactly the summary one machine prints.
+    #[command(args_conflicts_with_subcommands = true)]
+    Montecarlo {
+        #[command(subcommand)]
+        merge: Option<MonteCarloCommand>,
+        /// The plan file (solscope.plan/1 JSON).
+        plan: Option<PathBuf>,
+        /// Number of runs.
+        #[arg(long, default_value_t = 1000)]
+        runs: u64,
+        /// Campaign seed: run i draws its durations from stream i of this seed
+        /// (`solscope execute PLAN --sample SEED --run I` replays it).
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Print one CSV row per run instead of the summary.
+        #[arg(long)]
+        csv: bool,
+        /// Run only the runs whose index is I modulo K (0 <= I < K) and print their
+        /// records.
+        #[arg(long, value_name = "I/K")]
+        shard: Option<String>,
     },
     /// Validate a plan and print its warnings.
     Check {
@@ -109,6 +139,20 @@ enum Command {
         /// Window size in points, WxH.
         #[arg(long, default_value = "1600x1000")]
         size: String,
+    },
+}
+
+/// `solscope montecarlo merge`.
+#[derive(Subcommand, Debug)]
+enum MonteCarloCommand {
+    /// Combine shard outputs (solscope.montecarlo-runs/1) into the summary.
+    Merge {
+        /// The parts, in any order.
+        #[arg(required = true)]
+        parts: Vec<PathBuf>,
+        /// Print one CSV row per run instead of the summary.
+        #[arg(long)]
+        csv: bool,
     },
 }
 
@@ -299,6 +343,7 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
             actuals,
             sample,
             write_actuals,
+            run,
         } => {
             let loaded = load(&plan)?;
             let actuals = match (actuals, sample) {
@@ -314,7 +359,7 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
                         other => other,
                     })?
                 }
-                (None, Some(seed)) => solscope_engine::sample_actuals(&loaded.plan, seed),
+                (None, Some(seed)) => solscope_engine::sample_run(&loaded.plan, seed, run),
                 (None, None) => solscope_engine::Actuals::nominal(),
             };
             let execution = solscope_engine::execute(&loaded.plan, &actuals)?;
@@ -334,6 +379,73 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
                 })?;
             }
             Ok(out)
+        }
+        Command::Montecarlo {
+            merge: Some(MonteCarloCommand::Merge { parts, csv }),
+            ..
+        } => {
+            let mut docs = Vec::with_capacity(parts.len());
+            for path in &parts {
+                let text = solscope_engine::read_plan_text(path, usize::MAX)?;
+                let doc: solscope_engine::RunsDoc = serde_json::from_str(&text).map_err(|e| {
+                    solscope_engine::Error::invalid(
+                        format!("{}", path.display()),
+                        format!("not a solscope.montecarlo-runs/1 document: {e}"),
+                    )
+                })?;
+                docs.push(doc);
+            }
+            let (campaign, records) = solscope_engine::merge_parts(&docs)?;
+            if csv {
+                Ok(runs_csv(&campaign, &records))
+            } else {
+                to_json(&solscope_engine::summarize(&campaign, &records))
+            }
+        }
+        Command::Montecarlo {
+            merge: None,
+            plan,
+            runs,
+            seed,
+            csv,
+            shard,
+        } => {
+            let Some(plan) = plan else {
+                return Err(Failure::Input(solscope_engine::Error::invalid(
+                    "PLAN",
+                    "a plan file is required (or `merge PARTS...`)",
+                )));
+            };
+            let loaded = load(&plan)?;
+            if runs == 0 || runs > 10_000_000 {
+                return Err(Failure::Input(solscope_engine::Error::invalid(
+                    "--runs",
+                    format!("must be between 1 and 10000000 (got {runs})"),
+                )));
+            }
+            let (part, of) = match shard.as_deref() {
+                None => (0, 1),
+                Some(text) => parse_shard(text)?,
+            };
+            let campaign =
+                solscope_engine::campaign(&loaded.plan, seed, runs, &default_name(&plan))?;
+            let indices: Vec<u64> = (part..runs).step_by(of as usize).collect();
+            let records = with_progress(indices.len() as u64, |tick| {
+                solscope_engine::campaign_runs(&loaded.plan, &campaign, &indices, tick, None)
+            })?
+            .unwrap_or_default();
+            if csv {
+                Ok(runs_csv(&campaign, &records))
+            } else if shard.is_some() {
+                to_json(&solscope_engine::RunsDoc {
+                    format: solscope_engine::MONTECARLO_RUNS_FORMAT.into(),
+                    campaign,
+                    shard: (part, of),
+                    records,
+                })
+            } else {
+                to_json(&solscope_engine::summarize(&campaign, &records))
+            }
         }
         Command::Screenshot { .. } => Ok(String::new()),
         Command::Generate {
@@ -372,6 +484,118 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
             Ok(out)
         }
     }
+}
+
+/// `--shard I/K`.
+fn parse_shard(text: &str) -> Result<(u64, u64), Failure> {
+    let bad = || {
+        Failure::Input(solscope_engine::Error::invalid(
+            "--shard",
+            format!("expected I/K with 0 <= I < K (got {text})"),
+        ))
+    };
+    let (i, k) = text.split_once('/').ok_or_else(bad)?;
+    let (i, k): (u64, u64) = (
+        i.trim().parse().map_err(|_| bad())?,
+        k.trim().parse().map_err(|_| bad())?,
+    );
+    if k == 0 || i >= k {
+        return Err(bad());
+    }
+    Ok((i, k))
+}
+
+/// Runs `work` with a progress bar on standard error, shown once the work has
+/// taken a second and only when standard error is a terminal.
+fn with_progress<T>(total: u64, work: impl FnOnce(&(dyn Fn() + Sync)) -> T) -> T {
+    use std::io::IsTerminal;
+    let bar = indicatif::ProgressBar::with_draw_target(
+        Some(total),
+        indicatif::ProgressDrawTarget::hidden(),
+    );
+    let started = std::time::Instant::now();
+    let shown = std::sync::atomic::AtomicBool::new(false);
+    let terminal = std::io::stderr().is_terminal();
+    let tick = || {
+        bar.inc(1);
+        if terminal
+            && started.elapsed() > std::time::Duration::from_secs(1)
+            && !shown.swap(true, std::sync::atomic::Ordering::Relaxed)
+        {
+            bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
+        }
+    };
+    let out = work(&tick);
+    bar.finish_and_clear();
+    out
+}
+
+/// One CSV row per run: the run, its lowest state of charge (Wh) and when, the
+/// state of charge at the handover, the limits it broke, the outcome counts, each
+/// uncertain activity's actual duration and each activity's outcome.
+fn runs_csv(
+    campaign: &solscope_engine::Campaign,
+    records: &[solscope_engine::RunRecord],
+) -> String {
+    let quote = |s: &str| {
+        if s.contains([',', '"', '\n']) {
+            format!("\"{}\"", s.replace('"', "\"\""))
+        } else {
+            s.to_string()
+        }
+    };
+    let mut header = vec![
+        "run".to_string(),
+        "lowest_soc_wh".into(),
+        "lowest_soc_time".into(),
+        "handover_soc_wh".into(),
+        "violations".into(),
+        "completed".into(),
+        "aborted".into(),
+        "not_run".into(),
+    ];
+    header.extend(
+        campaign
+            .uncertain
+            .iter()
+            .map(|&a| quote(&format!("duration:{}", campaign.activities[a]))),
+    );
+    header.extend(
+        campaign
+            .activities
+            .iter()
+            .map(|id| quote(&format!("outcome:{id}"))),
+    );
+    let mut out = header.join(",") + "\n";
+    let mut records: Vec<&solscope_engine::RunRecord> = records.iter().collect();
+    records.sort_by_key(|r| r.run);
+    for r in records {
+        let count = |c: char| r.outcomes.chars().filter(|&x| x == c).count().to_string();
+        let mut row = vec![
+            r.run.to_string(),
+            format!("{:.3}", solscope_engine::wh(i128::from(r.lowest_soc.0))),
+            r.lowest_soc.1.to_string(),
+            r.handover_soc
+                .map(|x| format!("{:.3}", solscope_engine::wh(i128::from(x))))
+                .unwrap_or_default(),
+            r.violations.join(";"),
+            count('c'),
+            count('a'),
+            count('n'),
+        ];
+        row.extend(r.durations.iter().map(i64::to_string));
+        row.extend(r.outcomes.chars().map(|c| {
+            match c {
+                'c' => "completed",
+                'a' => "aborted",
+                _ => "not_run",
+            }
+            .to_string()
+        }));
+        out.push_str(&row.join(","));
+        out.push('\n');
+    }
+    out
 }
 
 /// The plan's display name when the file does not give one: the file name.

@@ -8,7 +8,9 @@
 //! `--profile standard|realistic` only one generator profile (default: both);
 //! `--sweep N` schedules seeds 1..=N of each size and profile once and reports the
 //! median and the worst (the plan of a sweep that costs most, not only the seed-1
-//! plan the table measures).
+//! plan the table measures). `--execution` measures executions instead: the bundled
+//! plan (nominal and sampled), 1,000 activities of both profiles, and a Monte Carlo
+//! campaign of 1,000 runs of the bundled plan.
 
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
@@ -81,6 +83,10 @@ fn main() {
             ("realistic", Profile::Realistic),
         ],
     };
+    if std::env::args().any(|a| a == "--execution") {
+        execution();
+        return;
+    }
     if let Some(n) = arg("--sweep").and_then(|v| v.parse::<u64>().ok()) {
         sweep(&profiles, sizes, n);
         return;
@@ -192,4 +198,61 @@ fn table(profile: Profile, sizes: &[(usize, usize, usize)]) {
             ms(t_edit)
         );
     }
+}
+
+/// Executions and Monte Carlo (`--execution`).
+fn execution() {
+    use solscope_engine::{
+        Actuals, campaign, campaign_runs, execute, load_plan_file, losses, sample_run, summarize,
+    };
+    let bundled = load_plan_file(std::path::Path::new("assets/default-plan.json"))
+        .expect("bundled plan")
+        .plan;
+    println!("| plan | activities | what | cycles | time |");
+    println!("|---|---:|---|---:|---:|");
+    let row =
+        |name: &str, plan: &solscope_engine::Plan, what: &str, actuals: &Actuals, runs| {
+            let mut cycles = 0;
+            let t = median(runs, || {
+                let ex = execute(plan, actuals).expect("execute");
+                let lost = losses(plan, &ex).expect("losses");
+                cycles = ex.cycles.len();
+                std::hint::black_box(lost);
+            });
+            println!(
+                "| {name} | {} | {what} | {cycles} | {} |",
+                plan.activities.len(),
+                ms(t)
+            );
+        };
+    row("bundled", &bundled, "nominal", &Actuals::nominal(), 5);
+    row(
+        "bundled",
+        &bundled,
+        "sampled (seed 1, run 0)",
+        &sample_run(&bundled, 1, 0),
+        5,
+    );
+    for (name, profile) in [
+        ("standard", Profile::Standard),
+        ("realistic", Profile::Realistic),
+    ] {
+        let plan = generate_plan_with(profile, 1000, 3, 1);
+        row(name, &plan, "nominal", &Actuals::nominal(), 1);
+    }
+    let c = campaign(&bundled, 1, 1000, "bundled").expect("campaign");
+    let indices: Vec<u64> = (0..1000).collect();
+    let t = Instant::now();
+    let records = campaign_runs(&bundled, &c, &indices, &|| {}, None)
+        .expect("runs")
+        .expect("not cancelled");
+    let runs_time = t.elapsed();
+    let t = Instant::now();
+    std::hint::black_box(summarize(&c, &records));
+    println!(
+        "\nMonte Carlo, bundled plan, 1,000 runs on {} threads: runs {}, summary {}",
+        std::thread::available_parallelism().map_or(1, |n| n.get()),
+        ms(runs_time),
+        ms(t.elapsed())
+    );
 }

@@ -1,0 +1,215 @@
+//! `solscope execute` and `solscope montecarlo` through the real binary: the
+//! extension's example runs as the spec says (nominal and with its actuals file),
+//! bad actuals are refused at their path with nothing on stdout, a sampled run
+//! written with --write-actuals replays to the same document, a Monte Carlo run
+//! replays as `execute --sample S --run I`, and shards merge into exactly the
+//! one-machine summary, also as CSV.
+
+// Test helpers outside `#[test]` functions are not covered by clippy.toml's
+// allow-*-in-tests; a failed expectation here is a test failure.
+#![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn solscope(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_solscope"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("solscope runs")
+}
+
+fn ok_json(args: &[&str]) -> Value {
+    let out = solscope(args);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("JSON on stdout")
+}
+
+fn refused(args: &[&str]) -> String {
+    let out = solscope(args);
+    assert_eq!(out.status.code(), Some(2), "{args:?}");
+    assert!(out.stdout.is_empty(), "{args:?}: stdout not empty");
+    String::from_utf8(out.stderr).expect("UTF-8")
+}
+
+fn scratch(name: &str, text: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli_execute");
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("write");
+    path
+}
+
+const EXAMPLE: &str = "assets/execution-examples/uncertain-drive.json";
+const ACTUALS: &str = "assets/execution-examples/uncertain-drive.actuals.json";
+
+#[test]
+fn the_example_runs_nominal_and_with_its_actuals() {
+    let nominal = ok_json(&["execute", EXAMPLE]);
+    assert_eq!(nominal["format"], "solscope.execution/1");
+    for a in nominal["activities"].as_array().unwrap() {
+        assert_eq!(a["outcome"], "completed", "{a}");
+        assert_eq!(a["start"], a["predicted_start"], "{a}");
+        assert_eq!(a["end"], a["predicted_end"], "{a}");
+    }
+    let doc = ok_json(&["execute", EXAMPLE, "--actuals", ACTUALS]);
+    assert_eq!(doc["actuals"]["drive"], 6300);
+    let drive = &doc["activities"][0];
+    assert_eq!(
+        (drive["start"].as_i64(), drive["end"].as_i64()),
+        (Some(1000), Some(7300))
+    );
+    // The imaging after the drive waits for it: the cycle at its end starts it.
+    let imaging = &doc["activities"][1];
+    assert_eq!(imaging["start"], 7300);
+    let cycle = &doc["cycles"][imaging["cycle"].as_u64().unwrap() as usize];
+    assert_eq!(cycle["trigger"], "end");
+    assert_eq!(cycle["ended"], "drive");
+    // Replanning every 1800 s and on every end: cycles at 0, 1800, ... and 7300.
+    let times: Vec<i64> = doc["cycles"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["time"].as_i64().unwrap())
+        .collect();
+    assert!(
+        times.starts_with(&[0, 1800, 3600, 5400, 7200, 7300]),
+        "{times:?}"
+    );
+}
+
+#[test]
+fn bad_actuals_are_refused_at_their_path() {
+    let unknown = scratch(
+        "unknown.json",
+        r#"{ "format": "solscope.actuals/1", "durations": { "rover": 10 } }"#,
+    );
+    let err = refused(&["execute", EXAMPLE, "--actuals", unknown.to_str().unwrap()]);
+    assert!(
+        err.contains("unknown.json: durations.rover: unknown activity \"rover\""),
+        "{err}"
+    );
+    let negative = scratch(
+        "negative.json",
+        r#"{ "format": "solscope.actuals/1", "durations": { "drive": -5 } }"#,
+    );
+    let err = refused(&["execute", EXAMPLE, "--actuals", negative.to_str().unwrap()]);
+    assert!(err.contains("durations.drive"), "{err}");
+    let err = refused(&["execute", EXAMPLE, "--actuals", "/nonexistent/actuals.json"]);
+    assert!(err.contains("/nonexistent/actuals.json"), "{err}");
+    // A plan with an invalid duration_model is refused before anything runs.
+    let plan = scratch(
+        "bad-model.json",
+        &std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(EXAMPLE))
+            .unwrap()
+            .replace("\"min\": 3600", "\"min\": 9000"),
+    );
+    let err = refused(&["execute", plan.to_str().unwrap()]);
+    assert!(
+        err.contains("activities[0].duration_model.max: must be >= min"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_sampled_run_written_out_replays() {
+    let written = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli_execute/sampled.json");
+    let _ = std::fs::remove_file(&written);
+    let sampled = ok_json(&[
+        "execute",
+        EXAMPLE,
+        "--sample",
+        "42",
+        "--run",
+        "3",
+        "--write-actuals",
+        written.to_str().unwrap(),
+    ]);
+    let actuals: Value = serde_json::from_str(&std::fs::read_to_string(&written).unwrap()).unwrap();
+    assert_eq!(actuals["format"], "solscope.actuals/1");
+    let drive = actuals["durations"]["drive"].as_i64().unwrap();
+    assert!((3600..=6600).contains(&drive), "{drive}");
+    let replayed = ok_json(&["execute", EXAMPLE, "--actuals", written.to_str().unwrap()]);
+    assert_eq!(sampled, replayed);
+}
+
+#[test]
+fn montecarlo_runs_replay_and_shards_merge() {
+    let whole = solscope(&["montecarlo", EXAMPLE, "--runs", "40", "--seed", "5"]);
+    assert_eq!(whole.status.code(), Some(0));
+    let summary: Value = serde_json::from_slice(&whole.stdout).unwrap();
+    assert_eq!(summary["format"], "solscope.montecarlo/1");
+    assert_eq!(summary["runs"], 40);
+    for a in summary["activities"].as_array().unwrap() {
+        let total = a["completed"].as_u64().unwrap()
+            + a["aborted"].as_u64().unwrap()
+            + a["not_run"].as_u64().unwrap();
+        assert_eq!(total, 40, "{a}");
+    }
+    // Shards in any order merge into exactly the same bytes.
+    let mut parts = Vec::new();
+    for i in [2, 0, 1] {
+        let out = solscope(&[
+            "montecarlo",
+            EXAMPLE,
+            "--runs",
+            "40",
+            "--seed",
+            "5",
+            "--shard",
+            &format!("{i}/3"),
+        ]);
+        assert_eq!(out.status.code(), Some(0));
+        let part = scratch(
+            &format!("part{i}.json"),
+            std::str::from_utf8(&out.stdout).unwrap(),
+        );
+        parts.push(part.to_str().unwrap().to_string());
+    }
+    let mut args = vec!["montecarlo", "merge"];
+    args.extend(parts.iter().map(String::as_str));
+    let merged = solscope(&args);
+    assert_eq!(merged.status.code(), Some(0));
+    assert_eq!(merged.stdout, whole.stdout);
+    // CSV: one row per run, the same from the merge as from one machine.
+    let csv = solscope(&[
+        "montecarlo",
+        EXAMPLE,
+        "--runs",
+        "40",
+        "--seed",
+        "5",
+        "--csv",
+    ]);
+    let text = String::from_utf8(csv.stdout.clone()).unwrap();
+    assert_eq!(text.lines().count(), 41);
+    assert!(text.starts_with("run,lowest_soc_wh,"), "{text}");
+    args.push("--csv");
+    assert_eq!(solscope(&args).stdout, csv.stdout);
+    // A missing shard is refused.
+    let err = refused(&["montecarlo", "merge", &parts[0], &parts[1]]);
+    assert!(
+        err.contains("missing") || err.contains("of 40 runs"),
+        "{err}"
+    );
+    // Run 7 of the campaign is `execute --sample 5 --run 7`.
+    let rows: Vec<&str> = text.lines().collect();
+    let header: Vec<&str> = rows[0].split(',').collect();
+    let row7: Vec<&str> = rows[8].split(',').collect();
+    let col = header.iter().position(|h| *h == "duration:drive").unwrap();
+    let ex = ok_json(&["execute", EXAMPLE, "--sample", "5", "--run", "7"]);
+    assert_eq!(ex["actuals"]["drive"].to_string(), row7[col]);
+    // Bad shards are refused.
+    for bad in ["3/3", "1", "a/b", "0/0"] {
+        let err = refused(&["montecarlo", EXAMPLE, "--shard", bad]);
+        assert!(err.contains("--shard"), "{bad}: {err}");
+    }
+}
