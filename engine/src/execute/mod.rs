@@ -197,28 +197,73 @@ pub fn execute_with(
     options: ExecuteOptions,
 ) -> Result<Execution, Error> {
     let problem = Problem::compile(plan)?;
-    let n = plan.activities.len();
-    let (h0, h1) = (problem.h0, problem.h1);
-    let period = plan.execution.and_then(|e| e.replan_period);
-    let on_end = plan.execution.is_none_or(|e| e.replan_on_end);
-    let actual: Vec<Option<i64>> = plan
-        .activities
-        .iter()
-        .map(|a| actuals.durations.get(&a.id).copied())
-        .collect();
-    let mut status = vec![Status::Waiting; n];
-    // Per started activity: (start, end, planned end, aborted, cycle, sequence).
-    let mut runs: Vec<Option<Started>> = vec![None; n];
-    let mut last_cycle: Vec<Option<usize>> = vec![None; n];
-    let mut record = Record::default();
-    let mut integ = Integrator::new(&problem);
-    let mut cycles: Vec<Cycle> = Vec::new();
-    let mut t = h0;
-    let mut trigger = Trigger::Start;
-    let mut prev_awake: Vec<(i64, i64)> = Vec::new();
-    let mut prev_heat: Vec<Heat> = Vec::new();
-    loop {
-        integ.advance(&problem, &record, t);
+    let mut sim = Sim::new(&problem, plan, actuals);
+    while sim.cycle(&problem, plan, options)? {}
+    Ok(sim.finish(problem, plan))
+}
+
+/// The state of an execution between cycles (cloned to resume a run from a
+/// shared prefix: [`Sim::diverges`]).
+#[derive(Clone, Debug)]
+struct Sim {
+    /// Actual duration by activity (`None`: its `duration`).
+    actual: Vec<Option<i64>>,
+    status: Vec<Status>,
+    runs: Vec<Option<Started>>,
+    last_cycle: Vec<Option<usize>>,
+    record: Record,
+    integ: Integrator,
+    cycles: Vec<Cycle>,
+    /// The next cycle's time and trigger.
+    t: i64,
+    trigger: Trigger,
+    prev_awake: Vec<(i64, i64)>,
+    prev_heat: Vec<Heat>,
+}
+
+impl Sim {
+    fn new(problem: &Problem, plan: &Plan, actuals: &Actuals) -> Self {
+        let n = plan.activities.len();
+        Self {
+            actual: actual_durations(plan, actuals),
+            status: vec![Status::Waiting; n],
+            runs: vec![None; n],
+            last_cycle: vec![None; n],
+            record: Record::default(),
+            integ: Integrator::new(problem),
+            cycles: Vec::new(),
+            t: problem.h0,
+            trigger: Trigger::Start,
+            prev_awake: Vec::new(),
+            prev_heat: Vec::new(),
+        }
+    }
+
+    /// Runs the cycle at `self.t` and dispatches until the next one; `false`
+    /// when there is none.
+    fn cycle(
+        &mut self,
+        problem: &Problem,
+        plan: &Plan,
+        options: ExecuteOptions,
+    ) -> Result<bool, Error> {
+        let (h0, h1) = (problem.h0, problem.h1);
+        let period = plan.execution.and_then(|e| e.replan_period);
+        let on_end = plan.execution.is_none_or(|e| e.replan_on_end);
+        let t = self.t;
+        let Sim {
+            actual,
+            status,
+            runs,
+            last_cycle,
+            record,
+            integ,
+            cycles,
+            prev_awake,
+            prev_heat,
+            ..
+        } = self;
+        integ.advance(problem, record, t);
         for (i, r) in runs.iter().enumerate() {
             if let Some(r) = r {
                 status[i] = if r.end <= t {
@@ -232,19 +277,11 @@ pub fn execute_with(
             }
         }
         let start = cycle_start(
-            &problem,
-            plan,
-            t,
-            &status,
-            &runs,
-            &record,
-            &integ,
-            &prev_awake,
-            &prev_heat,
+            problem, plan, t, status, runs, record, integ, prev_awake, prev_heat,
         );
-        let values = state_values(&problem, plan, &runs, t, true);
+        let values = state_values(problem, plan, runs, t, true);
         let soc = start.soc_mj;
-        let cp = cycle_plan(plan, t, &status, &values, start);
+        let cp = cycle_plan(plan, t, status, &values, start);
         let run = run_outcomes(&cp.plan)?;
         let k = cycles.len();
         for &a in &cp.activity_of {
@@ -291,7 +328,7 @@ pub fn execute_with(
             if s >= next {
                 break;
             }
-            if let Some(guard) = guard(&problem, plan, a, s, &runs) {
+            if let Some(guard) = guard(problem, plan, a, s, runs) {
                 events.push(Event::Held {
                     activity: a,
                     time: s,
@@ -318,7 +355,7 @@ pub fn execute_with(
                 start: s,
                 hold: s + planned,
             };
-            record.activity(&problem, a, s, end);
+            record.activity(problem, a, s, end);
             events.push(Event::Started {
                 activity: a,
                 time: s,
@@ -374,7 +411,7 @@ pub fn execute_with(
         }
         cycles.push(Cycle {
             time: t,
-            trigger,
+            trigger: self.trigger,
             plan: (!options.outcomes_only).then_some(cp.plan),
             soc,
             placements: run.placements,
@@ -383,49 +420,68 @@ pub fn execute_with(
             events,
         });
         if next >= h1 {
-            break;
+            return Ok(false);
         }
-        t = next;
-        trigger = next_trigger;
+        self.t = next;
+        self.trigger = next_trigger;
+        Ok(true)
     }
-    integ.advance(&problem, &record, h1);
-    let first = &cycles[0];
-    let activities = (0..n)
-        .map(|a| {
-            let predicted = first.placement(a);
-            let run = runs[a];
-            ActivityRun {
-                outcome: match run {
-                    None => RunOutcome::NotRun,
-                    Some(r) if r.aborted => RunOutcome::Aborted,
-                    Some(_) => RunOutcome::Completed,
-                },
-                predicted,
-                actual: run.map(|r| (r.start, r.end)),
-                cycle: run.map(|r| r.cycle),
-                duration: actual[a].unwrap_or(plan.activities[a].duration.max()),
-                last_cycle: if run.is_none() { last_cycle[a] } else { None },
-            }
-        })
-        .collect();
-    let mut profile = std::mem::take(&mut integ.profile);
-    profile.awake = union(
-        record
-            .awake
-            .iter()
-            .map(|&(a, b)| (a.max(h0), b.min(h1)))
-            .filter(|(a, b)| a < b)
-            .collect(),
-    );
-    Ok(Execution {
-        cycles,
-        activities,
-        profile,
-        violations: integ.violations,
-        lowest_soc: integ.lowest,
-        handover_soc: integ.at_handover,
-        problem,
-    })
+
+    /// The execution, after the last cycle.
+    fn finish(mut self, problem: Problem, plan: &Plan) -> Execution {
+        let (h0, h1) = (problem.h0, problem.h1);
+        self.integ.advance(&problem, &self.record, h1);
+        let first = &self.cycles[0];
+        let activities = (0..plan.activities.len())
+            .map(|a| {
+                let predicted = first.placement(a);
+                let run = self.runs[a];
+                ActivityRun {
+                    outcome: match run {
+                        None => RunOutcome::NotRun,
+                        Some(r) if r.aborted => RunOutcome::Aborted,
+                        Some(_) => RunOutcome::Completed,
+                    },
+                    predicted,
+                    actual: run.map(|r| (r.start, r.end)),
+                    cycle: run.map(|r| r.cycle),
+                    duration: self.actual[a].unwrap_or(plan.activities[a].duration.max()),
+                    last_cycle: if run.is_none() {
+                        self.last_cycle[a]
+                    } else {
+                        None
+                    },
+                }
+            })
+            .collect();
+        let mut profile = std::mem::take(&mut self.integ.profile);
+        profile.awake = union(
+            self.record
+                .awake
+                .iter()
+                .map(|&(a, b)| (a.max(h0), b.min(h1)))
+                .filter(|(a, b)| a < b)
+                .collect(),
+        );
+        Execution {
+            cycles: self.cycles,
+            activities,
+            profile,
+            violations: self.integ.violations,
+            lowest_soc: self.integ.lowest,
+            handover_soc: self.integ.at_handover,
+            problem,
+        }
+    }
+}
+
+/// The actual duration of each activity under `actuals` (`None`: its
+/// `duration`).
+fn actual_durations(plan: &Plan, actuals: &Actuals) -> Vec<Option<i64>> {
+    plan.activities
+        .iter()
+        .map(|a| actuals.durations.get(&a.id).copied())
+        .collect()
 }
 
 /// A started activity.
