@@ -1,13 +1,15 @@
 //! Monte Carlo: byte-identical on 1 and 2 threads, shards merge into exactly the
 //! one-machine summary, run `i` replays as one execution sampled with stream
-//! `i`, and on a hand-built plan where one duration decides the outcome the
+//! `i` (the campaign resumes each run from the nominal run's shared prefix; a run
+//! from the start gives the same record), and on a hand-built plan where one duration decides the outcome the
 //! summary finds that duration and its threshold.
 #![allow(clippy::panic, clippy::unwrap_used, clippy::expect_used)]
 
 use serde_json::json;
 use solscope_engine::{
     Campaign, MONTECARLO_RUNS_FORMAT, Plan, RunOutcome, RunRecord, RunsDoc, campaign,
-    campaign_runs, execute, load_plan, merge_parts, sample_run, summarize,
+    campaign_runs, execute, load_plan, load_plan_file, merge_parts, run_record, sample_run,
+    summarize,
 };
 
 /// A drive of 2400..6000 s, then optional science that fits only when the drive
@@ -83,7 +85,11 @@ fn one_duration_decides_and_the_summary_finds_it() {
     // The cause, counted over the lost runs.
     assert_eq!(lost.causes.len(), 1);
     assert_eq!(lost.causes[0].runs, expected);
-    assert!(lost.causes[0].cause.starts_with("valid_intervals"), "{:?}", lost.causes);
+    assert!(
+        lost.causes[0].cause.starts_with("valid_intervals"),
+        "{:?}",
+        lost.causes
+    );
     // Imaging never depends on the drive: always completed, never lost.
     assert_eq!(s.activities[1].completed, 300);
     assert!(s.activities[1].lost.is_none());
@@ -165,5 +171,22 @@ fn a_run_replays_as_one_sampled_execution() {
             })
             .collect();
         assert_eq!(outcomes, r.outcomes);
+    }
+}
+
+#[test]
+fn runs_resumed_from_the_nominal_prefix_equal_runs_from_the_start() {
+    let bundled = load_plan_file(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/default-plan.json"
+    )))
+    .unwrap()
+    .plan;
+    for (plan, runs) in [(plan(), 40u64), (bundled, 12)] {
+        let c = campaign(&plan, 21, runs, "plan").unwrap();
+        let resumed = all_runs(&plan, &c);
+        for r in &resumed {
+            assert_eq!(*r, run_record(&plan, &c, r.run).unwrap(), "run {}", r.run);
+        }
     }
 }

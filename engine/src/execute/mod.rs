@@ -336,12 +336,7 @@ impl Sim {
                 });
                 continue;
             }
-            let act = &plan.activities[a];
-            let mut end = s + actual[a].unwrap_or(planned);
-            let aborted = !act.mandatory && end > s + planned;
-            if aborted {
-                end = s + planned;
-            }
+            let (end, aborted) = end_of(plan, a, s, planned, actual[a]);
             runs[a] = Some(Started {
                 start: s,
                 end,
@@ -472,6 +467,106 @@ impl Sim {
             handover_soc: self.integ.at_handover,
             problem,
         }
+    }
+}
+
+/// The nominal execution's state before each of its cycles, from which a run
+/// with other actual durations resumes at the last cycle before its first
+/// difference ([`Prefix::execute`]).
+#[derive(Clone, Debug)]
+pub(crate) struct Prefix {
+    /// The state before cycle `k` (without the cycles, kept once in `cycles`).
+    before: Vec<Sim>,
+    cycles: Vec<Cycle>,
+}
+
+impl Prefix {
+    /// Runs the nominal execution of `plan`, keeping its state before each cycle.
+    pub(crate) fn nominal(
+        problem: &Problem,
+        plan: &Plan,
+        options: ExecuteOptions,
+    ) -> Result<Self, Error> {
+        let mut sim = Sim::new(problem, plan, &Actuals::nominal());
+        let mut before = Vec::new();
+        loop {
+            let mut snapshot = sim.clone();
+            snapshot.cycles = Vec::new();
+            before.push(snapshot);
+            if !sim.cycle(problem, plan, options)? {
+                break;
+            }
+        }
+        Ok(Self {
+            before,
+            cycles: sim.cycles,
+        })
+    }
+
+    /// [`execute_with`] for `actuals`, from the last nominal cycle before the
+    /// first end that `actuals` move: everything before it is the nominal run's
+    /// (no end, start or cycle differs before then). Debug builds compare the
+    /// result with a run from the start.
+    pub(crate) fn execute(
+        &self,
+        problem: &Problem,
+        plan: &Plan,
+        actuals: &Actuals,
+        options: ExecuteOptions,
+    ) -> Result<Execution, Error> {
+        let actual = actual_durations(plan, actuals);
+        let last = &self.before[self.before.len() - 1];
+        // The first time the run can differ: an activity the nominal run started
+        // ending at another time (the earlier of the two ends).
+        let diverges = last
+            .runs
+            .iter()
+            .enumerate()
+            .filter_map(|(a, r)| {
+                let r = (*r)?;
+                let end = end_of(plan, a, r.start, r.planned_end - r.start, actual[a]).0;
+                (end != r.end).then_some(end.min(r.end))
+            })
+            .min()
+            .unwrap_or(i64::MAX);
+        let k = self
+            .before
+            .iter()
+            .rposition(|s| s.t < diverges)
+            .unwrap_or(0);
+        let mut sim = self.before[k].clone();
+        sim.cycles = self.cycles[..k].to_vec();
+        sim.actual = actual;
+        // Activities started before the resumed cycle end after it either way:
+        // give them their actual ends.
+        for a in 0..sim.runs.len() {
+            let Some(r) = sim.runs[a] else { continue };
+            let (end, aborted) = end_of(plan, a, r.start, r.planned_end - r.start, sim.actual[a]);
+            if (end, aborted) != (r.end, r.aborted) {
+                sim.record.forget_activity(problem, a, r.start, r.end);
+                sim.record.activity(problem, a, r.start, end);
+                sim.runs[a] = Some(Started { end, aborted, ..r });
+            }
+        }
+        while sim.cycle(problem, plan, options)? {}
+        let out = sim.finish(problem.clone(), plan);
+        #[cfg(debug_assertions)]
+        if let Ok(full) = execute_with(plan, actuals, options) {
+            debug_assert_eq!(out.activities, full.activities, "the resumed run differs");
+            debug_assert_eq!(out.profile, full.profile, "the resumed profile differs");
+        }
+        Ok(out)
+    }
+}
+
+/// When an activity started at `start` for a planned `planned` seconds ends,
+/// and whether it is aborted: an optional one stops at `start + planned`.
+fn end_of(plan: &Plan, a: usize, start: i64, planned: i64, actual: Option<i64>) -> (i64, bool) {
+    let end = start + actual.unwrap_or(planned);
+    if !plan.activities[a].mandatory && end > start + planned {
+        (start + planned, true)
+    } else {
+        (end, false)
     }
 }
 

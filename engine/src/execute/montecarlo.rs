@@ -17,7 +17,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::actuals::sample_run;
-use super::{Cause, ExecuteOptions, RunOutcome, ViolationKind, execute_with, losses};
+use super::{Cause, ExecuteOptions, Prefix, RunOutcome, ViolationKind, execute_with, losses};
 use crate::error::Error;
 use crate::model::Plan;
 use crate::units::{MJ_PER_WH, wh};
@@ -145,13 +145,19 @@ pub fn campaign_runs(
     progress: &(dyn Fn() + Sync),
     cancel: Option<&AtomicBool>,
 ) -> Result<Option<Vec<RunRecord>>, Error> {
+    // Every run shares the nominal execution up to its first changed end.
+    let problem = crate::scheduler::Problem::compile(plan)?;
+    let prefix = Prefix::nominal(&problem, plan, ExecuteOptions::default())?;
     let records: Vec<Option<Result<RunRecord, Error>>> = indices
         .par_iter()
         .map(|&r| {
             if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
                 return None;
             }
-            let record = run_record(plan, campaign, r);
+            let actuals = sample_run(plan, campaign.seed, r);
+            let record = prefix
+                .execute(&problem, plan, &actuals, ExecuteOptions::default())
+                .and_then(|ex| record_of(plan, campaign, r, &actuals, &ex));
             progress();
             Some(record)
         })
@@ -166,11 +172,22 @@ pub fn campaign_runs(
     Ok(Some(out))
 }
 
-/// One run's record.
+/// One run's record (executed from the start).
 pub fn run_record(plan: &Plan, campaign: &Campaign, run: u64) -> Result<RunRecord, Error> {
     let actuals = sample_run(plan, campaign.seed, run);
     let ex = execute_with(plan, &actuals, ExecuteOptions::default())?;
-    let lost = losses(plan, &ex)?;
+    record_of(plan, campaign, run, &actuals, &ex)
+}
+
+/// The record of run `run`, executed as `ex` with `actuals`.
+fn record_of(
+    plan: &Plan,
+    campaign: &Campaign,
+    run: u64,
+    actuals: &super::Actuals,
+    ex: &super::Execution,
+) -> Result<RunRecord, Error> {
+    let lost = losses(plan, ex)?;
     Ok(RunRecord {
         run,
         durations: campaign

@@ -47,6 +47,23 @@ impl Record {
         }
     }
 
+    /// Removes what [`Record::activity`] recorded for activity `a` over
+    /// `[start, end)` (its actual end changed before the execution got there).
+    pub fn forget_activity(&mut self, problem: &Problem, a: usize, start: i64, end: i64) {
+        let act = &problem.acts[a];
+        remove_one(&mut self.draws, |d| {
+            (d.start, d.end, d.energy, d.peak, d.data)
+                == (start, end, act.energy, act.peak, act.data)
+        });
+        if act.awake == AwakeMode::Required {
+            remove_one(&mut self.awake, |w| *w == (start, end));
+        }
+        for &z in &act.zones {
+            let m = problem.zones[z].maintenance;
+            remove_one(&mut self.heat, |h| *h == (z, start, end, m));
+        }
+    }
+
     /// Whether the rover is awake over the second `t`.
     pub fn awake_at(&self, t: i64) -> bool {
         self.awake.iter().any(|&(a, b)| a <= t && t < b)
@@ -70,6 +87,13 @@ impl Record {
                 None => return Some(start),
             }
         }
+    }
+}
+
+/// Removes the first element of `v` that `pred` accepts.
+fn remove_one<T>(v: &mut Vec<T>, pred: impl Fn(&T) -> bool) {
+    if let Some(i) = v.iter().position(pred) {
+        v.remove(i);
     }
 }
 

@@ -114,7 +114,9 @@ pub fn loss(plan: &Plan, ex: &Execution, a: usize) -> Result<Loss, Error> {
         // The cycle that dropped it from the schedule for good: the first one
         // after the last that placed it (later cycles only find its windows
         // passing).
-        let placed_last = (0..=last).rev().find(|&k| ex.cycles[k].placement(a).is_some());
+        let placed_last = (0..=last)
+            .rev()
+            .find(|&k| ex.cycles[k].placement(a).is_some());
         let from = placed_last.map_or(0, |k| k + 1);
         match (from..=last).find(|&k| ex.cycles[k].index_of(a).is_some()) {
             Some(k) => (Some(k), failed(plan, ex, k, a)?),
