@@ -171,8 +171,10 @@ impl SolscopeApp {
             ui.ctx()
                 .request_repaint_after(std::time::Duration::from_millis(150));
         }
-        if let Some(a) = self.ui.nav.selected {
-            // Derived data, computed before drawing (never mid-draw).
+        let scheduling = self.ui.nav.mode == Mode::Schedule;
+        if let Some(a) = self.ui.nav.selected.filter(|_| scheduling) {
+            // Derived data, computed before drawing (never mid-draw); execution
+            // mode's inspector shows none of it.
             self.explanation_for(a);
             self.suggestions_for(a);
             self.derived.valid_for(&self.analysis, self.revision, a);
@@ -304,6 +306,8 @@ impl SolscopeApp {
     /// nothing changes and `what` is shown with the path-named error.
     fn use_actuals(&mut self, source: ActualsSource, what: &str) {
         match source.actuals(&self.doc.plan) {
+            // The same actuals again: the execution shown stays.
+            Ok(_) if source == self.actuals => self.ui.messages.error = None,
             Ok(_) => {
                 self.actuals = source;
                 self.actuals_rev += 1;
@@ -442,7 +446,8 @@ impl SolscopeApp {
             UiCommand::OpenActuals => self.dialog = Some(Dialog::OpenActuals),
             UiCommand::NominalActuals => self.use_actuals(ActualsSource::Nominal, "Nominal"),
             UiCommand::PreviousCycle | UiCommand::NextCycle => {
-                if let Some((c, n)) = self.cycle_and_cycles() {
+                let shown = self.ui.nav.mode == Mode::Execution;
+                if let Some((c, n)) = self.cycle_and_cycles().filter(|_| shown) {
                     let next = if cmd == UiCommand::PreviousCycle {
                         c.saturating_sub(1)
                     } else {
