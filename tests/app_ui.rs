@@ -531,6 +531,16 @@ fn an_edit_reruns_the_execution_and_the_inspector_shows_what_happened() {
         h.query_by_label_contains("Last in the plan of cycle 18")
             .is_some()
     );
+    // Why, from the explainer at the cycle that decided it.
+    assert!(
+        h.query_by_label_contains(
+            "post_drive_imaging was not run: at the cycle at 7200 (12:00:00) the scheduler could not place it: placement (min_soc)"
+        )
+        .is_some()
+    );
+    h.get_by_label("Show cycle 4").click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.cycle, 4);
 }
 
 #[test]

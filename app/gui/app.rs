@@ -231,6 +231,7 @@ impl SolscopeApp {
         self.execution
             .run(self.exec_key())
             .and_then(|r| r.as_ref().ok())
+            .map(AsRef::as_ref)
     }
 
     /// The looked-at cycle's scheduler run, once derived.
@@ -258,6 +259,10 @@ impl SolscopeApp {
             _ => return,
         };
         self.execution.request_cycle(key, cycle, self.background);
+        if let Some(a) = self.ui.nav.selected {
+            self.execution
+                .request_loss(&self.doc.plan, key, a, self.background);
+        }
         if let Some(n) = self.execution.cycle(key, cycle).map(|c| c.steps()) {
             self.execution
                 .derive_view(key, cycle, self.ui.nav.cycle_step.min(n));
@@ -627,6 +632,7 @@ fn exec_model<'a>(
         cycle_run,
         step,
         view: execution.view(key, cycle, step),
+        loss: nav.selected.and_then(|a| execution.loss(key, a)),
     }
 }
 

@@ -5,9 +5,10 @@
 //! the scheduler runs of its cycles ([`ExecutionCache`], with its worker).
 
 use std::collections::BTreeMap;
+use std::sync::Arc;
 use std::sync::mpsc::{self, Receiver, TryRecvError};
 
-use solscope_engine::{CategoryIntervals, Explanation, Plan, Suggestion};
+use solscope_engine::{CategoryIntervals, Explanation, Loss, Plan, RunOutcome, Suggestion};
 
 use super::document::Analysis;
 use super::execution::{ActualsSource, CycleRun, ExecutionRun};
@@ -247,25 +248,31 @@ impl<K: Copy, T> Job<K, T> {
 }
 
 /// The execution of the plan at one [`ExecKey`], the scheduler runs of the
-/// cycles looked at, and the profiles of the step shown inside one of them.
+/// cycles looked at, the profiles of the step shown inside one of them, and why
+/// the selected activity did not complete.
 /// Each value is read back only for the key it was derived for. With
-/// `background` the execution and the cycle runs are computed on a worker
-/// thread (one of each at a time; a result for an older key is dropped), so a
-/// large plan never stalls a frame.
+/// `background` each is computed on a worker thread (one of each kind at a
+/// time; a result for an older key is dropped), so a large plan never stalls a
+/// frame.
 #[derive(Debug, Default)]
 pub struct ExecutionCache {
-    run: Option<(ExecKey, Result<ExecutionRun, String>)>,
+    /// The execution (shared with the worker explaining a loss).
+    run: Option<(ExecKey, Result<Arc<ExecutionRun>, String>)>,
     pending: Option<Job<ExecKey, ExecResult>>,
     /// Cycle runs of the execution in `run`, by cycle.
     cycles: BTreeMap<usize, CycleRun>,
     pending_cycle: Option<Job<(ExecKey, usize), Option<CycleRun>>>,
     /// The profiles after one step of one cycle's run.
     view: Option<((ExecKey, usize, usize), StepView)>,
+    /// Why one activity did not complete (the explainer at the cycle that
+    /// decided it).
+    loss: Option<((ExecKey, usize), Result<Loss, String>)>,
+    pending_loss: Option<Job<(ExecKey, usize), Result<Loss, String>>>,
 }
 
 impl ExecutionCache {
     /// The execution at `key`, or why there is none, once derived.
-    pub fn run(&self, key: ExecKey) -> Option<&Result<ExecutionRun, String>> {
+    pub fn run(&self, key: ExecKey) -> Option<&Result<Arc<ExecutionRun>, String>> {
         self.run.as_ref().filter(|(k, _)| *k == key).map(|(_, r)| r)
     }
 
@@ -286,11 +293,12 @@ impl ExecutionCache {
     fn store(&mut self, key: ExecKey, result: ExecResult) {
         self.cycles.clear();
         self.view = None;
+        self.loss = None;
         let run = result.map(|(run, first)| {
             if let Some(first) = first {
                 self.cycles.insert(0, first);
             }
-            run
+            Arc::new(run)
         });
         self.run = Some((key, run));
     }
@@ -344,7 +352,55 @@ impl ExecutionCache {
                 }
             }
         }
+        if let Some(job) = &self.pending_loss {
+            if let Some(result) = job.poll() {
+                let job_key = job.key;
+                self.pending_loss = None;
+                if job_key.0 == key {
+                    let value = result.unwrap_or_else(|()| {
+                        Err("the worker stopped without a result".to_string())
+                    });
+                    self.loss = Some((job_key, value));
+                }
+            }
+        }
         lost.map_or(Ok(()), Err)
+    }
+
+    /// Starts finding out why activity `a` did not complete in the execution at
+    /// `key` (the explainer at the cycle that decided it: one explanation of
+    /// that cycle's plan), unless it completed, it is known, or a worker is busy.
+    pub fn request_loss(&mut self, plan: &Plan, key: ExecKey, a: usize, background: bool) {
+        if self.loss(key, a).is_some() || self.pending_loss.is_some() {
+            return;
+        }
+        let Some(Ok(run)) = self.run(key) else {
+            return;
+        };
+        if run
+            .activity(a)
+            .is_none_or(|r| r.outcome == RunOutcome::Completed)
+        {
+            return;
+        }
+        let explain = move |plan: &Plan, run: &ExecutionRun| {
+            solscope_engine::loss(plan, &run.execution, a).map_err(|e| e.to_string())
+        };
+        if background {
+            let (plan, run) = (plan.clone(), Arc::clone(run));
+            self.pending_loss = Some(Job::spawn((key, a), move || explain(&plan, &run)));
+        } else {
+            let value = explain(plan, run);
+            self.loss = Some(((key, a), value));
+        }
+    }
+
+    /// Why activity `a` did not complete in the execution at `key`, once derived.
+    pub fn loss(&self, key: ExecKey, a: usize) -> Option<&Result<Loss, String>> {
+        self.loss
+            .as_ref()
+            .filter(|(k, _)| *k == (key, a))
+            .map(|(_, l)| l)
     }
 
     fn keep_cycle(&mut self, k: usize, run: CycleRun) {
@@ -416,7 +472,7 @@ impl ExecutionCache {
 
     /// Whether a worker is running (the frame loop polls until it is done).
     pub fn busy(&self) -> bool {
-        self.pending.is_some() || self.pending_cycle.is_some()
+        self.pending.is_some() || self.pending_cycle.is_some() || self.pending_loss.is_some()
     }
 }
 
@@ -495,5 +551,53 @@ mod tests {
         }
         assert!(cache.cycles.len() <= KEPT_CYCLE_RUNS);
         assert!(cache.cycle(key, 0).is_some(), "the prediction is kept");
+    }
+
+    #[test]
+    fn why_an_activity_was_lost_is_explained_off_the_frame_for_its_key() {
+        let mut plan = plan();
+        plan.battery.min_soc = 950.0;
+        let source = ActualsSource::File {
+            path: "long.json".into(),
+            text: r#"{"format": "solscope.actuals/1", "durations": {"drive": 6600}}"#.into(),
+        };
+        let key = ExecKey {
+            revision: 0,
+            actuals: 0,
+        };
+        let mut cache = ExecutionCache::default();
+        cache.request(&plan, &source, key, false);
+        let post = plan
+            .activities
+            .iter()
+            .position(|a| a.id == "post_drive_imaging")
+            .expect("activity");
+        let drive = plan.activities.iter().position(|a| a.id == "drive");
+        // A completed activity has nothing to explain.
+        cache.request_loss(&plan, key, drive.expect("drive"), true);
+        assert!(!cache.busy());
+        cache.request_loss(&plan, key, post, true);
+        for _ in 0..2000 {
+            cache.reap(key).expect("worker result");
+            if !cache.busy() {
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        let loss = cache
+            .loss(key, post)
+            .expect("derived")
+            .as_ref()
+            .expect("explained");
+        assert_eq!(loss.activity, post);
+        assert_eq!(loss.outcome, RunOutcome::NotRun);
+        let other = ExecKey {
+            revision: 1,
+            actuals: 0,
+        };
+        assert!(
+            cache.loss(other, post).is_none(),
+            "read back only for its key"
+        );
     }
 }

@@ -7,7 +7,7 @@
 use eframe::egui::{self, RichText};
 use solscope_engine::{
     Dropped, Event, FailurePhase, Guard, Outcome, ReasonRange, RunOutcome, Trigger, Violation,
-    ViolationKind, format_watts, format_wh, mbit, reason_line, wh,
+    ViolationKind, format_watts, format_wh, loss_line, mbit, reason_line, wh,
 };
 
 use super::{Model, Status, inspector, step_row_ui};
@@ -295,6 +295,9 @@ fn activity_run_ui(
         RunOutcome::NotRun => ("not run: it never started".to_string(), m.theme.error),
     };
     ui.colored_label(color, RichText::new(format!("Outcome: {outcome}")).strong());
+    if r.outcome != RunOutcome::Completed {
+        loss_ui(ui, m, run, cmds);
+    }
     egui::Grid::new("execution_times")
         .num_columns(2)
         .striped(true)
@@ -383,6 +386,30 @@ fn activity_run_ui(
                 m.time(t),
                 guard_text(m, guard)
             ));
+        }
+    }
+}
+
+/// Why the selected activity did not complete: the explainer's answer at the
+/// cycle that decided it, and what ran differently before then.
+fn loss_ui(ui: &mut egui::Ui, m: &Model<'_>, run: &ExecutionRun, cmds: &mut Vec<Command>) {
+    match m.exec.loss {
+        None => {
+            ui.horizontal(|ui| {
+                ui.spinner();
+                ui.label("finding out why (explaining the cycle that decided it)…");
+            });
+        }
+        Some(Err(e)) => {
+            ui.colored_label(m.theme.error, format!("Could not find out why: {e}"));
+        }
+        Some(Ok(loss)) => {
+            ui.label(loss_line(&m.doc.plan, &run.execution.problem, loss));
+            if let Some((k, _)) = loss.cycle {
+                if k != m.exec.cycle && ui.button(format!("Show cycle {k}")).clicked() {
+                    cmds.push(Command::SetCycle(k));
+                }
+            }
         }
     }
 }

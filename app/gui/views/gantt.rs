@@ -517,7 +517,7 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
     let run = match m.nav.mode {
         Mode::Schedule => None,
         Mode::Execution => match m.exec.run {
-            Some(Ok(run)) => Some(run),
+            Some(Ok(run)) => Some(run.as_ref()),
             Some(Err(_)) => {
                 ui.label("No execution to draw (see the error above).");
                 return;
@@ -786,6 +786,7 @@ mod tests {
                 cycle_run: None,
                 step: 0,
                 view: None,
+                loss: None,
             },
         }
     }

@@ -63,7 +63,7 @@ pub struct ExecModel<'a> {
     /// Bumped whenever the source changes.
     pub actuals_rev: u64,
     /// The execution, or why there is none.
-    pub run: Option<&'a Result<ExecutionRun, String>>,
+    pub run: Option<&'a Result<std::sync::Arc<ExecutionRun>, String>>,
     /// The cycle looked at (clamped to the execution's cycles).
     pub cycle: usize,
     /// Its scheduler run with the step trace.
@@ -72,12 +72,14 @@ pub struct ExecModel<'a> {
     pub step: usize,
     /// The run's profiles after that step.
     pub view: Option<&'a StepView>,
+    /// Why the selected activity did not complete (when it did not).
+    pub loss: Option<&'a Result<solscope_engine::Loss, String>>,
 }
 
 impl<'a> ExecModel<'a> {
     /// The execution, when derived without error.
     pub fn ready(&self) -> Option<&'a ExecutionRun> {
-        self.run.and_then(|r| r.as_ref().ok())
+        self.run.and_then(|r| r.as_ref().ok()).map(AsRef::as_ref)
     }
 
     /// The cycle's run, when it could be repeated.
