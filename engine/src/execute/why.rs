@@ -3,10 +3,13 @@
 //! the last that placed it), or the cycle's reason for leaving it
 //! out, and what ran differently from the prediction before then.
 
+use std::collections::BTreeMap;
+
 use super::{Dropped, Execution, RunOutcome};
 use crate::error::Error;
 use crate::explain::{ExplainOptions, Phase, explain, involved};
 use crate::model::Plan;
+use crate::scheduler::Schedule;
 
 /// Why one activity did not complete.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -83,12 +86,14 @@ impl Dropped {
 /// order. Needs the cycle plans (an execution run without
 /// `ExecuteOptions::outcomes_only`).
 pub fn losses(plan: &Plan, ex: &Execution) -> Result<Vec<Loss>, Error> {
+    // Losses often share the cycle that decided them: its trace is rebuilt once.
+    let mut traces = BTreeMap::new();
     let mut out = Vec::new();
     for (a, run) in ex.activities.iter().enumerate() {
         if run.predicted.is_none() || run.outcome == RunOutcome::Completed {
             continue;
         }
-        out.push(loss(plan, ex, a)?);
+        out.push(loss_with(plan, ex, a, &mut traces)?);
     }
     Ok(out)
 }
@@ -96,6 +101,16 @@ pub fn losses(plan: &Plan, ex: &Execution) -> Result<Vec<Loss>, Error> {
 /// Why activity `a` did not complete (it may also be one the first cycle did
 /// not place).
 pub fn loss(plan: &Plan, ex: &Execution, a: usize) -> Result<Loss, Error> {
+    loss_with(plan, ex, a, &mut BTreeMap::new())
+}
+
+/// [`loss`], with the cycles' traces rebuilt so far.
+fn loss_with(
+    plan: &Plan,
+    ex: &Execution,
+    a: usize,
+    traces: &mut BTreeMap<usize, Schedule>,
+) -> Result<Loss, Error> {
     let run = &ex.activities[a];
     let (cycle, cause) = if run.outcome == RunOutcome::Aborted {
         (run.cycle, Cause::Overran)
@@ -119,7 +134,7 @@ pub fn loss(plan: &Plan, ex: &Execution, a: usize) -> Result<Loss, Error> {
             .find(|&k| ex.cycles[k].placement(a).is_some());
         let from = placed_last.map_or(0, |k| k + 1);
         match (from..=last).find(|&k| ex.cycles[k].index_of(a).is_some()) {
-            Some(k) => (Some(k), failed(plan, ex, k, a)?),
+            Some(k) => (Some(k), failed(plan, ex, k, a, traces)?),
             None => (Some(last), Cause::Held),
         }
     } else {
@@ -148,17 +163,28 @@ pub fn loss(plan: &Plan, ex: &Execution, a: usize) -> Result<Loss, Error> {
 }
 
 /// The explainer's answer for plan activity `a` at cycle `k`.
-fn failed(plan: &Plan, ex: &Execution, k: usize, a: usize) -> Result<Cause, Error> {
+fn failed(
+    plan: &Plan,
+    ex: &Execution,
+    k: usize,
+    a: usize,
+    traces: &mut BTreeMap<usize, Schedule>,
+) -> Result<Cause, Error> {
     let c = &ex.cycles[k];
     let (Some(cycle_plan), Some(i)) = (c.plan.as_ref(), c.index_of(a)) else {
         return Ok(Cause::Held);
     };
-    let sched = crate::scheduler::schedule(cycle_plan)?;
+    let sched = match traces.entry(k) {
+        std::collections::btree_map::Entry::Occupied(e) => e.into_mut(),
+        std::collections::btree_map::Entry::Vacant(e) => {
+            e.insert(crate::scheduler::schedule(cycle_plan)?)
+        }
+    };
     let opts = ExplainOptions {
         activity: Some(plan.activities[a].id.clone()),
         no_suggestions: true,
     };
-    let explanations = explain(cycle_plan, &sched, &opts)?;
+    let explanations = explain(cycle_plan, sched, &opts)?;
     let Some(ex1) = explanations.iter().find(|e| e.activity == i) else {
         return Ok(Cause::Held);
     };
