@@ -85,7 +85,8 @@ enum Command {
         merge: Option<MonteCarloCommand>,
         /// The plan file (solscope.plan/1 JSON).
         plan: Option<PathBuf>,
-        /// Number of runs.
+        /// Number of runs in the campaign (one process runs at most 100000 of them;
+        /// --shard splits more).
         #[arg(long, default_value_t = 1000)]
         runs: u64,
         /// Campaign seed: run i draws its durations from stream i of this seed
@@ -178,6 +179,13 @@ impl From<Profile> for solscope_engine::Profile {
 
 /// Exit status for invalid input.
 const EXIT_INVALID: u8 = 2;
+
+/// Most Monte Carlo runs one `montecarlo` process runs (their records are kept
+/// until it prints; a few kB each).
+const MAX_RECORDS_PER_PROCESS: u64 = 100_000;
+
+/// Most run records `montecarlo merge` holds at once.
+const MAX_RECORDS_MERGED: u64 = 1_000_000;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -395,6 +403,15 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
                 })?;
                 docs.push(doc);
             }
+            let total: usize = docs.iter().map(|d| d.records.len()).sum();
+            if total as u64 > MAX_RECORDS_MERGED {
+                return Err(Failure::Input(solscope_engine::Error::invalid(
+                    "parts",
+                    format!(
+                        "{total} records; at most {MAX_RECORDS_MERGED} are merged in one process"
+                    ),
+                )));
+            }
             let (campaign, records) = solscope_engine::merge_parts(&docs)?;
             if csv {
                 Ok(runs_csv(&campaign, &records))
@@ -427,6 +444,17 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
                 None => (0, 1),
                 Some(text) => parse_shard(text)?,
             };
+            // Every record this process runs is kept until it prints: a bigger
+            // share is split into more shards.
+            let share = (runs - part).div_ceil(of);
+            if share > MAX_RECORDS_PER_PROCESS {
+                return Err(Failure::Input(solscope_engine::Error::invalid(
+                    "--runs",
+                    format!(
+                        "{share} runs in one process; at most {MAX_RECORDS_PER_PROCESS}: split the campaign with --shard I/K"
+                    ),
+                )));
+            }
             let campaign =
                 solscope_engine::campaign(&loaded.plan, seed, runs, &default_name(&plan))?;
             let indices: Vec<u64> = (part..runs).step_by(of as usize).collect();

@@ -411,6 +411,16 @@ fn invalid_execution_additions_are_refused_at_their_path() {
             "execution.replan_period: must be > 0 (got 0)",
         ),
         (
+            "too-many-cycles",
+            {
+                let mut p = plan_with(json!([drive(json!({}))]));
+                p["horizon"] = json!({ "start": 0, "end": 1_000_000_000 });
+                p["execution"] = json!({ "replan_period": 1 });
+                p
+            },
+            "execution.replan_period: gives 1000000000 cycles over the horizon; at most 100000 (a period of at least 10000 s)",
+        ),
+        (
             "execution-unknown-field",
             {
                 let mut p = plan_with(json!([drive(json!({}))]));

@@ -207,6 +207,9 @@ fn montecarlo_runs_replay_and_shards_merge() {
     let col = header.iter().position(|h| *h == "duration:drive").unwrap();
     let ex = ok_json(&["execute", EXAMPLE, "--sample", "5", "--run", "7"]);
     assert_eq!(ex["actuals"]["drive"].to_string(), row7[col]);
+    // One process runs at most 100,000 runs: a bigger campaign is sharded.
+    let err = refused(&["montecarlo", EXAMPLE, "--runs", "200000"]);
+    assert!(err.contains("split the campaign with --shard"), "{err}");
     // Bad shards are refused.
     for bad in ["3/3", "1", "a/b", "0/0"] {
         let err = refused(&["montecarlo", EXAMPLE, "--shard", bad]);

@@ -61,6 +61,9 @@ use crate::model::{
     ThermalZone, Window,
 };
 
+/// Most periodic scheduling cycles an `execution.replan_period` may give.
+pub const MAX_CYCLES: i64 = 100_000;
+
 /// Largest magnitude of any time (plan seconds), and of any duration or delay.
 pub(crate) const MAX_TIME: i64 = 10_000_000_000;
 /// Longest allowed horizon, in seconds.
@@ -850,10 +853,23 @@ impl<'p> Validator<'p> {
         self.length(format_args!("{base}.duration_model.max"), m.max, true)
     }
 
-    /// The `execution` section: a replan period, when given, is positive.
+    /// The `execution` section: a replan period, when given, is positive and
+    /// gives at most [`MAX_CYCLES`] periodic cycles over the horizon (each cycle
+    /// reschedules the plan: an execution's time must stay bounded).
     fn execution(&self) -> Result<(), Error> {
         if let Some(p) = self.plan.execution.and_then(|e| e.replan_period) {
             self.length("execution.replan_period", p, true)?;
+            let h = self.plan.horizon;
+            let cycles = (h.end - h.start - 1) / p + 1;
+            if cycles > MAX_CYCLES {
+                return Err(invalid(
+                    "execution.replan_period",
+                    format!(
+                        "gives {cycles} cycles over the horizon; at most {MAX_CYCLES} (a period of at least {} s)",
+                        (h.end - h.start + MAX_CYCLES - 1) / MAX_CYCLES
+                    ),
+                ));
+            }
         }
         Ok(())
     }
