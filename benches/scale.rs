@@ -210,21 +210,20 @@ fn execution() {
         .plan;
     println!("| plan | activities | what | cycles | time |");
     println!("|---|---:|---|---:|---:|");
-    let row =
-        |name: &str, plan: &solscope_engine::Plan, what: &str, actuals: &Actuals, runs| {
-            let mut cycles = 0;
-            let t = median(runs, || {
-                let ex = execute(plan, actuals).expect("execute");
-                let lost = losses(plan, &ex).expect("losses");
-                cycles = ex.cycles.len();
-                std::hint::black_box(lost);
-            });
-            println!(
-                "| {name} | {} | {what} | {cycles} | {} |",
-                plan.activities.len(),
-                ms(t)
-            );
-        };
+    let row = |name: &str, plan: &solscope_engine::Plan, what: &str, actuals: &Actuals, runs| {
+        let mut cycles = 0;
+        let t = median(runs, || {
+            let ex = execute(plan, actuals).expect("execute");
+            let lost = losses(plan, &ex).expect("losses");
+            cycles = ex.cycles.len();
+            std::hint::black_box(lost);
+        });
+        println!(
+            "| {name} | {} | {what} | {cycles} | {} |",
+            plan.activities.len(),
+            ms(t)
+        );
+    };
     row("bundled", &bundled, "nominal", &Actuals::nominal(), 5);
     row(
         "bundled",
