@@ -561,7 +561,8 @@ fn the_execution_is_derived_off_the_frame_and_never_stale() {
     };
     wait(&mut h);
     assert_eq!(counts(&h), Some((4, 0, 0)));
-    h.state_mut().push(Command::SampleActuals(7));
+    h.state_mut()
+        .push(Command::SampleActuals { seed: 7, run: 0 });
     h.run_steps(1);
     // The execution of the nominal actuals is not shown for the sampled ones.
     if let Some(run) = h.state().execution_run() {

@@ -350,8 +350,9 @@ impl SolscopeApp {
                     Err(e) => self.ui.messages.error = Some(format!("{what}: {e}")),
                 }
             }
-            Command::SampleActuals(seed) => {
-                self.use_actuals(ActualsSource::Sampled(seed), "Could not sample actuals");
+            Command::SampleActuals { seed, run } => {
+                let source = ActualsSource::Sampled { seed, run };
+                self.use_actuals(source, "Could not sample actuals");
             }
             Command::Select(a) => self.ui.nav.selected = a,
             Command::GoToFailureStep(a) => {

@@ -185,8 +185,15 @@ pub enum Command {
     /// Execute with the actual durations of this file (the host sends it once a
     /// file is chosen); an invalid file changes nothing and shows its error.
     OpenActuals(PathBuf),
-    /// Execute with durations drawn from the duration models with this seed.
-    SampleActuals(u64),
+    /// Execute with the durations of Monte Carlo run `run` of a campaign
+    /// seeded with `seed`, drawn from the duration models (run 0 is what
+    /// "Sample" draws with that seed).
+    SampleActuals {
+        /// The campaign seed.
+        seed: u64,
+        /// The run index.
+        run: u64,
+    },
     /// Hide the outcome banner.
     DismissBanner,
     /// Hide the error message.

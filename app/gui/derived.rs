@@ -514,7 +514,12 @@ mod tests {
         // The actuals changed while it ran: its result is not kept.
         wait(&mut cache, new);
         assert!(cache.run(old).is_none() && cache.run(new).is_none());
-        cache.request(&plan, &ActualsSource::Sampled(7), new, true);
+        cache.request(
+            &plan,
+            &ActualsSource::Sampled { seed: 7, run: 0 },
+            new,
+            true,
+        );
         wait(&mut cache, new);
         let run = cache.run(new).expect("derived").as_ref().expect("executed");
         assert_eq!(run.actuals, solscope_engine::sample_actuals(&plan, 7));

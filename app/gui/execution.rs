@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use solscope_engine::{
     ActivityRun, Actuals, Cycle, Error, Execution, Plan, RunOutcome, Schedule, Step, execute,
-    load_actuals, mbit, sample_actuals, watts, wh,
+    load_actuals, mbit, sample_run, watts, wh,
 };
 
 use super::state::StepView;
@@ -19,9 +19,15 @@ pub enum ActualsSource {
     /// Every activity runs exactly its `duration`.
     #[default]
     Nominal,
-    /// Drawn from the plan's `duration_model`s with this seed (drawn again for
-    /// every revision of the plan, so an edited model is followed).
-    Sampled(u64),
+    /// Drawn from the plan's `duration_model`s: Monte Carlo run `run` of a
+    /// campaign seeded with `seed` (run 0 is what "Sample" draws); drawn again
+    /// for every revision of the plan, so an edited model is followed.
+    Sampled {
+        /// The campaign seed.
+        seed: u64,
+        /// The run index.
+        run: u64,
+    },
     /// A `solscope.actuals/1` file: its text, read again against every revision
     /// of the plan.
     File {
@@ -33,11 +39,13 @@ pub enum ActualsSource {
 }
 
 impl ActualsSource {
-    /// How the toolbar names it: `nominal`, `sampled, seed 7`, or the file name.
+    /// How the toolbar names it: `nominal`, `sampled, seed 7` (run 0),
+    /// `sampled, seed 7, run 12`, or the file name.
     pub fn describe(&self) -> String {
         match self {
             Self::Nominal => "nominal".into(),
-            Self::Sampled(seed) => format!("sampled, seed {seed}"),
+            Self::Sampled { seed, run: 0 } => format!("sampled, seed {seed}"),
+            Self::Sampled { seed, run } => format!("sampled, seed {seed}, run {run}"),
             Self::File { path, .. } => path.file_name().map_or_else(
                 || path.display().to_string(),
                 |n| n.to_string_lossy().into_owned(),
@@ -50,7 +58,7 @@ impl ActualsSource {
     pub fn actuals(&self, plan: &Plan) -> Result<Actuals, Error> {
         match self {
             Self::Nominal => Ok(Actuals::nominal()),
-            Self::Sampled(seed) => Ok(sample_actuals(plan, *seed)),
+            Self::Sampled { seed, run } => Ok(sample_run(plan, *seed, *run)),
             Self::File { text, .. } => load_actuals(text, plan),
         }
     }

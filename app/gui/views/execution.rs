@@ -34,7 +34,7 @@ pub fn actuals_ui(ui: &mut egui::Ui, m: &Model<'_>, seed: &mut String, cmds: &mu
         let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
         if ui.button("Sample").clicked() || enter {
             match seed.trim().parse::<u64>() {
-                Ok(s) => cmds.push(Command::SampleActuals(s)),
+                Ok(seed) => cmds.push(Command::SampleActuals { seed, run: 0 }),
                 Err(_) => cmds.push(Command::ShowError(
                     "Seed: enter a whole number from 0 to 18446744073709551615".into(),
                 )),
