@@ -8,13 +8,14 @@ use eframe::egui;
 use solscope_engine::{Plan, Suggestion};
 
 use super::commands::{Command, UiCommand};
-use super::derived::{DerivedCache, ExecKey, ExecutionCache, step_view};
+use super::derived::{CampaignCache, DerivedCache, ExecKey, ExecutionCache, step_view};
 use super::document::{Analysis, Document, OutcomeDiff};
 use super::execution::{ActualsSource, CycleRun, ExecutionRun};
+use super::montecarlo::{CampaignResult, MAX_RUNS, Progress, Stopped};
 use super::state::{LAST_STEP, Mode, Navigation, Pending, Persisted, StepView, UiState};
 use super::theme::Theme;
 use super::time_axis::TimeAxis;
-use super::views::{self, ExecModel, Model, ViewCache, Widgets};
+use super::views::{self, CampaignModel, ExecModel, Model, ViewCache, Widgets};
 
 /// The plan the app opens without arguments.
 pub const DEFAULT_PLAN: &str = include_str!("../../assets/default-plan.json");
@@ -62,6 +63,8 @@ pub struct SolscopeApp {
     derived: DerivedCache,
     /// The execution of the plan and its cycles' scheduler runs (execution mode).
     execution: ExecutionCache,
+    /// The Monte Carlo campaign (execution mode).
+    campaign: CampaignCache,
     /// What the views keep between frames (built rows, the plots' x range).
     pub(crate) view_cache: ViewCache,
     /// Time of the last automatic step.
@@ -103,6 +106,7 @@ impl SolscopeApp {
             actuals_rev: 0,
             derived: DerivedCache::default(),
             execution: ExecutionCache::default(),
+            campaign: CampaignCache::default(),
             view_cache: ViewCache::default(),
             last_tick: 0.0,
             dialog: None,
@@ -152,6 +156,10 @@ impl SolscopeApp {
         if let Err(e) = self.execution.reap(self.exec_key()) {
             self.ui.messages.error = Some(e);
         }
+        // The campaign too: a campaign of an older plan revision stops here.
+        if let Err(e) = self.campaign.reap(self.revision) {
+            self.ui.messages.error = Some(e);
+        }
         if self.ui.nav.mode == Mode::Execution {
             // The execution and the looked-at cycle's run, derived before
             // drawing (on a worker in the desktop app).
@@ -184,6 +192,10 @@ impl SolscopeApp {
             // Poll the worker until its result is in.
             ui.ctx()
                 .request_repaint_after(std::time::Duration::from_millis(50));
+        } else if self.campaign.progress().is_some() {
+            // The progress bar moves while the campaign runs.
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_millis(100));
         }
         let (m, mut w) = self.model_and_widgets();
         views::layout_ui(ui, &m, &mut w, &mut cmds);
@@ -211,12 +223,15 @@ impl SolscopeApp {
             valid: selected.and_then(|a| derived.valid(a, revision)),
             nav: &self.ui.nav,
             messages: &self.ui.messages,
-            exec: exec_model(
-                &self.execution,
-                &self.actuals,
-                &self.ui.nav,
-                self.exec_key(),
-            ),
+            exec: ExecModel {
+                campaign: campaign_model(&self.campaign, revision),
+                ..exec_model(
+                    &self.execution,
+                    &self.actuals,
+                    &self.ui.nav,
+                    self.exec_key(),
+                )
+            },
         };
         let w = Widgets {
             text: &mut self.ui.text,
@@ -232,6 +247,24 @@ impl SolscopeApp {
             .run(self.exec_key())
             .and_then(|r| r.as_ref().ok())
             .map(AsRef::as_ref)
+    }
+
+    /// The last Monte Carlo campaign's result, when it ran on the plan as it
+    /// is.
+    pub fn campaign_result(&self) -> Option<&CampaignResult> {
+        self.campaign
+            .result(self.revision)
+            .and_then(|r| r.as_ref().ok())
+    }
+
+    /// The Monte Carlo campaign running, if any.
+    pub fn campaign_progress(&self) -> Option<Progress> {
+        self.campaign.progress()
+    }
+
+    /// The last campaign that stopped before its summary was made.
+    pub fn campaign_stopped(&self) -> Option<Stopped> {
+        self.campaign.stopped().copied()
     }
 
     /// The looked-at cycle's scheduler run, once derived.
@@ -354,6 +387,15 @@ impl SolscopeApp {
                 let source = ActualsSource::Sampled { seed, run };
                 self.use_actuals(source, "Could not sample actuals");
             }
+            Command::RunCampaign { runs, seed } => {
+                if (1..=MAX_RUNS).contains(&runs) {
+                    self.campaign
+                        .start(&self.doc.plan, self.revision, seed, runs, self.background);
+                } else {
+                    self.ui.messages.error =
+                        Some(format!("Runs: enter a whole number from 1 to {MAX_RUNS}"));
+                }
+            }
             Command::Select(a) => self.ui.nav.selected = a,
             Command::GoToFailureStep(a) => {
                 self.ui.nav.selected = Some(a);
@@ -450,6 +492,7 @@ impl SolscopeApp {
             UiCommand::ShowSchedule => self.ui.nav.mode = Mode::Schedule,
             UiCommand::ShowExecution => self.ui.nav.mode = Mode::Execution,
             UiCommand::OpenActuals => self.dialog = Some(Dialog::OpenActuals),
+            UiCommand::CancelCampaign => self.campaign.cancel(),
             UiCommand::NominalActuals => self.use_actuals(ActualsSource::Nominal, "Nominal"),
             UiCommand::PreviousCycle | UiCommand::NextCycle => {
                 let shown = self.ui.nav.mode == Mode::Execution;
@@ -634,6 +677,17 @@ fn exec_model<'a>(
         step,
         view: execution.view(key, cycle, step),
         loss: nav.selected.and_then(|a| execution.loss(key, a)),
+        campaign: CampaignModel::default(),
+    }
+}
+
+/// What the Monte Carlo panel draws at plan revision `revision`.
+fn campaign_model(campaign: &CampaignCache, revision: u64) -> CampaignModel<'_> {
+    CampaignModel {
+        result: campaign.result(revision),
+        running: campaign.progress(),
+        stale: campaign.stale(revision),
+        stopped: campaign.stopped(),
     }
 }
 

@@ -54,6 +54,8 @@ pub enum UiCommand {
     PreviousCycle,
     /// Show the next scheduling cycle (execution mode).
     NextCycle,
+    /// Stop the Monte Carlo campaign running (its summary is not made).
+    CancelCampaign,
 }
 
 impl UiCommand {
@@ -99,6 +101,7 @@ impl UiCommand {
             Self::NominalActuals => "Nominal",
             Self::PreviousCycle => "< Cycle",
             Self::NextCycle => "Cycle >",
+            Self::CancelCampaign => "Cancel",
         }
     }
 
@@ -130,7 +133,8 @@ impl UiCommand {
             | Self::ExportPng
             | Self::Quit
             | Self::OpenActuals
-            | Self::NominalActuals => None,
+            | Self::NominalActuals
+            | Self::CancelCampaign => None,
         }
     }
 }
@@ -193,6 +197,14 @@ pub enum Command {
         seed: u64,
         /// The run index.
         run: u64,
+    },
+    /// Run a Monte Carlo campaign of `runs` runs seeded with `seed` (on a
+    /// worker in the desktop app); a campaign running is cancelled first.
+    RunCampaign {
+        /// Number of runs.
+        runs: u64,
+        /// The campaign seed.
+        seed: u64,
     },
     /// Hide the outcome banner.
     DismissBanner,

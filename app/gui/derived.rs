@@ -1,17 +1,20 @@
 //! Values derived from the plan for the activity looked at: its explanation, valid
 //! intervals and verified suggestions, each kept with the activity and plan
 //! revision it was derived for, and the worker thread that verifies suggestions.
-//! Also the step profiles ([`step_view`]), and the execution of the plan with
-//! the scheduler runs of its cycles ([`ExecutionCache`], with its worker).
+//! Also the step profiles ([`step_view`]), the execution of the plan with
+//! the scheduler runs of its cycles ([`ExecutionCache`], with its workers), and
+//! the Monte Carlo campaign ([`CampaignCache`], with its worker).
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, TryRecvError};
 
 use solscope_engine::{CategoryIntervals, Explanation, Loss, Plan, RunOutcome, Suggestion};
 
 use super::document::Analysis;
 use super::execution::{ActualsSource, CycleRun, ExecutionRun};
+use super::montecarlo::{CampaignResult, Progress, StopReason, Stopped};
 use super::state::StepView;
 
 /// A value derived for one activity at one plan revision (its explanation, valid
@@ -473,6 +476,165 @@ impl ExecutionCache {
     /// Whether a worker is running (the frame loop polls until it is done).
     pub fn busy(&self) -> bool {
         self.pending.is_some() || self.pending_cycle.is_some() || self.pending_loss.is_some()
+    }
+}
+
+/// What a campaign worker sends back: the result, `None` when cancelled.
+type CampaignOutcome = Result<Option<CampaignResult>, String>;
+
+/// A campaign running on a worker thread, with its progress and cancel flag.
+/// Dropping it cancels the campaign (nobody would read its result).
+#[derive(Debug)]
+struct CampaignJob {
+    /// The job, keyed by the plan revision it runs on.
+    job: Job<u64, CampaignOutcome>,
+    seed: u64,
+    runs: u64,
+    /// Runs done (counted by the workers).
+    done: Arc<AtomicU64>,
+    /// Set to stop starting runs.
+    cancel: Arc<AtomicBool>,
+}
+
+impl CampaignJob {
+    fn progress(&self) -> Progress {
+        Progress {
+            seed: self.seed,
+            runs: self.runs,
+            done: self.done.load(Ordering::Relaxed).min(self.runs),
+            cancelling: self.cancel.load(Ordering::Relaxed),
+        }
+    }
+
+    fn stopped(&self, why: StopReason) -> Stopped {
+        let p = self.progress();
+        Stopped {
+            seed: p.seed,
+            runs: p.runs,
+            done: p.done,
+            why,
+        }
+    }
+}
+
+impl Drop for CampaignJob {
+    fn drop(&mut self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+}
+
+/// The Monte Carlo campaign: the last one finished (shown only for the plan
+/// revision it ran on), the one running, and the last one that stopped
+/// before its summary (cancelled, or the plan was edited while it ran). One
+/// campaign at a time; with `background` it runs on a worker thread (its runs
+/// in parallel), so the frames go on and it can be cancelled.
+#[derive(Debug, Default)]
+pub struct CampaignCache {
+    /// The last campaign finished, with the plan revision it ran on.
+    done: Option<(u64, Result<CampaignResult, String>)>,
+    job: Option<CampaignJob>,
+    stopped: Option<Stopped>,
+}
+
+impl CampaignCache {
+    /// Starts a campaign of `runs` runs of `plan` (at `revision`) seeded with
+    /// `seed`: in place, or with `background` on a worker thread. A campaign
+    /// still running is cancelled first.
+    pub fn start(&mut self, plan: &Plan, revision: u64, seed: u64, runs: u64, background: bool) {
+        self.job = None;
+        self.stopped = None;
+        if background {
+            let done = Arc::new(AtomicU64::new(0));
+            let cancel = Arc::new(AtomicBool::new(false));
+            let (plan, count, flag) = (plan.clone(), Arc::clone(&done), Arc::clone(&cancel));
+            let job = Job::spawn(revision, move || {
+                let progress = move || {
+                    count.fetch_add(1, Ordering::Relaxed);
+                };
+                CampaignResult::of(&plan, seed, runs, &progress, Some(&flag))
+            });
+            self.job = Some(CampaignJob {
+                job,
+                seed,
+                runs,
+                done,
+                cancel,
+            });
+        } else {
+            match CampaignResult::of(plan, seed, runs, &|| {}, None) {
+                Ok(Some(result)) => self.done = Some((revision, Ok(result))),
+                // Nothing cancels a campaign run in place.
+                Ok(None) => {}
+                Err(e) => self.done = Some((revision, Err(e))),
+            }
+        }
+    }
+
+    /// Asks the running campaign to stop (the runs already started finish;
+    /// its summary is not made).
+    pub fn cancel(&mut self) {
+        if let Some(job) = &self.job {
+            job.cancel.store(true, Ordering::Relaxed);
+        }
+    }
+
+    /// Takes the worker's result: kept when it is for `revision`. A campaign
+    /// of an older revision is stopped at once (its summary would be of the
+    /// plan as it was). A worker that stopped without a result is reported.
+    pub fn reap(&mut self, revision: u64) -> Result<(), String> {
+        let Some(job) = &self.job else {
+            return Ok(());
+        };
+        if job.job.key != revision {
+            self.stopped = Some(job.stopped(StopReason::PlanEdited));
+            // Dropping the job cancels it.
+            self.job = None;
+            return Ok(());
+        }
+        let Some(outcome) = job.job.poll() else {
+            return Ok(());
+        };
+        let stopped = job.stopped(StopReason::Cancelled);
+        self.job = None;
+        match outcome {
+            Ok(Ok(Some(result))) => self.done = Some((revision, Ok(result))),
+            Ok(Ok(None)) => self.stopped = Some(stopped),
+            Ok(Err(e)) => self.done = Some((revision, Err(e))),
+            Err(()) => {
+                let e = "The Monte Carlo campaign failed: the worker stopped without a result";
+                self.done = Some((revision, Err(e.into())));
+                return Err(e.into());
+            }
+        }
+        Ok(())
+    }
+
+    /// The last campaign finished, if it ran on `revision`.
+    pub fn result(&self, revision: u64) -> Option<&Result<CampaignResult, String>> {
+        self.done
+            .as_ref()
+            .filter(|(r, _)| *r == revision)
+            .map(|(_, d)| d)
+    }
+
+    /// The seed and runs of the last campaign finished when it ran on another
+    /// revision than `revision` (its summary no longer applies).
+    pub fn stale(&self, revision: u64) -> Option<(u64, u64)> {
+        match &self.done {
+            Some((r, Ok(result))) if *r != revision => Some((result.seed, result.runs())),
+            _ => None,
+        }
+    }
+
+    /// The campaign running, if any.
+    pub fn progress(&self) -> Option<Progress> {
+        self.job.as_ref().map(CampaignJob::progress)
+    }
+
+    /// The last campaign that stopped before its summary, unless another
+    /// started since.
+    pub fn stopped(&self) -> Option<&Stopped> {
+        self.stopped.as_ref()
     }
 }
 

@@ -10,7 +10,7 @@
 //!
 //! Modules, lowest first (each uses only those before it):
 //! `time_axis`, `theme` → `document` → `state`, `commands` → `execution` →
-//! `derived` → `views` → `app` → `host`.
+//! `montecarlo` → `derived` → `views` → `app` → `host`.
 
 pub mod app;
 pub mod commands;
@@ -18,6 +18,7 @@ mod derived;
 pub mod document;
 pub mod execution;
 pub mod host;
+pub mod montecarlo;
 pub mod state;
 pub mod theme;
 pub mod time_axis;
@@ -28,6 +29,7 @@ pub use commands::{Command, UiCommand};
 pub use document::{Analysis, Document, OutcomeDiff};
 pub use execution::{ActualsSource, CycleRun, ExecutionRun};
 pub use host::{SolscopeHost, run, save_color_image};
+pub use montecarlo::{CampaignResult, Progress, StopReason, Stopped};
 pub use state::{LAST_STEP, Mode, Pending, Persisted, StepView, UiState};
 pub use theme::Theme;
 pub use time_axis::TimeAxis;

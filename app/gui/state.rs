@@ -175,6 +175,9 @@ pub struct Messages {
     pub confirm: Option<Pending>,
 }
 
+/// The number of runs the Monte Carlo panel proposes.
+pub const DEFAULT_CAMPAIGN_RUNS: u64 = 200;
+
 /// The text buffers: the only UI state the views write.
 #[derive(Clone, Debug)]
 pub struct TextBuffers {
@@ -186,6 +189,10 @@ pub struct TextBuffers {
     pub editor_for: Option<(Option<usize>, u64)>,
     /// The seed field of "Sample" (execution mode).
     pub seed_text: String,
+    /// The runs field of the Monte Carlo panel.
+    pub campaign_runs_text: String,
+    /// The seed field of the Monte Carlo panel.
+    pub campaign_seed_text: String,
 }
 
 impl Default for TextBuffers {
@@ -195,6 +202,8 @@ impl Default for TextBuffers {
             editor: EditorBuffers::new(),
             editor_for: None,
             seed_text: "1".into(),
+            campaign_runs_text: DEFAULT_CAMPAIGN_RUNS.to_string(),
+            campaign_seed_text: "1".into(),
         }
     }
 }

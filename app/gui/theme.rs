@@ -103,6 +103,16 @@ pub const CYCLE_LINE_STROKE: f32 = 1.5;
 pub const SEED_FIELD_WIDTH: f32 = 60.0;
 /// Width of the cycle slider.
 pub const CYCLE_SLIDER_WIDTH: f32 = 240.0;
+/// Width of the Monte Carlo panel's runs and seed fields.
+pub const CAMPAIGN_FIELD_WIDTH: f32 = 60.0;
+/// Height of a Monte Carlo histogram (lowest and handover state of charge).
+pub const HISTOGRAM_HEIGHT: f32 = 90.0;
+/// Size of the completed / aborted / not-run bar in the activity list.
+pub const SHARE_BAR_WIDTH: f32 = 36.0;
+/// Height of that bar.
+pub const SHARE_BAR_HEIGHT: f32 = 8.0;
+/// Height of the larger bar in the inspector.
+pub const SHARE_BAR_LARGE_HEIGHT: f32 = 14.0;
 
 impl Theme {
     /// The palette for dark or light mode.

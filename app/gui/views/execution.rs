@@ -233,7 +233,7 @@ fn span(m: &Model<'_>, (s, e): (i64, i64)) -> String {
 }
 
 /// A signed difference of two times, in seconds.
-fn slip(d: i64) -> String {
+pub(super) fn slip(d: i64) -> String {
     match d {
         0 => "on time".into(),
         d if d > 0 => format!("{d} s late"),
@@ -251,6 +251,10 @@ pub fn inspector_ui(ui: &mut egui::Ui, m: &Model<'_>, a: Option<usize>, cmds: &m
     match a {
         None => {
             ui.label("Select an activity in the list or on the Gantt chart.");
+            if let Some(result) = m.exec.campaign.ready() {
+                ui.separator();
+                super::montecarlo::most_lost_ui(ui, m, result, cmds);
+            }
         }
         Some(a) => {
             activity_run_ui(ui, m, run, a, cmds);
@@ -278,6 +282,14 @@ fn activity_run_ui(
     cmds: &mut Vec<Command>,
 ) {
     ui.label(RichText::new(m.label(a)).strong());
+    if m.exec.campaign.ready().is_some() {
+        // Across the campaign's runs first, then this one execution.
+        super::montecarlo::activity_ui(ui, m, a, cmds);
+        ui.separator();
+        ui.label(
+            RichText::new(format!("In this execution ({})", m.exec.source.describe())).strong(),
+        );
+    }
     let Some(r) = run.activity(a) else {
         return;
     };

@@ -787,6 +787,7 @@ mod tests {
                 step: 0,
                 view: None,
                 loss: None,
+                campaign: crate::gui::views::CampaignModel::default(),
             },
         }
     }

@@ -10,6 +10,7 @@ mod execution;
 mod gantt;
 pub use gantt::GanttRows;
 mod inspector;
+mod montecarlo;
 mod plots;
 
 use eframe::egui::{self, RichText};
@@ -18,9 +19,11 @@ use solscope_engine::{Outcome, RunOutcome, Suggestion, format_local};
 use crate::gui::commands::{Command, UiCommand};
 use crate::gui::document::{Analysis, Document};
 use crate::gui::execution::{ActualsSource, CycleRun, ExecutionRun};
+use crate::gui::montecarlo::{CampaignResult, Progress, Stopped};
 use crate::gui::state::{Messages, Mode, Navigation, Pending, Persisted, StepView, TextBuffers};
 use crate::gui::theme::{
-    FILTER_WIDTH, INSPECTOR_WIDTH, LIST_WIDTH, MESSAGE_MARGIN, RANGE_FIELD_WIDTH, Theme,
+    FILTER_WIDTH, INSPECTOR_WIDTH, LIST_WIDTH, MESSAGE_MARGIN, RANGE_FIELD_WIDTH, SHARE_BAR_HEIGHT,
+    SHARE_BAR_WIDTH, Theme,
 };
 use crate::gui::time_axis::TimeAxis;
 
@@ -74,6 +77,30 @@ pub struct ExecModel<'a> {
     pub view: Option<&'a StepView>,
     /// Why the selected activity did not complete (when it did not).
     pub loss: Option<&'a Result<solscope_engine::Loss, String>>,
+    /// The Monte Carlo campaign.
+    pub campaign: CampaignModel<'a>,
+}
+
+/// What the Monte Carlo panel draws: the last campaign of the plan as it is,
+/// the one running, and what became of one that stopped or no longer applies.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CampaignModel<'a> {
+    /// The last campaign finished on the plan as it is (or why it failed).
+    pub result: Option<&'a Result<CampaignResult, String>>,
+    /// The campaign running.
+    pub running: Option<Progress>,
+    /// `(seed, runs)` of the last campaign finished when the plan was edited
+    /// since (its summary is not shown).
+    pub stale: Option<(u64, u64)>,
+    /// The last campaign that stopped before its summary.
+    pub stopped: Option<&'a Stopped>,
+}
+
+impl<'a> CampaignModel<'a> {
+    /// The summary of the plan as it is, when there is one.
+    pub fn ready(&self) -> Option<&'a CampaignResult> {
+        self.result.and_then(|r| r.as_ref().ok())
+    }
 }
 
 impl<'a> ExecModel<'a> {
@@ -260,6 +287,14 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
                     inspector::inspector_ui(ui, m, w.text, cmds);
                 });
         });
+    if m.nav.mode == Mode::Execution {
+        // Under the Gantt and plots, between the side panels.
+        egui::Panel::bottom("monte_carlo")
+            .resizable(false)
+            .show(ui, |ui| {
+                montecarlo::campaign_panel_ui(ui, m, w.text, cmds);
+            });
+    }
     egui::CentralPanel::default().show(ui, |ui| {
         axis_ui(ui, m, &mut w.text.range_text, cmds);
         egui::ScrollArea::vertical()
@@ -446,6 +481,7 @@ fn activities_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
                 || act.display_name().to_lowercase().contains(&needle)
         })
         .collect();
+    let campaign = m.exec.campaign.ready();
     // Only the visible rows are laid out, so 10k activities stay cheap.
     let row_height = ui.spacing().interact_size.y;
     egui::ScrollArea::vertical()
@@ -472,11 +508,25 @@ fn activities_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
                 };
                 let text =
                     RichText::new(format!("{mark} {:>3} {}", step.step, act.id)).color(color);
-                let resp = ui.add(
-                    egui::Button::new(text)
-                        .selected(m.nav.selected == Some(a))
-                        .frame(false),
-                );
+                let button = egui::Button::new(text)
+                    .selected(m.nav.selected == Some(a))
+                    .frame(false);
+                // In execution mode, once a campaign is summarised: the
+                // activity's shares across its runs before its name.
+                let shares = campaign
+                    .and_then(|c| c.activity(a).map(|s| (s, c.runs())))
+                    .filter(|_| m.nav.mode == Mode::Execution);
+                let resp = match shares {
+                    Some((s, runs)) => {
+                        ui.horizontal(|ui| {
+                            let size = egui::vec2(SHARE_BAR_WIDTH, SHARE_BAR_HEIGHT);
+                            montecarlo::share_bar(ui, m, s, runs, size);
+                            ui.add(button)
+                        })
+                        .inner
+                    }
+                    None => ui.add(button),
+                };
                 if resp.clicked() {
                     cmds.push(Command::Select(Some(a)));
                 }
