@@ -2,7 +2,7 @@
 
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{NodeT, Queryable};
 use solscope::gui::{Command, Mode, SolscopeApp, UiCommand};
 use solscope::screenshot::{SNAPSHOT_SIZE, View, harness};
 
@@ -576,4 +576,273 @@ fn the_execution_is_derived_off_the_frame_and_never_stale() {
         h.state().execution_run().unwrap().actuals,
         solscope_engine::sample_actuals(&h.state().doc.plan, 7)
     );
+}
+
+/// The uncertain-drive example in execution mode.
+fn uncertain_drive_executing() -> SolscopeApp {
+    let mut app = uncertain_drive();
+    app.apply(UiCommand::ShowExecution.into());
+    app
+}
+
+/// Types `text` into the field labelled `label` (replacing what it holds).
+fn type_into(h: &mut egui_kittest::Harness<'static, SolscopeApp>, label: &str, text: &str) {
+    h.get_by_label(label).focus();
+    h.run_steps(2);
+    h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::A);
+    h.get_by_label(label).type_text(text);
+    h.run_steps(2);
+}
+
+/// Runs frames until `done` holds (the workers are real threads).
+fn wait_until(
+    h: &mut egui_kittest::Harness<'static, SolscopeApp>,
+    what: &str,
+    done: impl Fn(&SolscopeApp) -> bool,
+) {
+    for _ in 0..3000 {
+        if done(h.state()) {
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+        h.run_steps(1);
+    }
+    panic!("{what} never happened");
+}
+
+#[test]
+fn a_small_campaign_shows_shares_causes_and_the_state_of_charge() {
+    let mut h = harness(
+        uncertain_drive_executing(),
+        SNAPSHOT_SIZE.into(),
+        &View::default(),
+    )
+    .unwrap();
+    assert!(
+        h.query_by_label_contains("Executes the plan once per run")
+            .is_some()
+    );
+    type_into(&mut h, "Runs", "20");
+    h.get_by_label("Run").click();
+    h.run_steps(3);
+    let result = h
+        .state()
+        .campaign_result()
+        .expect("summarised in the frame");
+    assert_eq!(result.runs(), 20);
+    let arm = index(h.state(), "arm_science");
+    let s = result.activity(arm).unwrap().clone();
+    assert_eq!((s.completed, s.aborted, s.not_run), (10, 10, 0));
+    assert!(
+        h.query_by_label("20 runs, seed 1: no run broke a limit")
+            .is_some()
+    );
+    assert!(h.query_by_label("Lowest state of charge per run").is_some());
+    assert!(
+        h.query_by_label_contains("min_soc 500.0 Wh: no run below")
+            .is_some()
+    );
+    // Every activity's shares as a bar in the list.
+    let arm_bar = "arm_science: completed 10 (50%), aborted 10 (50%), not run 0 of 20 runs";
+    assert!(h.query_all_by_label(arm_bar).next().is_some());
+    assert!(
+        h.query_by_label("drive: completed 20 (100%), aborted 0, not run 0 of 20 runs")
+            .is_some()
+    );
+    // Nothing selected: the activities lost most often, to select.
+    h.get_by_label("arm_science: lost in 50%").click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.selected, Some(arm));
+    assert!(h.query_by_label("Across 20 runs (seed 1)").is_some());
+    assert!(
+        h.query_by_label(
+            "Lost in 50% of runs (10 of 20); in 10 of the 10 lost runs arm_science ran longer \
+             than 2359 s, and of the 10 runs in which it did, 10 lost it."
+        )
+        .is_some()
+    );
+    assert!(
+        h.query_by_label("• aborted: it ran longer than its duration — 10 runs (100% of lost)")
+            .is_some()
+    );
+    assert!(h.query_by_label("In this execution (nominal)").is_some());
+}
+
+#[test]
+fn opening_a_run_that_lost_the_activity_executes_that_run() {
+    let mut app = uncertain_drive_executing();
+    app.apply(Command::RunCampaign { runs: 20, seed: 1 });
+    let arm = index(&app, "arm_science");
+    app.apply(Command::Select(Some(arm)));
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    let runs = h
+        .state()
+        .campaign_result()
+        .unwrap()
+        .lost_runs(arm, "aborted")
+        .to_vec();
+    assert!(!runs.is_empty());
+    let run = runs[runs.len() - 1];
+    h.get_by_label(&format!("run {run}")).click();
+    h.run_steps(3);
+    assert_eq!(
+        h.state().actuals,
+        solscope::gui::ActualsSource::Sampled { seed: 1, run }
+    );
+    assert!(
+        h.query_by_label(&format!("sampled, seed 1, run {run}"))
+            .is_some()
+    );
+    let ex = h.state().execution_run().unwrap();
+    let plan = &h.state().doc.plan;
+    assert_eq!(ex.actuals, solscope_engine::sample_run(plan, 1, run));
+    assert_eq!(
+        ex.execution.activities[arm].outcome,
+        solscope_engine::RunOutcome::Aborted,
+        "run {run} lost it"
+    );
+    assert!(
+        h.query_by_label(&format!("In this execution (sampled, seed 1, run {run})"))
+            .is_some()
+    );
+    assert!(h.query_by_label_contains("Outcome: aborted").is_some());
+}
+
+#[test]
+fn a_campaign_runs_off_the_frame_and_cancel_keeps_nothing() {
+    let mut app = SolscopeApp::with_default_plan().unwrap();
+    app.apply(UiCommand::ShowExecution.into());
+    app.background = true;
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    // The most runs (minutes of work on the bundled plan): cancelled long
+    // before they are done.
+    type_into(&mut h, "Runs", "20000");
+    h.get_by_label("Run").click();
+    h.run_steps(2);
+    let p = h.state().campaign_progress().expect("running");
+    assert_eq!((p.runs, p.seed), (20_000, 1));
+    assert!(h.query_by_label_contains("/ 20000 runs (seed 1)").is_some());
+    // (Moved off Run first: its tooltip, under the pointer, would take the
+    // click.)
+    h.get_by_label("Cancel").hover();
+    h.run_steps(2);
+    h.get_by_label("Cancel").click();
+    h.run_steps(2);
+    assert!(h.state().campaign_progress().is_none_or(|p| p.cancelling));
+    wait_until(&mut h, "cancelling", |app| {
+        app.campaign_progress().is_none()
+    });
+    h.run_steps(2);
+    let stopped = h.state().campaign_stopped().expect("stopped");
+    assert_eq!(stopped.why, solscope::gui::StopReason::Cancelled);
+    assert!(stopped.done < stopped.runs);
+    assert!(h.state().campaign_result().is_none(), "nothing kept");
+    assert!(h.query_by_label_contains("Cancelled after").is_some());
+    // A small one runs to its end on the worker, with the same summary as in
+    // the frame.
+    type_into(&mut h, "Runs", "16");
+    h.get_by_label("Run").click();
+    h.run_steps(1);
+    wait_until(&mut h, "the summary", |app| app.campaign_result().is_some());
+    h.run_steps(2);
+    let worker = h.state().campaign_result().unwrap().clone();
+    let mut direct = SolscopeApp::with_default_plan().unwrap();
+    direct.apply(Command::RunCampaign { runs: 16, seed: 1 });
+    assert_eq!(&worker, direct.campaign_result().unwrap());
+    assert!(h.state().campaign_stopped().is_none());
+    assert!(h.query_by_label_contains("16 runs, seed 1").is_some());
+}
+
+/// The edit that raises the minimum state of charge of the example to 950 Wh.
+fn raise_min_soc() -> Command {
+    let mut set = serde_json::Map::new();
+    set.insert(
+        "battery".into(),
+        serde_json::json!({"capacity": 1600.0, "initial": 1300.0, "min_soc": 950.0}),
+    );
+    Command::Edit {
+        target: "plan".into(),
+        set,
+        description: "Raise min_soc".into(),
+    }
+}
+
+#[test]
+fn an_edit_makes_the_summary_stale_until_the_campaign_runs_again() {
+    let mut app = uncertain_drive_executing();
+    app.apply(Command::RunCampaign { runs: 20, seed: 1 });
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    let bar = "arm_science: completed 10 (50%), aborted 10 (50%), not run 0 of 20 runs";
+    assert!(h.query_all_by_label(bar).next().is_some());
+    h.state_mut().push(raise_min_soc());
+    h.run_steps(3);
+    // The summary of the plan before the edit is not shown, and the panel
+    // says why.
+    assert!(h.state().campaign_result().is_none());
+    assert!(h.query_all_by_label(bar).next().is_none());
+    assert!(h.query_by_label("Lowest state of charge per run").is_none());
+    assert!(
+        h.query_by_label_contains(
+            "The plan was edited after the last campaign (20 runs, seed 1): its summary no longer applies"
+        )
+        .is_some()
+    );
+    type_into(&mut h, "Runs", "20");
+    h.get_by_label("Run").click();
+    h.run_steps(3);
+    let result = h.state().campaign_result().expect("the edited plan's");
+    assert_eq!(result.runs(), 20);
+    assert!(result.summary.limits.runs_breaking > 0, "950 Wh is broken");
+    assert!(
+        h.query_by_label_contains("The plan was edited after")
+            .is_none()
+    );
+    assert!(h.query_by_label_contains("runs went below").is_some());
+}
+
+#[test]
+fn an_edit_while_a_campaign_runs_stops_it() {
+    let mut app = SolscopeApp::with_default_plan().unwrap();
+    app.apply(UiCommand::ShowExecution.into());
+    app.background = true;
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    h.state_mut().push(Command::RunCampaign {
+        runs: 20_000,
+        seed: 1,
+    });
+    h.run_steps(1);
+    assert!(h.state().campaign_progress().is_some());
+    let mut set = serde_json::Map::new();
+    set.insert(
+        "battery".into(),
+        serde_json::json!({"capacity": 2400.0, "initial": 1850.0, "min_soc": 990.0}),
+    );
+    h.state_mut().push(Command::Edit {
+        target: "plan".into(),
+        set,
+        description: "Lower min_soc".into(),
+    });
+    h.run_steps(2);
+    // Its summary would be of the plan before the edit: it is stopped at once.
+    assert!(h.state().campaign_progress().is_none());
+    let stopped = h.state().campaign_stopped().expect("stopped");
+    assert_eq!(stopped.why, solscope::gui::StopReason::PlanEdited);
+    assert!(stopped.done < stopped.runs);
+    assert!(h.state().campaign_result().is_none());
+    assert!(
+        h.query_by_label_contains("The plan was edited while the campaign ran")
+            .is_some()
+    );
+}
+
+#[test]
+fn a_plan_without_duration_models_cannot_run_a_campaign() {
+    let mut app = tutorial();
+    app.apply(UiCommand::ShowExecution.into());
+    let h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    assert!(
+        h.query_by_label_contains("This plan has no duration_model")
+            .is_some()
+    );
+    assert!(h.get_by_label("Run").accesskit_node().is_disabled());
 }
