@@ -173,3 +173,33 @@ fn execution_of_the_default_plan() {
         },
     );
 }
+
+/// The default plan's Monte Carlo campaign (200 runs, seed 1) with the
+/// post-drive Mastcam-Z stereo of sol 413 selected (lost in about a third of
+/// the runs, to three causes), executed with the first run that lost it.
+#[test]
+fn monte_carlo_of_the_default_plan() {
+    let mut app = app();
+    app.apply(UiCommand::ShowExecution.into());
+    app.apply(Command::RunCampaign { runs: 200, seed: 1 });
+    let a = app
+        .doc
+        .plan
+        .activities
+        .iter()
+        .position(|x| x.id == "zcam_postdrive_413")
+        .expect("activity");
+    let result = app.campaign_result().expect("summarised");
+    let lost = result.activity(a).and_then(|s| s.lost.as_ref());
+    let cause = &lost.expect("lost in some runs").causes[0].cause;
+    let run = result.lost_runs(a, cause)[0];
+    app.apply(Command::SampleActuals { seed: 1, run });
+    check(
+        "monte_carlo",
+        app,
+        View {
+            select: Some("zcam_postdrive_413".into()),
+            ..View::default()
+        },
+    );
+}
