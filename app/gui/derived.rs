@@ -539,10 +539,10 @@ pub struct CampaignCache {
 impl CampaignCache {
     /// Starts a campaign of `runs` runs of `plan` (at `revision`) seeded with
     /// `seed`: in place, or with `background` on a worker thread. A campaign
-    /// still running is cancelled first.
+    /// still running is cancelled first. What the last one came to stays
+    /// until this one is done.
     pub fn start(&mut self, plan: &Plan, revision: u64, seed: u64, runs: u64, background: bool) {
         self.job = None;
-        self.stopped = None;
         if background {
             let done = Arc::new(AtomicU64::new(0));
             let cancel = Arc::new(AtomicBool::new(false));
@@ -561,6 +561,7 @@ impl CampaignCache {
                 cancel,
             });
         } else {
+            self.stopped = None;
             match CampaignResult::of(plan, seed, runs, &|| {}, None) {
                 Ok(Some(result)) => self.done = Some((revision, Ok(result))),
                 // Nothing cancels a campaign run in place.
@@ -596,6 +597,7 @@ impl CampaignCache {
         };
         let stopped = job.stopped(StopReason::Cancelled);
         self.job = None;
+        self.stopped = None;
         match outcome {
             Ok(Ok(Some(result))) => self.done = Some((revision, Ok(result))),
             Ok(Ok(None)) => self.stopped = Some(stopped),
@@ -631,8 +633,8 @@ impl CampaignCache {
         self.job.as_ref().map(CampaignJob::progress)
     }
 
-    /// The last campaign that stopped before its summary, unless another
-    /// started since.
+    /// The last campaign that stopped before its summary, until another
+    /// campaign ends.
     pub fn stopped(&self) -> Option<&Stopped> {
         self.stopped.as_ref()
     }

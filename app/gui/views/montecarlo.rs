@@ -126,7 +126,10 @@ fn controls_ui(ui: &mut egui::Ui, m: &Model<'_>, text: &mut TextBuffers, cmds: &
         } else {
             format!("{} / {} runs (seed {})", p.done, p.runs, p.seed)
         };
-        ui.add(egui::ProgressBar::new(share).text(what));
+        let bar = ui.add(egui::ProgressBar::new(share).text(what));
+        if c.result.is_some() {
+            bar.on_hover_text("The last campaign's results stay shown until this one is done");
+        }
     } else if let Some(result) = c.ready() {
         headline_ui(ui, m, result);
     } else if !uncertain {
@@ -156,14 +159,9 @@ fn headline_ui(ui: &mut egui::Ui, m: &Model<'_>, result: &CampaignResult) {
 }
 
 /// What became of the last campaign that did not finish or no longer
-/// applies, and what the panel is for before any campaign.
+/// applies, and what the panel is for before any campaign. Nothing here
+/// changes when a campaign starts.
 fn status_ui(ui: &mut egui::Ui, m: &Model<'_>, c: &CampaignModel<'_>) {
-    if c.running.is_some() && c.result.is_some() {
-        ui.colored_label(
-            m.theme.muted,
-            "Showing the last campaign until this one is done.",
-        );
-    }
     if let Some(s) = c.stopped {
         let why = match s.why {
             StopReason::Cancelled => format!(
@@ -188,7 +186,9 @@ fn status_ui(ui: &mut egui::Ui, m: &Model<'_>, c: &CampaignModel<'_>) {
             ),
         );
     }
-    if c.running.is_none() && c.result.is_none() && c.stale.is_none() && c.stopped.is_none() {
+    // (Kept while a campaign runs: the panel's header, with Cancel, does not
+    // move when Run is clicked.)
+    if c.result.is_none() && c.stale.is_none() && c.stopped.is_none() {
         ui.colored_label(
             m.theme.muted,
             "Executes the plan once per run with durations drawn from its duration models, \
