@@ -273,7 +273,10 @@ fn one_suggestion_worker_at_a_time() {
     let second = index(h.state(), "supercam_dawn_sky_412");
     h.state_mut().apply(Command::Select(Some(first)));
     h.run_steps(1);
-    assert_eq!(h.state().verifying(), Some(first));
+    // (Unless the worker is already done: a frame can take two passes.)
+    if h.state().cached_suggestions(first).is_none() {
+        assert_eq!(h.state().verifying(), Some(first));
+    }
     // Selecting another activity while the first is verified does not start a
     // second worker; its turn comes when the first is done.
     h.state_mut().apply(Command::Select(Some(second)));
@@ -722,6 +725,12 @@ fn a_campaign_runs_off_the_frame_and_cancel_keeps_nothing() {
     let p = h.state().campaign_progress().expect("running");
     assert_eq!((p.runs, p.seed), (20_000, 1));
     assert!(h.query_by_label_contains("/ 20000 runs (seed 1)").is_some());
+    // The panel's body did not change, so its header (with Cancel) stayed
+    // where Run was clicked.
+    assert!(
+        h.query_by_label_contains("Executes the plan once per run")
+            .is_some()
+    );
     // (Moved off Run first: its tooltip, under the pointer, would take the
     // click.)
     h.get_by_label("Cancel").hover();
