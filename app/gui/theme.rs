@@ -113,6 +113,12 @@ pub const SHARE_BAR_WIDTH: f32 = 36.0;
 pub const SHARE_BAR_HEIGHT: f32 = 8.0;
 /// Height of the larger bar in the inspector.
 pub const SHARE_BAR_LARGE_HEIGHT: f32 = 14.0;
+/// Narrowest part of a share bar (points), so that a few runs still show.
+pub const SHARE_MIN_WIDTH: f32 = 1.0;
+/// Outline width of share bars and histogram bars.
+pub const BAR_OUTLINE_STROKE: f32 = 1.0;
+/// Width of a limit's line on a histogram.
+pub const LIMIT_LINE_STROKE: f32 = 1.5;
 
 impl Theme {
     /// The palette for dark or light mode.

@@ -20,8 +20,8 @@ use crate::gui::execution::ActualsSource;
 use crate::gui::montecarlo::{Bin, CampaignResult, MAX_RUNS, StopReason};
 use crate::gui::state::TextBuffers;
 use crate::gui::theme::{
-    CAMPAIGN_FIELD_WIDTH, HISTOGRAM_HEIGHT, SHARE_BAR_HEIGHT, SHARE_BAR_LARGE_HEIGHT,
-    SHARE_BAR_WIDTH,
+    BAR_OUTLINE_STROKE, CAMPAIGN_FIELD_WIDTH, HISTOGRAM_HEIGHT, LIMIT_LINE_STROKE,
+    SHARE_BAR_HEIGHT, SHARE_BAR_LARGE_HEIGHT, SHARE_BAR_WIDTH, SHARE_MIN_WIDTH,
 };
 
 /// How many of the activities lost most often the panel lists.
@@ -320,7 +320,7 @@ fn histogram_ui(
             Bar::new((b.from + b.to) / 2.0, b.runs as f64)
                 .width(b.to - b.from)
                 .fill(color)
-                .stroke(Stroke::new(1.0, m.theme.muted))
+                .stroke(Stroke::new(BAR_OUTLINE_STROKE, m.theme.muted))
                 .name(format!("{} – {}", wh_text(b.from), wh_text(b.to)))
         })
         .collect();
@@ -349,7 +349,11 @@ fn histogram_ui(
             })),
         );
         if let Some((name, l, _)) = near {
-            p.vline(VLine::new(name, l).color(limit_color).width(1.5));
+            p.vline(
+                VLine::new(name, l)
+                    .color(limit_color)
+                    .width(LIMIT_LINE_STROKE),
+            );
         }
     });
     ui.label(format!(
@@ -427,7 +431,7 @@ pub fn share_bar(
             if n > 0 {
                 let r = egui::Rect::from_min_max(
                     egui::pos2(x, rect.top()),
-                    egui::pos2((x + w).max(x + 1.0), rect.bottom()),
+                    egui::pos2((x + w).max(x + SHARE_MIN_WIDTH), rect.bottom()),
                 );
                 painter.rect_filled(r, 0.0, color);
             }
@@ -436,7 +440,7 @@ pub fn share_bar(
         painter.rect_stroke(
             rect,
             0.0,
-            Stroke::new(1.0, m.theme.muted),
+            Stroke::new(BAR_OUTLINE_STROKE, m.theme.muted),
             egui::StrokeKind::Inside,
         );
     }
