@@ -67,29 +67,15 @@ pub(crate) fn edited(
         if set.contains_key("activities") {
             return apply_edit(plan, target, set).ok();
         }
-        let shell = Plan {
-            format: plan.format.clone(),
-            name: plan.name.clone(),
-            horizon: plan.horizon,
-            local_time: plan.local_time,
-            battery: plan.battery,
-            power: plan.power,
-            sleep: plan.sleep,
-            sequence_engines: plan.sequence_engines,
-            data: plan.data,
-            handover: plan.handover,
-            states: plan.states.clone(),
-            thermal_zones: plan.thermal_zones.clone(),
-            activities: Vec::new(),
-            execution: plan.execution,
-            cycle: plan.cycle.clone(),
-        };
+        let shell = plan.without_activities();
         let mut v = serde_json::to_value(&shell).ok()?;
         let obj = v.as_object_mut()?;
         merge_set(obj, set);
         check_json_shape(&v).ok()?;
         let mut out: Plan = serde_json::from_value(v).ok()?;
         out.activities = plan.activities.clone();
+        // A cycle's starting state is not part of the file format: it stays.
+        out.cycle = plan.cycle.clone();
         validate(&out).ok()?;
         Some(out)
     };

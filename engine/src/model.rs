@@ -102,6 +102,31 @@ pub struct HeaterHold {
     pub owner: Option<String>,
 }
 
+impl Plan {
+    /// This plan without its activities (every plan-wide field as it is, the
+    /// cycle start included): cheaper than a clone where the activities are
+    /// replaced anyway.
+    pub fn without_activities(&self) -> Plan {
+        Plan {
+            format: self.format.clone(),
+            name: self.name.clone(),
+            horizon: self.horizon,
+            local_time: self.local_time,
+            battery: self.battery,
+            power: self.power,
+            sleep: self.sleep,
+            sequence_engines: self.sequence_engines,
+            data: self.data,
+            handover: self.handover,
+            states: self.states.clone(),
+            thermal_zones: self.thermal_zones.clone(),
+            activities: Vec::new(),
+            execution: self.execution,
+            cycle: self.cycle.clone(),
+        }
+    }
+}
+
 /// The `execution` section: when scheduling cycles happen while the plan runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

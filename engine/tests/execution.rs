@@ -529,3 +529,46 @@ fn a_mandatory_overrun_below_min_soc_is_reported() {
     assert!(v.worst.0 < v.limit);
     assert!(ex.lowest_soc.0 < v.limit);
 }
+
+#[test]
+fn a_cycle_plan_keeps_its_starting_state_through_edits_and_suggestions() {
+    let plan = load(&drive_plan(json!({})));
+    let ex = execute(&plan, &actuals(&[("drive", 6000)])).unwrap();
+    // The cycle at the drive's end, where the science fails.
+    let k = ex.activities[1].last_cycle.unwrap();
+    let cycle_plan = ex.cycles[k].plan.clone().unwrap();
+    let start = cycle_plan.cycle.clone().expect("a cycle's starting state");
+    let mut set = serde_json::Map::new();
+    set.insert(
+        "battery".into(),
+        serde_json::to_value(cycle_plan.battery).unwrap(),
+    );
+    let edited = solscope_engine::apply_edit(&cycle_plan, "plan", &set).unwrap();
+    assert_eq!(edited.cycle.as_ref(), Some(&start));
+    // The explainer's suggestions are verified by rescheduling edited cycle
+    // plans (debug builds compare its quick edits with apply_edit).
+    let sched = solscope_engine::schedule(&cycle_plan).unwrap();
+    let opts = solscope_engine::ExplainOptions {
+        activity: Some("science".into()),
+        no_suggestions: false,
+    };
+    let explanations = solscope_engine::explain(&cycle_plan, &sched, &opts).unwrap();
+    assert_eq!(explanations.len(), 1);
+    assert!(explanations[0].phase.is_some());
+    // A phase-2 (energy) failure: its plan-wide relaxations are edits of the
+    // cycle plan's battery, re-read without the activities.
+    let mut doc = drive_plan(json!({
+        "battery": { "capacity": 2000.0, "initial": 700.0, "min_soc": 500.0 }
+    }));
+    doc["activities"][1]["energy_rate"] = json!(120.0);
+    let plan = load(&doc);
+    let ex = execute(&plan, &Actuals::nominal()).unwrap();
+    let cycle_plan = ex.cycles[0].plan.clone().unwrap();
+    let sched = solscope_engine::schedule(&cycle_plan).unwrap();
+    let explanations = solscope_engine::explain(&cycle_plan, &sched, &opts).unwrap();
+    let suggestions = &explanations[0].suggestions;
+    assert!(
+        suggestions.iter().any(|s| s.target == "plan"),
+        "a plan-wide relaxation among {suggestions:?}"
+    );
+}

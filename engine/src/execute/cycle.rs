@@ -175,23 +175,8 @@ pub(super) fn cycle_plan(
         activity_of.push(i);
     }
     // Every plan-wide field as it is (cloning the activities would be wasted).
-    let mut out = Plan {
-        format: plan.format.clone(),
-        name: plan.name.clone(),
-        horizon: plan.horizon,
-        local_time: plan.local_time,
-        battery: plan.battery,
-        power: plan.power,
-        sleep: plan.sleep,
-        sequence_engines: plan.sequence_engines,
-        data: plan.data,
-        handover: plan.handover,
-        states: plan.states.clone(),
-        thermal_zones: plan.thermal_zones.clone(),
-        activities,
-        execution: plan.execution,
-        cycle: None,
-    };
+    let mut out = plan.without_activities();
+    out.activities = activities;
     out.horizon.start = t;
     out.battery.initial = (start.soc_mj as f64 / MJ_PER_WH).clamp(0.0, out.battery.capacity);
     out.data.initial = (start.data_bit as f64 / BIT_PER_MBIT).max(0.0);
