@@ -572,3 +572,16 @@ fn a_cycle_plan_keeps_its_starting_state_through_edits_and_suggestions() {
         "a plan-wide relaxation among {suggestions:?}"
     );
 }
+
+/// A regression found by `executed_timeline_replays_clean`: a preheat running
+/// when a cycle starts serves its activity at its planned start only, and the
+/// phase-2 search must treat that start as a cell of its own (debug builds
+/// compare the search with the ideal placement's point check).
+#[test]
+fn a_running_preheat_serves_its_activity_at_its_planned_start() {
+    let text = r#"{"activities": [{"duration": 30, "id": "a0", "mandatory": false, "priority": 0}, {"duration": 30, "id": "a1", "mandatory": false, "priority": 0}, {"duration": 63, "id": "a2", "mandatory": false, "priority": 0}, {"duration": 30, "id": "a3", "mandatory": false, "priority": 0}, {"duration": 155, "id": "a4", "mandatory": false, "priority": 0, "thermal_zones": ["z0"], "windows": [{"end": 837, "preferred": 589, "start": 425}]}, {"duration": 30, "id": "a5", "mandatory": false, "priority": 0}, {"duration": 44, "id": "a6", "mandatory": false, "priority": 0, "windows": [{"end": 538, "start": 538}]}, {"duration": 30, "id": "a7", "mandatory": false, "priority": 0}], "battery": {"capacity": 10.0, "initial": 0.5, "min_soc": 0.0}, "format": "solscope.plan/1", "horizon": {"end": 931, "start": 0}, "name": "generated", "power": {"asleep": 2.0, "awake": 7.0, "rtg": 34.0}, "sleep": {"min_awake": 1, "min_sleep": 0, "shutdown_duration": 0, "wakeup_duration": 0}, "thermal_zones": {"z0": {"maintenance_power": 0.0, "preheat": [{"duration": 22, "from": 0}], "preheat_power": 0.0}}}"#;
+    let plan = load_plan(text).unwrap().plan;
+    let acts = random_actuals(&plan, &[69, 134, 124, 69, 105, 130]);
+    let ex = execute(&plan, &acts).unwrap();
+    replay_clean(&plan, &ex).unwrap();
+}

@@ -508,6 +508,12 @@ impl State<'_> {
         for &p in &preheat_lengths {
             points.push(problem.h0 + p);
         }
+        // A preheat already running when a cycle of an execution starts serves
+        // its activity at its planned start only (`Problem::preheat_running`):
+        // that start is a cell of its own.
+        for h in problem.heaters.iter().filter(|h| h.owner == Some(a)) {
+            points.extend([h.end, h.end + 1]);
+        }
         // Local-time structure: table rows at tod(s), operability at tod(s - p).
         for &z in &act.zones {
             let zone = &problem.zones[z];
