@@ -30,12 +30,12 @@ pub use execute::{
     Distribution, Dropped, Event, ExecuteOptions, ExecutedProfile, Execution, Guard, LimitSummary,
     Loss, LossRecord, LostSummary, MONTECARLO_FORMAT, MONTECARLO_RUNS_FORMAT, PairSummary,
     Predictor, Quantiles, RunOutcome, RunRecord, RunsDoc, Summary, Trigger, Violation,
-    ViolationKind, campaign, campaign_runs, execute, execute_with, load_actuals, loss, losses,
-    merge_parts, run_record, sample_actuals, sample_run, summarize,
+    ViolationKind, campaign, campaign_runs, execute, execute_with, load_actuals, loss, loss_line,
+    losses, merge_parts, run_record, sample_actuals, sample_run, summarize,
 };
 pub use explain::{
     Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,
-    Suggestion, energy_consumers, explain, explain_text, explanation_notes, involved, loss_line,
+    Suggestion, energy_consumers, explain, explain_text, explanation_notes, involved,
     minimal_conflicts, peak_users, reason_line, suggestion_line, verified_suggestions,
 };
 pub use generate::{Profile, generate_plan, generate_plan_with};

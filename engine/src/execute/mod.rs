@@ -15,6 +15,7 @@ mod actuals;
 mod cycle;
 mod montecarlo;
 mod record;
+mod text;
 mod why;
 
 pub use actuals::{ACTUALS_FORMAT, Actuals, load_actuals, sample_actuals, sample_run};
@@ -25,6 +26,7 @@ pub use montecarlo::{
     RunsDoc, Summary, campaign, campaign_runs, merge_parts, run_record, summarize,
 };
 pub use record::{ExecutedProfile, Violation, ViolationKind};
+pub use text::loss_line;
 pub use why::{Cause, Loss, loss, losses};
 
 use crate::error::Error;

@@ -20,9 +20,7 @@ use serde::Serialize;
 
 pub use conflicts::{Relaxation, minimal_conflicts};
 pub use culprits::{Blame, Consumer, energy_consumers, peak_users};
-pub use text::{
-    explain_text, explanation_notes, involved, loss_line, reason_line, suggestion_line,
-};
+pub use text::{explain_text, explanation_notes, involved, reason_line, suggestion_line};
 
 use crate::error::Error;
 use crate::model::Plan;

@@ -5,9 +5,8 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::execute::{
-    Actuals, Cause, Dropped, Event, Execution, Guard, Loss, Trigger, ViolationKind,
+    Actuals, Cause, Dropped, Event, Execution, Guard, Loss, Trigger, ViolationKind, loss_line,
 };
-use crate::explain::loss_line;
 use crate::model::Plan;
 use crate::scheduler::Profiles;
 use crate::units::{mbit, watts, wh};
