@@ -59,17 +59,21 @@ pub(super) fn cycle_plan(
         .collect();
     let started = |i: usize| !matches!(status[i], Status::Waiting);
     let mut dropped: Vec<Option<Dropped>> = vec![None; n];
-    // Groups with a member that started keep no other member.
+    // Groups with a member that started keep no other member (the first such
+    // member, in file order, is named).
+    let mut ran_in_group: std::collections::BTreeMap<&str, usize> =
+        std::collections::BTreeMap::new();
+    for (j, a) in plan.activities.iter().enumerate() {
+        if let Some(g) = a.group.as_deref().filter(|_| started(j)) {
+            ran_in_group.entry(g).or_insert(j);
+        }
+    }
     for (i, a) in plan.activities.iter().enumerate() {
         if started(i) {
             continue;
         }
-        if let Some(g) = &a.group {
-            if let Some(by) =
-                (0..n).find(|&j| started(j) && plan.activities[j].group.as_ref() == Some(g))
-            {
-                dropped[i] = Some(Dropped::GroupMemberRan(by));
-            }
+        if let Some(&by) = a.group.as_deref().and_then(|g| ran_in_group.get(g)) {
+            dropped[i] = Some(Dropped::GroupMemberRan(by));
         }
     }
     // Windows from `t` on, cut by dependencies on activities that ended.
