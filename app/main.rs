@@ -1,7 +1,7 @@
 //! `solscope`: explainable scheduling workstation for rover activity plans.
 //!
 //! `solscope [PLAN]` opens the desktop app (on the bundled default plan without an
-//! argument). Command line: `solscope schedule|explain|execute|montecarlo|check PLAN`, and
+//! argument). Command line: `solscope schedule|explain|execute|montecarlo|flex|check PLAN`, and
 //! `solscope screenshot PLAN --out FILE.png` for headless rendering. Invalid input
 //! prints a path-named message on standard error, nothing on standard output, and
 //! exits with status 2.
@@ -100,6 +100,19 @@ enum Command {
         /// records.
         #[arg(long, value_name = "I/K")]
         shard: Option<String>,
+    },
+    /// Schedule a plan and print its flexible (dispatchable) form: per activity the
+    /// start bounds [lb, ub], the free slack, start conditions, and the minimum
+    /// dispatchable network and dynamic controllability (solscope.flex/1).
+    Flex {
+        /// The plan file (solscope.plan/1 JSON).
+        plan: PathBuf,
+        /// Print planner-facing text instead of JSON.
+        #[arg(long)]
+        text: bool,
+        /// Skip the free slack (one replay of the schedule per activity).
+        #[arg(long)]
+        no_free_slack: bool,
     },
     /// Validate a plan and print its warnings.
     Check {
@@ -496,6 +509,27 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
             }
             let plan = solscope_engine::generate_plan_with(profile.into(), activities, sols, seed);
             to_json(&plan)
+        }
+        Command::Flex {
+            plan,
+            text,
+            no_free_slack,
+        } => {
+            let loaded = load(&plan)?;
+            let sched = solscope_engine::schedule(&loaded.plan)?;
+            let opts = solscope_engine::FlexOptions {
+                free_slack: !no_free_slack,
+            };
+            let flex = solscope_engine::flex_with(&loaded.plan, &sched, opts);
+            if text {
+                Ok(solscope_engine::flex_text(&loaded.plan, &flex))
+            } else {
+                to_json(&solscope_engine::flex_document(
+                    &loaded.plan,
+                    &flex,
+                    &default_name(&plan),
+                ))
+            }
         }
         Command::Check { plan } => {
             let loaded = load(&plan)?;

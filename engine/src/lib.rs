@@ -14,6 +14,7 @@ mod edit;
 mod error;
 mod execute;
 mod explain;
+mod flex;
 mod generate;
 mod load;
 mod model;
@@ -38,6 +39,11 @@ pub use explain::{
     Suggestion, energy_consumers, explain, explain_text, explanation_notes, involved,
     minimal_conflicts, peak_users, reason_line, suggestion_line, verified_suggestions,
 };
+pub use flex::{
+    Bound, Constraint, Controllability, DispatchEdge, EventBounds, Flex, FlexActivity, FlexOptions,
+    OrderKind, StartCondition, TimePoint, Wait, constraint_line, flex, flex_text, flex_with,
+    time_point_name,
+};
 pub use generate::{Profile, generate_plan, generate_plan_with};
 pub use load::{
     LoadedPlan, MAX_PLAN_BYTES, load_plan, load_plan_file, load_plan_limited, read_plan_text,
@@ -48,10 +54,12 @@ pub use model::{
     Power, PreheatEntry, Sleep, StateDef, StateEffect, StateRequirement, ThermalZone, Window,
 };
 pub use report::{
-    ActivityEntry, ChangedEntry, CulpritEntry, CycleEntry, DroppedEntry, EXECUTION_FORMAT,
-    EditEntry, EventEntry, ExecutionDoc, ExplainDoc, ExplanationEntry, GeneratedEntry,
-    RelaxationEntry, RunEntry, ScheduleDoc, SuggestionEntry, SummaryEntry, TimedValue,
-    ViolationEntry, WhyEntry, execution_document, explain_document, schedule_document,
+    ActivityEntry, BoundEntry, BoundsEntry, ChangedEntry, ConditionEntry, ConstraintEntry,
+    ControllabilityEntry, CulpritEntry, CycleEntry, DroppedEntry, EXECUTION_FORMAT, EdgeEntry,
+    EditEntry, EventEntry, ExecutionDoc, ExplainDoc, ExplanationEntry, FLEX_FORMAT, FlexDoc,
+    FlexEntry, FlexSummary, GeneratedEntry, PointEntry, RelaxationEntry, RunEntry, ScheduleDoc,
+    SuggestionEntry, SummaryEntry, TimedValue, ViolationEntry, WaitEntry, WhyEntry,
+    execution_document, explain_document, flex_document, schedule_document,
 };
 pub use scheduler::{
     Act, Category, CategoryIntervals, FailurePhase, Generated, GeneratedKind, Outcome,
@@ -60,7 +68,7 @@ pub use scheduler::{
 };
 pub use timeline::{Interval, IntervalSet};
 pub use units::{
-    BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, format_local, format_plan_time, format_time_of_day,
-    format_watts, format_wh, mbit, watts, wh,
+    BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, format_local, format_plan_time, format_span,
+    format_time_of_day, format_watts, format_wh, mbit, watts, wh,
 };
 pub use validate::validate;

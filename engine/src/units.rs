@@ -70,6 +70,22 @@ pub fn format_plan_time(clock: &LocalTime, t: i64) -> String {
     format!("{t} ({})", format_local(clock, t))
 }
 
+/// A length of time for reading: `45 s`, `12 min 05 s`, `3 h 07 min`.
+pub fn format_span(seconds: i64) -> String {
+    let sign = if seconds < 0 { "-" } else { "" };
+    let s = seconds.unsigned_abs();
+    if s < 60 {
+        format!("{sign}{s} s")
+    } else if s < 3600 {
+        match s % 60 {
+            0 => format!("{sign}{} min", s / 60),
+            r => format!("{sign}{} min {r:02} s", s / 60),
+        }
+    } else {
+        format!("{sign}{} h {:02} min", s / 3600, (s / 60) % 60)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -85,6 +101,9 @@ mod tests {
         // Past local midnight the day wraps at the sol length.
         assert_eq!(format_local(&clock, 88_775 - 64_800), "00:00:00");
         assert_eq!(format_time_of_day(88_774), "24:39:34");
+        assert_eq!(format_span(45), "45 s");
+        assert_eq!(format_span(725), "12 min 05 s");
+        assert_eq!(format_span(-3600 * 3 - 420 - 9), "-3 h 07 min");
     }
 
     #[test]

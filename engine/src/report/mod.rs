@@ -1,10 +1,11 @@
 //! The output documents, built from the structured results: the schedule
-//! (`solscope.schedule/1`), the explanation (`solscope.explain/1`) and the
-//! execution (`solscope.execution/1`). Each is
+//! (`solscope.schedule/1`), the explanation (`solscope.explain/1`), the
+//! execution (`solscope.execution/1`) and the flexible schedule (`solscope.flex/1`). Each is
 //! built in one place; numbers go through `units`.
 
 mod execution;
 mod explain;
+mod flex;
 mod schedule;
 
 pub use execution::{
@@ -14,5 +15,9 @@ pub use execution::{
 pub use explain::{
     CulpritEntry, EditEntry, ExplainDoc, ExplanationEntry, RelaxationEntry, SuggestionEntry,
     explain_document,
+};
+pub use flex::{
+    BoundEntry, BoundsEntry, ConditionEntry, ConstraintEntry, ControllabilityEntry, EdgeEntry,
+    FLEX_FORMAT, FlexDoc, FlexEntry, FlexSummary, PointEntry, WaitEntry, flex_document,
 };
 pub use schedule::{ActivityEntry, GeneratedEntry, ScheduleDoc, schedule_document};

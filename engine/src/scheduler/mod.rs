@@ -491,6 +491,24 @@ pub(super) fn try_duration(
     }
 }
 
+/// The starts at which activity `a` with duration `d` passes every phase-1
+/// category inside one of its windows, and the part of those that also passes
+/// phase 2, in `state` (the scheduler's own checks at any start, as the free
+/// slack of a flexible schedule needs them).
+pub(crate) fn accepted_starts(state: &State<'_>, a: usize, d: i64) -> (IntervalSet, IntervalSet) {
+    let problem = state.problem;
+    let tried = try_duration(
+        state,
+        a,
+        d,
+        &Scope::default(),
+        (problem.h0, problem.h1),
+        None,
+    );
+    let both = state.passing(a, d, &tried.union);
+    (tried.union, both)
+}
+
 /// The span the trace keeps category intervals in: from the earliest window start
 /// to the latest window end, which is what the inspector draws. Over a long horizon
 /// the full sets of every step would make the trace O(N^2) in memory and time; the

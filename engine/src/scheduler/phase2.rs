@@ -607,6 +607,25 @@ impl State<'_> {
         (chosen, tries)
     }
 
+    /// Every start in `cand` at which activity `a` with duration `d` passes
+    /// phase 2 (exact: each cell between critical points is decided as the search
+    /// decides it). The free slack of a flexible schedule.
+    pub fn passing(&self, a: usize, d: i64, cand: &IntervalSet) -> IntervalSet {
+        let (Some(lo), Some(hi)) = (cand.first(), cand.intervals().last().map(|i| i.hi)) else {
+            return IntervalSet::empty();
+        };
+        let mut out = Vec::new();
+        for (cell_lo, cell_hi) in cells(cand, self.critical_points(a, d, lo, hi)) {
+            out.extend(
+                self.cell_tries(a, d, cell_lo, cell_hi)
+                    .into_iter()
+                    .filter(|t| t.reason.is_none())
+                    .map(|t| t.starts),
+            );
+        }
+        IntervalSet::from_intervals(out)
+    }
+
     /// An upper bound below `min_soc` on the lowest state of charge for every start
     /// in `[cell_lo, cell_hi]` with duration `d`, from the activity's own energy alone (other
     /// generated pieces only drain more): the cell then fails on `min_soc`

@@ -1,0 +1,504 @@
+//! Flexible schedules: the Simple Temporal Network of a schedule, its bounds and
+//! minimum dispatchable network, start and skip conditions, dynamic
+//! controllability where durations are uncertain, and free slack (the scheduler's
+//! own checks with every other placement fixed). docs/semantics.md, "Flexible
+//! schedule", records each reading of the contract.
+
+mod controllable;
+mod dispatchable;
+mod network;
+mod paths;
+mod slack;
+mod text;
+
+pub use network::{Constraint, OrderKind, TimePoint};
+pub use text::{constraint_line, flex_text, time_point_name};
+
+use rayon::prelude::*;
+
+use crate::model::Plan;
+use crate::scheduler::Schedule;
+use crate::timeline::IntervalSet;
+use controllable::{Dc, Link};
+use dispatchable::{bounds, dispatchable};
+use paths::{Graph, bellman_ford};
+
+/// Earliest, scheduled and latest time of one event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EventBounds {
+    /// Earliest time consistent with the network.
+    pub lb: i64,
+    /// The scheduled time.
+    pub nom: i64,
+    /// Latest time consistent with the network.
+    pub ub: i64,
+}
+
+/// A bound an executed neighbour puts on an event: `t >= t(event) + offset`
+/// (in `after`) or `t <= t(event) + offset` (in `within`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub struct Bound {
+    /// The neighbour event.
+    pub event: TimePoint,
+    /// Seconds after it (negative: before it).
+    pub offset: i64,
+}
+
+/// When an activity starts under dispatch: at
+/// `max(lb, after..., min(nom, ub, within...))` once every `after` neighbour has
+/// happened, and it is skipped once `min(ub, within...)` has passed.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct StartCondition {
+    /// Lower bounds from neighbours of the minimum dispatchable network.
+    pub after: Vec<Bound>,
+    /// Upper bounds from neighbours.
+    pub within: Vec<Bound>,
+}
+
+/// A wait (dynamic controllability): `activity` does not start before
+/// `start(on) + offset` unless `on` has ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub struct Wait {
+    /// The waiting activity (its start).
+    pub activity: usize,
+    /// The activity of uncertain duration it waits for.
+    pub on: usize,
+    /// Seconds after `on` starts.
+    pub offset: i64,
+}
+
+/// Whether the executive can meet every constraint whatever the uncertain
+/// durations turn out to be, deciding only from what has happened.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Controllability {
+    /// No placed activity has a `duration_model`.
+    Certain,
+    /// Dynamically controllable: the bounds of the starts tightened for every
+    /// outcome (`(activity, lb, ub)`), and the waits.
+    Controllable {
+        /// Tightened start bounds, per placed activity in plan order.
+        tightened: Vec<(usize, i64, i64)>,
+        /// Waits, sorted.
+        waits: Vec<Wait>,
+    },
+    /// Not dynamically controllable.
+    NotControllable {
+        /// The activities on the negative cycle found.
+        activities: Vec<usize>,
+        /// The plan constraints met along it.
+        constraints: Vec<Constraint>,
+    },
+}
+
+/// One placed activity of a flexible schedule.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FlexActivity {
+    /// Activity index.
+    pub activity: usize,
+    /// Its start: `[lb, ub]` is the total slack.
+    pub start: EventBounds,
+    /// Its end.
+    pub end: EventBounds,
+    /// Its start condition (skip once `min(ub, within...)` passes).
+    pub condition: StartCondition,
+    /// Activities adjacent to it in the minimum dispatchable network, sorted.
+    pub neighbours: Vec<usize>,
+    /// Free slack: starts every check of the scheduler (both phases) accepts with
+    /// every other placement fixed, and dependents' dependencies kept. `None`
+    /// when not computed.
+    pub free_slack: Option<IntervalSet>,
+    /// The starts that pass phase 1 (and dependents) alone: a superset of
+    /// `free_slack` whose extra part breaks wake/sleep, heating, peak power or
+    /// energy.
+    pub free_slack_phase1: Option<IntervalSet>,
+}
+
+/// An edge of the minimum dispatchable network: `t(to) - t(from) <= max`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub struct DispatchEdge {
+    /// From.
+    pub from: TimePoint,
+    /// To.
+    pub to: TimePoint,
+    /// Upper bound on `t(to) - t(from)`.
+    pub max: i64,
+}
+
+/// The flexible (dispatchable) form of a schedule.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Flex {
+    /// Placed activities, in plan order.
+    pub activities: Vec<FlexActivity>,
+    /// Distance-graph edges of the network as built (parallel edges merged).
+    pub network_edges: usize,
+    /// The minimum dispatchable network, sorted.
+    pub dispatchable: Vec<DispatchEdge>,
+    /// Dynamic controllability.
+    pub controllability: Controllability,
+}
+
+impl Flex {
+    /// The entry of activity `a`, if placed.
+    pub fn activity(&self, a: usize) -> Option<&FlexActivity> {
+        self.activities
+            .binary_search_by_key(&a, |x| x.activity)
+            .ok()
+            .map(|i| &self.activities[i])
+    }
+}
+
+/// What [`flex_with`] computes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FlexOptions {
+    /// Compute the free slack (a replay of the schedule per activity).
+    pub free_slack: bool,
+}
+
+impl Default for FlexOptions {
+    fn default() -> Self {
+        Self { free_slack: true }
+    }
+}
+
+/// The flexible form of `sched`, a schedule of `plan`, with free slack.
+pub fn flex(plan: &Plan, sched: &Schedule) -> Flex {
+    flex_with(plan, sched, FlexOptions::default())
+}
+
+/// [`flex`] with options.
+pub fn flex_with(plan: &Plan, sched: &Schedule, opts: FlexOptions) -> Flex {
+    let net = network::build(plan, sched);
+    let n = net.len();
+    let h0 = net.h0;
+    let nominal: Vec<i64> = (0..n).map(|e| net.nominal_time(e)).collect();
+    let mut plain: Vec<(usize, usize, i64)> =
+        net.edges.iter().map(|e| (e.from, e.to, e.w)).collect();
+    plain.sort_unstable();
+    plain.dedup_by(|b, a| a.0 == b.0 && a.1 == b.1);
+    let network_edges = plain.len();
+    let fwd = Graph::new(n, &plain, false);
+    let rev = Graph::new(n, &plain, true);
+    let (lb, ub) = bounds(h0, &fwd, &rev, &nominal);
+    #[cfg(debug_assertions)]
+    for e in 0..n {
+        debug_assert!(
+            lb[e] <= nominal[e] && nominal[e] <= ub[e],
+            "nominal outside bounds"
+        );
+    }
+    // With uncertain durations, dispatch runs on the controllable network.
+    let (controllability, dispatch_edges, potential) = if net.contingent.is_empty() {
+        (Controllability::Certain, None, nominal.clone())
+    } else {
+        controllability(&net, &plain)
+    };
+    let (dlb, dub, graph) = match &dispatch_edges {
+        None => (lb.clone(), ub.clone(), Graph::new(n, &plain, false)),
+        Some(edges) => {
+            let g = Graph::new(n, edges, false);
+            let r = Graph::new(n, edges, true);
+            let (l, u) = bounds(h0, &g, &r, &potential);
+            (l, u, g)
+        }
+    };
+    let disp = dispatchable(h0, &graph, &potential, &dlb, &dub);
+    let controllability = match controllability {
+        Controllability::Controllable { waits, .. } => Controllability::Controllable {
+            tightened: (0..net.placed.len())
+                .map(|j| (net.placed[j], dlb[1 + 2 * j], dub[1 + 2 * j]))
+                .collect(),
+            waits,
+        },
+        other => other,
+    };
+    // Conditions and neighbours from the dispatchable edges.
+    let mut after: Vec<Vec<Bound>> = vec![Vec::new(); n];
+    let mut within: Vec<Vec<Bound>> = vec![Vec::new(); n];
+    let mut adjacent: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for &(u, v, w) in &disp.edges {
+        if u != 0 {
+            after[u].push(Bound {
+                event: net.event(v),
+                offset: -w,
+            });
+        }
+        if v != 0 {
+            within[v].push(Bound {
+                event: net.event(u),
+                offset: w,
+            });
+        }
+        adjacent[u].push(v);
+        adjacent[v].push(u);
+    }
+    let act_of = |e: usize| (e >= 1).then(|| net.placed[(e - 1) / 2]);
+    let slack: Vec<Option<(IntervalSet, IntervalSet)>> = if opts.free_slack {
+        (0..net.placed.len())
+            .into_par_iter()
+            .map(|j| Some(slack::free_slack(sched, net.placed[j], net.nominal[j])))
+            .collect()
+    } else {
+        vec![None; net.placed.len()]
+    };
+    let activities = (0..net.placed.len())
+        .map(|j| {
+            let (s, e) = (1 + 2 * j, 2 + 2 * j);
+            let a = net.placed[j];
+            let mut condition = StartCondition::default();
+            let (lead, off) = disp.leader[s];
+            // The origin's bounds are `lb`/`ub`; the activity's own end follows its
+            // start.
+            let keep = |b: &Bound| b.event != TimePoint::Origin && !is_own(b.event, a);
+            if lead != s && lead != 0 {
+                // Rigid with its leader: it happens exactly `off` after it.
+                let b = Bound {
+                    event: net.event(lead),
+                    offset: off,
+                };
+                condition.after.push(b);
+                condition.within.push(b);
+            } else if lead == s {
+                // A lower bound before an event that itself always comes at or
+                // after this start never binds: it is that event's upper bound.
+                let later = |b: &Bound| {
+                    b.offset < 0
+                        && index_of(&net, b.event).is_some_and(|x| {
+                            after[x]
+                                .iter()
+                                .any(|c| c.event == TimePoint::Start(a) && c.offset >= 0)
+                        })
+                };
+                condition.after = after[s]
+                    .iter()
+                    .copied()
+                    .filter(|b| keep(b) && !later(b))
+                    .collect();
+                // An upper bound with a negative offset comes from an event that
+                // always happens later: it bounds that event, not this start.
+                condition.within = within[s]
+                    .iter()
+                    .copied()
+                    .filter(|b| keep(b) && b.offset >= 0)
+                    .collect();
+            }
+            condition.after.sort_unstable();
+            condition.within.sort_unstable();
+            let mut neighbours: Vec<usize> = [s, e]
+                .iter()
+                .flat_map(|&x| {
+                    let l = disp.leader[x].0;
+                    adjacent[l]
+                        .iter()
+                        .copied()
+                        .chain(adjacent[x].iter().copied())
+                        .chain([l])
+                })
+                .filter_map(act_of)
+                .filter(|&b| b != a)
+                .collect();
+            neighbours.sort_unstable();
+            neighbours.dedup();
+            let (free_slack_phase1, free_slack) = match &slack[j] {
+                Some((p1, both)) => (Some(p1.clone()), Some(both.clone())),
+                None => (None, None),
+            };
+            FlexActivity {
+                activity: a,
+                start: EventBounds {
+                    lb: lb[s],
+                    nom: nominal[s],
+                    ub: ub[s],
+                },
+                end: EventBounds {
+                    lb: lb[e],
+                    nom: nominal[e],
+                    ub: ub[e],
+                },
+                condition,
+                neighbours,
+                free_slack,
+                free_slack_phase1,
+            }
+        })
+        .collect();
+    let dispatchable = disp
+        .edges
+        .iter()
+        .map(|&(u, v, w)| DispatchEdge {
+            from: net.event(u),
+            to: net.event(v),
+            max: w,
+        })
+        .collect();
+    Flex {
+        activities,
+        network_edges,
+        dispatchable,
+        controllability,
+    }
+}
+
+/// The index of event `e` in the network.
+fn index_of(net: &network::Network, e: TimePoint) -> Option<usize> {
+    let slot = |a: usize| net.placed.binary_search(&a).ok();
+    match e {
+        TimePoint::Origin => Some(0),
+        TimePoint::Start(a) => slot(a).map(|j| 1 + 2 * j),
+        TimePoint::End(a) => slot(a).map(|j| 2 + 2 * j),
+    }
+}
+
+/// Whether `e` is one of activity `a`'s own events.
+fn is_own(e: TimePoint, a: usize) -> bool {
+    matches!(e, TimePoint::Start(x) | TimePoint::End(x) if x == a)
+}
+
+/// Distance-graph edges `(from, to, w)`.
+type Edges = Vec<(usize, usize, i64)>;
+
+/// The dynamic controllability of the network, and when controllable the edges
+/// to dispatch on (the ordinary edges, the uncertain durations as their ranges,
+/// and the derived edges) with a feasible potential for them.
+fn controllability(
+    net: &network::Network,
+    plain: &[(usize, usize, i64)],
+) -> (Controllability, Option<Edges>, Vec<i64>) {
+    let n = net.len();
+    let nominal: Vec<i64> = (0..n).map(|e| net.nominal_time(e)).collect();
+    let links: Vec<Link> = net
+        .contingent
+        .iter()
+        .map(|&(j, min, max)| Link {
+            start: 1 + 2 * j,
+            end: 2 + 2 * j,
+            min,
+            max,
+        })
+        .collect();
+    let uncertain = |u: usize, v: usize| {
+        links
+            .iter()
+            .any(|l| (u, v) == (l.start, l.end) || (u, v) == (l.end, l.start))
+    };
+    let ordinary: Vec<(usize, usize, i64)> = plain
+        .iter()
+        .copied()
+        .filter(|&(u, v, _)| !uncertain(u, v))
+        .collect();
+    // Propagation recurses along chains of events: give it room.
+    let dc = std::thread::scope(|scope| {
+        std::thread::Builder::new()
+            .stack_size(1 << 30)
+            .spawn_scoped(scope, || controllable::check(n, &ordinary, &links))
+            .map(|h| h.join())
+    });
+    let dc = match dc {
+        Ok(Ok(dc)) => dc,
+        // A thread that cannot start (or panicked) is reported, not hidden.
+        _ => Dc::Not {
+            events: Vec::new(),
+            edges: Vec::new(),
+            links: Vec::new(),
+        },
+    };
+    match dc {
+        Dc::Not {
+            events,
+            edges,
+            links: used,
+        } => {
+            let mut activities: Vec<usize> = events
+                .iter()
+                .filter(|&&e| e >= 1)
+                .map(|&e| net.placed[(e - 1) / 2])
+                .collect();
+            let mut constraints: Vec<Constraint> = Vec::new();
+            for &i in &edges {
+                let (u, v, w) = ordinary[i];
+                if let Some(edge) = net.edges.iter().find(|x| (x.from, x.to, x.w) == (u, v, w)) {
+                    constraints.push(edge.why.clone());
+                }
+            }
+            for k in used {
+                constraints.push(Constraint::Duration {
+                    act: net.placed[net.contingent[k].0],
+                });
+            }
+            activities.extend(constraints.iter().flat_map(Constraint::activities));
+            activities.sort_unstable();
+            activities.dedup();
+            constraints.sort();
+            constraints.dedup();
+            (
+                Controllability::NotControllable {
+                    activities,
+                    constraints,
+                },
+                None,
+                nominal,
+            )
+        }
+        Dc::Controllable { derived, waits } => {
+            let mut edges = ordinary.clone();
+            for l in &links {
+                edges.push((l.start, l.end, l.max));
+                edges.push((l.end, l.start, -l.min));
+            }
+            edges.extend(derived);
+            edges.sort_unstable();
+            edges.dedup_by(|b, a| a.0 == b.0 && a.1 == b.1);
+            let g = Graph::new(n, &edges, false);
+            match bellman_ford(&g, 0) {
+                Ok(dist) => {
+                    let waits = waits
+                        .into_iter()
+                        .filter(|&(x, _, _)| x >= 1 && x % 2 == 1)
+                        .map(|(x, k, offset)| Wait {
+                            activity: net.placed[(x - 1) / 2],
+                            on: net.placed[net.contingent[k].0],
+                            offset,
+                        })
+                        .collect();
+                    // The latest consistent times: a feasible potential.
+                    let pot: Vec<i64> = dist.iter().map(|&d| net.h0.saturating_add(d)).collect();
+                    (
+                        Controllability::Controllable {
+                            tightened: Vec::new(),
+                            waits,
+                        },
+                        Some(edges),
+                        pot,
+                    )
+                }
+                Err(cycle) => {
+                    let mut constraints: Vec<Constraint> = cycle
+                        .iter()
+                        .filter_map(|&i| {
+                            let (u, v, w) = edges[i];
+                            net.edges
+                                .iter()
+                                .find(|x| (x.from, x.to, x.w) == (u, v, w))
+                                .map(|x| x.why.clone())
+                        })
+                        .collect();
+                    constraints.sort();
+                    constraints.dedup();
+                    let mut activities: Vec<usize> = constraints
+                        .iter()
+                        .flat_map(Constraint::activities)
+                        .collect();
+                    activities.sort_unstable();
+                    activities.dedup();
+                    (
+                        Controllability::NotControllable {
+                            activities,
+                            constraints,
+                        },
+                        None,
+                        nominal,
+                    )
+                }
+            }
+        }
+    }
+}
