@@ -342,3 +342,94 @@ impl Checker {
         true
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // Events: 0 origin, 1 start of A, 2 end of A, 3 start of B. A lasts 1 to 2
+    // hours (uncertain); both start within a day.
+    const HOUR: i64 = 3600;
+
+    fn base() -> (Vec<(usize, usize, i64)>, Vec<Link>) {
+        let day = 24 * HOUR;
+        let edges = vec![
+            (0, 1, day),
+            (1, 0, 0),
+            (0, 3, day),
+            (3, 0, 0),
+            (0, 2, day + 2 * HOUR),
+            (2, 0, 0),
+        ];
+        let links = vec![Link {
+            start: 1,
+            end: 2,
+            min: HOUR,
+            max: 2 * HOUR,
+        }];
+        (edges, links)
+    }
+
+    /// The tightest derived bound `t(v) - t(u) <= w`.
+    fn derived_bound(dc: &Dc, u: usize, v: usize) -> Option<i64> {
+        let Dc::Controllable { derived, .. } = dc else {
+            return None;
+        };
+        derived
+            .iter()
+            .filter(|e| (e.0, e.1) == (u, v))
+            .map(|e| e.2)
+            .min()
+    }
+
+    #[test]
+    fn b_at_least_an_hour_before_a_ends_must_start_by_a_start() {
+        // t(B) <= t(end A) - 1 h: A may end after only 1 h, so B must start no
+        // later than A starts: the derived edge start A -> start B of length 0.
+        let (mut edges, links) = base();
+        edges.push((2, 3, -HOUR));
+        let dc = check(4, &edges, &links);
+        assert_eq!(derived_bound(&dc, 1, 3), Some(0), "{dc:?}");
+        // And if B must also start 10 min after A starts, no strategy works.
+        edges.push((3, 1, -600));
+        match check(4, &edges, &links) {
+            Dc::Not {
+                events,
+                links: used,
+                ..
+            } => {
+                assert!(events.contains(&3) || events.contains(&1), "{events:?}");
+                assert_eq!(used, vec![0]);
+            }
+            other => panic!("expected not controllable, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn b_at_most_an_hour_before_a_ends_waits_an_hour_after_a_starts() {
+        // t(B) >= t(end A) - 1 h: A may last 2 h, so B starts no earlier than 1 h
+        // after A starts (the wait for A's end reduces to that plain bound, since
+        // A lasts at least 1 h).
+        let (mut edges, links) = base();
+        edges.push((3, 2, HOUR));
+        let dc = check(4, &edges, &links);
+        assert_eq!(derived_bound(&dc, 3, 1), Some(-HOUR), "{dc:?}");
+        // A bound of 30 min instead: B waits for A's end or 90 min after its start.
+        let (mut edges, links) = base();
+        edges.push((3, 2, HOUR / 2));
+        let dc = check(4, &edges, &links);
+        let Dc::Controllable { waits, .. } = &dc else {
+            panic!("{dc:?}")
+        };
+        assert_eq!(waits, &vec![(3, 0, 3 * HOUR / 2)]);
+    }
+
+    #[test]
+    fn certain_network_is_controllable_without_waits() {
+        let (edges, _) = base();
+        match check(4, &edges, &[]) {
+            Dc::Controllable { waits, .. } => assert!(waits.is_empty()),
+            other => panic!("{other:?}"),
+        }
+    }
+}

@@ -6,7 +6,8 @@
 //!
 //! Rigid components (events whose distance is fixed: zero-length cycles, whose
 //! edges all have reduced length 0) collapse onto a leader, the earliest member;
-//! members are chained to it. On the collapsed graph, an edge `A -> C` of the
+//! members are linked to it and happen at its time plus their offset. On the
+//! collapsed graph, an edge `A -> C` of the
 //! all-pairs graph is dominated when some `B` on a shortest path from `A` to `C`
 //! has `D(B, C) >= 0` (for `D(A, C) >= 0`: upper dominance) or `D(A, B) < 0` (for
 //! `D(A, C) < 0`: lower dominance); the undominated edges are the minimum
@@ -176,17 +177,12 @@ pub(crate) fn dispatchable(
             }
         }
     }
-    // Rigid components: each member linked both ways to the next, in time order.
-    let mut members: Vec<Vec<usize>> = vec![Vec::new(); ncomp];
-    for e in 0..n {
-        members[comp[e]].push(e);
-    }
-    for ms in &mut members {
-        ms.sort_by_key(|&e| (nominal[e], e));
-        for p in ms.windows(2) {
-            let gap = nominal[p[1]] - nominal[p[0]];
-            out.push((p[0], p[1], gap));
-            out.push((p[1], p[0], -gap));
+    // Rigid components: each member linked both ways to its leader; a member is
+    // executed with its leader, at the leader's time plus its offset.
+    for (e, &(l, off)) in leader.iter().enumerate() {
+        if l != e {
+            out.push((l, e, off));
+            out.push((e, l, -off));
         }
     }
     out.sort_unstable();

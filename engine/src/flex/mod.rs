@@ -124,6 +124,20 @@ pub struct DispatchEdge {
     pub max: i64,
 }
 
+/// An edge of the temporal network as built: `t(to) - t(from) <= max`, with the
+/// plan rule behind it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct NetworkEdge {
+    /// From.
+    pub from: TimePoint,
+    /// To.
+    pub to: TimePoint,
+    /// Upper bound on `t(to) - t(from)`.
+    pub max: i64,
+    /// The rule.
+    pub why: Constraint,
+}
+
 /// The flexible (dispatchable) form of a schedule.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Flex {
@@ -131,8 +145,15 @@ pub struct Flex {
     pub activities: Vec<FlexActivity>,
     /// Distance-graph edges of the network as built (parallel edges merged).
     pub network_edges: usize,
+    /// The network as built (parallel edges kept), the uncertain durations as
+    /// their ranges widened to the scheduled duration.
+    pub network: Vec<NetworkEdge>,
     /// The minimum dispatchable network, sorted.
     pub dispatchable: Vec<DispatchEdge>,
+    /// Events rigidly tied to an earlier one (a fixed duration, `meets`, a
+    /// pinned window): `(member, leader, offset)`. A member happens exactly at its
+    /// leader's time plus the offset, so it is executed with its leader.
+    pub rigid: Vec<(TimePoint, TimePoint, i64)>,
     /// Dynamic controllability.
     pub controllability: Controllability,
 }
@@ -330,9 +351,25 @@ pub fn flex_with(plan: &Plan, sched: &Schedule, opts: FlexOptions) -> Flex {
             max: w,
         })
         .collect();
+    let network = net
+        .edges
+        .iter()
+        .map(|e| NetworkEdge {
+            from: net.event(e.from),
+            to: net.event(e.to),
+            max: e.w,
+            why: e.why.clone(),
+        })
+        .collect();
+    let rigid = (0..n)
+        .filter(|&e| disp.leader[e].0 != e)
+        .map(|e| (net.event(e), net.event(disp.leader[e].0), disp.leader[e].1))
+        .collect();
     Flex {
         activities,
         network_edges,
+        network,
+        rigid,
         dispatchable,
         controllability,
     }

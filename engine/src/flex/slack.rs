@@ -2,13 +2,18 @@
 //! with every other placement fixed.
 //!
 //! The state is the schedule's without the activity: the steps before its step as
-//! recorded, the steps after it replayed (each re-deriving its wake/sleep and
-//! heating without the activity). In that state the activity is checked at every
-//! start as its step checks it (every window, phase 1, then phase 2 with the
-//! wake/sleep and heating the move needs), and the dependencies of the placed
-//! activities that depend on it bound its end.
+//! recorded, the steps after it checked again at their placements and applied
+//! (each re-deriving its wake/sleep and heating without the activity; when one no
+//! longer passes, only the scheduled start is free). In that state the activity is checked at every
+//! start as a step placed after all of them (every window, phase 1, then phase 2
+//! with the wake/sleep and heating the move needs; its effects win same-time
+//! ties; handover limits, which the format applies only when an optional activity
+//! is placed, waived) and as its own step checked it against the steps before it, every placed requirement must still see its value (its effects may be
+//! what one relied on), and the dependencies of the placed activities that depend
+//! on it bound its end.
 
-use crate::scheduler::{Outcome, Schedule, accepted_starts};
+use crate::model::EffectAt;
+use crate::scheduler::{Schedule, Scope, accepted_starts};
 use crate::timeline::IntervalSet;
 
 /// The free slack of activity `a` (placed at `(s, e)`): the starts passing phase 1
@@ -18,21 +23,74 @@ pub(crate) fn free_slack(
     a: usize,
     (s, e): (i64, i64),
 ) -> (IntervalSet, IntervalSet) {
-    let problem = &sched.problem;
     let d = e - s;
-    let k = problem.step_of[a];
-    let mut state = sched.state_after(k - 1);
+    let k = sched.problem.step_of[a];
+    // Its own step's check, against the steps before it: what the scheduler
+    // accepted when it placed it (handover limits of an optional activity apply
+    // only then).
+    let own = sched.state_after(k - 1);
+    let (own_p1, own_both) = accepted_starts(&own, a, d);
+    // Against every other placement, handover limits waived (as for a mandatory
+    // activity): they applied at its step.
+    let mut waived = sched.problem.clone();
+    waived.acts[a].mandatory = true;
+    let problem = &waived;
+    let mut state = crate::scheduler::State::replayed(problem, &sched.steps[..k - 1]);
     for step in &sched.steps[k..] {
-        let placed = matches!(step.outcome, Outcome::Scheduled { .. });
-        if state.replay(step).is_none() && placed {
-            // A later placement cannot be re-derived without this activity (its
-            // generated pieces relied on it): only the scheduled start is known
-            // to keep every constraint.
-            let only = IntervalSet::single(s, s);
-            return (only.clone(), only);
+        let b = step.activity;
+        let Some((sb, eb)) = step.outcome.placement() else {
+            continue;
+        };
+        // Each later placement must still pass every check without this activity
+        // (its dependencies on it are checked once it is placed again).
+        let scope = Scope {
+            skip_deps: (0..problem.acts[b].after.len())
+                .filter(|&i| problem.acts[b].after[i].target == a)
+                .collect(),
+            skip_reqs: Vec::new(),
+        };
+        let fits = if problem.acts[b].held {
+            state.replay(step)
+        } else {
+            state.fitting(b, sb, eb - sb, &scope)
+        };
+        match fits {
+            Some(ev) => {
+                if !problem.acts[b].held {
+                    state.apply(step.step, &ev.placement);
+                }
+            }
+            None => {
+                // A later placement does not hold without this activity (its
+                // generated pieces relied on it): only the scheduled start is
+                // known to keep every constraint.
+                let only = IntervalSet::single(s, s);
+                return (only.clone(), only);
+            }
         }
     }
-    let (mut temporal, mut both) = accepted_starts(&state, a, d);
+    let (all_p1, all_both) = accepted_starts(&state, a, d);
+    let mut temporal = all_p1.intersect(&own_p1);
+    let mut both = all_both.intersect(&own_both);
+    // Its effects may be what a placed requirement relied on: with it moved, every
+    // requirement must still see its value.
+    if let (Some(lo), Some(hi)) = (temporal.first(), temporal.intervals().last().map(|i| i.hi)) {
+        let act = &problem.acts[a];
+        let mut states: Vec<usize> = act.effects.iter().map(|e| e.state).collect();
+        states.sort_unstable();
+        states.dedup();
+        for st in states {
+            let own: Vec<(i64, usize)> = act
+                .effects
+                .iter()
+                .filter(|e| e.state == st)
+                .map(|e| (if e.at == EffectAt::Start { 0 } else { d }, e.value))
+                .collect();
+            let ok = state.states[st].requirements_hold_with(&own, usize::MAX, a, lo, hi);
+            temporal = temporal.intersect(&ok);
+            both = both.intersect(&ok);
+        }
+    }
     // Placed dependents keep their dependency on this activity's end.
     for (b, act) in problem.acts.iter().enumerate() {
         let Some((sb, _)) = sched.placement(b) else {

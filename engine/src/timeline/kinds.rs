@@ -163,6 +163,79 @@ impl StateTimeline {
         out
     }
 
+    /// Starts in `[lo, hi]` at which every placed requirement holds once the
+    /// effects `own` (`(offset, value)`) of activity `owner`, placed at `step`,
+    /// are added at `s + offset`: the check that removing an activity and placing
+    /// it elsewhere leaves no requirement without the value it set (free slack).
+    /// A requirement sees the state without its own activity's effects.
+    pub fn requirements_hold_with(
+        &self,
+        own: &[(i64, usize)],
+        step: usize,
+        owner: usize,
+        lo: i64,
+        hi: i64,
+    ) -> IntervalSet {
+        if own.is_empty() || lo > hi {
+            return IntervalSet::single(lo, hi);
+        }
+        // Whether each requirement holds is constant between these points.
+        let mut times: Vec<i64> = self.effects.iter().map(|e| e.time).collect();
+        for &(rs, re, _, _) in &self.requirements {
+            times.push(rs);
+            times.push(re);
+        }
+        let mut points = vec![lo, hi.saturating_add(1)];
+        for &(o, _) in own {
+            for &t in &times {
+                for p in [t.saturating_sub(o), t.saturating_sub(o).saturating_add(1)] {
+                    if lo < p && p <= hi {
+                        points.push(p);
+                    }
+                }
+            }
+        }
+        points.sort_unstable();
+        points.dedup();
+        let holds = |s: i64| {
+            let mut all = self.effects.clone();
+            for &(o, value) in own {
+                all.push(StateChange {
+                    time: s.saturating_add(o),
+                    step,
+                    value,
+                    owner,
+                });
+            }
+            all.sort_by_key(|e| (e.time, e.step));
+            self.requirements.iter().all(|&(rs, re, value, req_owner)| {
+                // The value each time it changes (the later step wins a tie).
+                let mut effective: Vec<(i64, usize)> = Vec::new();
+                for e in all.iter().filter(|e| e.owner != req_owner) {
+                    match effective.last_mut() {
+                        Some(last) if last.0 == e.time => last.1 = e.value,
+                        _ => effective.push((e.time, e.value)),
+                    }
+                }
+                let at_start = effective
+                    .iter()
+                    .take_while(|e| e.0 <= rs)
+                    .last()
+                    .map_or(self.initial, |e| e.1);
+                at_start == value
+                    && effective
+                        .iter()
+                        .filter(|e| rs < e.0 && e.0 < re)
+                        .all(|e| e.1 == value)
+            })
+        };
+        points
+            .windows(2)
+            .filter(|w| holds(w[0]))
+            .map(|w| Interval::new(w[0], w[1] - 1))
+            .collect()
+    }
+
     /// Starts in `[lo, hi]` where the state holds `value` over `[s, s + d)`.
     pub fn requirement_valid(&self, value: usize, d: i64, lo: i64, hi: i64) -> IntervalSet {
         self.segments()

@@ -743,3 +743,83 @@ pub fn outcome_summary(plan: &Plan) -> Result<Vec<StepSummary>, String> {
     }
     Ok(out)
 }
+
+/// Free slack, checked independently: `id` checked at `[s, e)` at its own step
+/// against the steps before it; then, with `id` removed, every other scheduled
+/// step replayed in order (each fully checked), `id` checked at `[s, e)` as a
+/// step after all of them (as a mandatory activity: the handover limits applied
+/// at its own step), and every placed requirement and every dependency on `id`
+/// re-checked second by second. `Ok(None)`: the others do not
+/// replay without it (nothing to decide); `Ok(Some(()))`: accepted.
+pub fn check_moved_last(
+    plan: &Plan,
+    doc: &Value,
+    id: &str,
+    s: i64,
+    e: i64,
+) -> Result<Option<()>, String> {
+    let p = Prob::compile(plan)?;
+    let entries = parse_entries(&p, doc)?;
+    let target = p
+        .acts
+        .iter()
+        .position(|a| a.id == id)
+        .ok_or(format!("no activity {id}"))?;
+    {
+        let mut w = World::new(&p);
+        for (k, &ai) in p.order.iter().enumerate() {
+            let got = &entries[k];
+            if ai == target {
+                let ctx = w.step_ctx(ai);
+                check_placement(&w, &ctx, ai, s, e).map_err(|m| format!("at its own step: {m}"))?;
+                break;
+            }
+            let (Some(gs), Some(ge)) = (got.start, got.end) else {
+                continue;
+            };
+            let ctx = w.step_ctx(ai);
+            let change = check_placement(&w, &ctx, ai, gs, ge)?;
+            w.apply(ai, k + 1, gs, ge - gs, &change);
+        }
+    }
+    let mut p = p;
+    p.acts[target].mandatory = true;
+    let p = p;
+    let mut w = World::new(&p);
+    w.absent = Some(target);
+    for (k, &ai) in p.order.iter().enumerate() {
+        let got = &entries[k];
+        if ai == target || got.status != "scheduled" {
+            continue;
+        }
+        let (Some(gs), Some(ge)) = (got.start, got.end) else {
+            continue;
+        };
+        let ctx = w.step_ctx(ai);
+        match check_placement(&w, &ctx, ai, gs, ge) {
+            Ok(change) => w.apply(ai, k + 1, gs, ge - gs, &change),
+            Err(_) => return Ok(None),
+        }
+    }
+    let ctx = w.step_ctx(target);
+    let change = check_placement(&w, &ctx, target, s, e)?;
+    w.apply(target, p.order.len() + 1, s, e - s, &change);
+    for (b, act) in p.acts.iter().enumerate() {
+        let Some((sb, eb)) = w.sched[b] else { continue };
+        for (st, v) in &act.requires {
+            for t in sb..eb {
+                if w.state_value(*st, t, Some(b), &[]) != v.as_str() {
+                    return Err(format!("{} loses {} at {t}", act.id, p.states[*st].0));
+                }
+            }
+        }
+        for dep in act.after.iter().filter(|d| d.target == target) {
+            let gap = sb - e;
+            let max = if dep.meets { Some(0) } else { dep.max_delay };
+            if gap < dep.min_delay || max.is_some_and(|m| gap > m) {
+                return Err(format!("{} breaks its dependency on {id}", act.id));
+            }
+        }
+    }
+    Ok(Some(()))
+}

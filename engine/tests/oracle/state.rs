@@ -332,6 +332,9 @@ pub struct StepCtx {
 #[derive(Clone, Debug)]
 pub struct World<'p> {
     pub p: &'p Prob,
+    /// An activity taken out to be placed again (free slack): dependencies on it
+    /// are not checked.
+    pub absent: Option<usize>,
     pub placed: Vec<Placed>,
     /// per activity: its placement, if scheduled
     pub sched: Vec<Option<(i64, i64)>>,
@@ -356,6 +359,7 @@ impl<'p> World<'p> {
         let sim = Sim::build(p, &[], &[], &[]);
         let fast = Fast::build(p, &sim);
         World {
+            absent: None,
             p,
             placed: Vec::new(),
             sched: vec![None; p.acts.len()],
@@ -469,6 +473,9 @@ impl<'p> World<'p> {
         }
         // dependency
         for dep in &a.after {
+            if Some(dep.target) == self.absent {
+                continue;
+            }
             let Some((_, oe)) = self.sched[dep.target] else {
                 return Err(Reason::Dependency);
             };
