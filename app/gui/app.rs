@@ -8,11 +8,13 @@ use eframe::egui;
 use solscope_engine::{Plan, Suggestion};
 
 use super::commands::{Command, UiCommand};
-use super::derived::{CampaignCache, DerivedCache, ExecKey, ExecutionCache, step_view};
-use super::document::{Analysis, Document, OutcomeDiff};
+use super::derived::{
+    CampaignCache, DerivedCache, ExecKey, ExecutionCache, FlexCache, FlexResult, step_view,
+};
+use super::document::{Analysis, Document, OutcomeDiff, pin_window};
 use super::execution::{ActualsSource, CycleRun, ExecutionRun};
 use super::montecarlo::{CampaignResult, MAX_RUNS, Progress, Stopped};
-use super::state::{LAST_STEP, Mode, Navigation, Pending, Persisted, StepView, UiState};
+use super::state::{LAST_STEP, Mode, Navigation, Pending, Persisted, PinOffer, StepView, UiState};
 use super::theme::Theme;
 use super::time_axis::TimeAxis;
 use super::views::{self, CampaignModel, ExecModel, Model, ViewCache, Widgets};
@@ -65,6 +67,8 @@ pub struct SolscopeApp {
     execution: ExecutionCache,
     /// The Monte Carlo campaign (execution mode).
     campaign: CampaignCache,
+    /// The flexible form of the schedule (schedule mode).
+    flex: FlexCache,
     /// What the views keep between frames (built rows, the plots' x range).
     pub(crate) view_cache: ViewCache,
     /// Time of the last automatic step.
@@ -107,6 +111,7 @@ impl SolscopeApp {
             derived: DerivedCache::default(),
             execution: ExecutionCache::default(),
             campaign: CampaignCache::default(),
+            flex: FlexCache::default(),
             view_cache: ViewCache::default(),
             last_tick: 0.0,
             dialog: None,
@@ -160,10 +165,22 @@ impl SolscopeApp {
         if let Err(e) = self.campaign.reap(self.revision) {
             self.ui.messages.error = Some(e);
         }
+        if let Err(e) = self.flex.reap(self.revision) {
+            self.ui.messages.error = Some(e);
+        }
         if self.ui.nav.mode == Mode::Execution {
             // The execution and the looked-at cycle's run, derived before
             // drawing (on a worker in the desktop app).
             self.derive_execution();
+        } else {
+            // The flexible schedule: the Gantt's layer and the inspector's
+            // Flexibility section (on a worker in the desktop app).
+            self.flex.request(
+                &self.doc.plan,
+                &self.analysis,
+                self.revision,
+                self.background,
+            );
         }
         if self.ui.nav.playing {
             let now = ui.input(|i| i.time);
@@ -188,7 +205,7 @@ impl SolscopeApp {
             self.derived.valid_for(&self.analysis, self.revision, a);
         }
         self.reap_worker();
-        if self.verifying().is_some() || self.execution.busy() {
+        if self.verifying().is_some() || self.execution.busy() || self.flex.busy() {
             // Poll the worker until its result is in.
             ui.ctx()
                 .request_repaint_after(std::time::Duration::from_millis(50));
@@ -199,6 +216,11 @@ impl SolscopeApp {
         }
         let (m, mut w) = self.model_and_widgets();
         views::layout_ui(ui, &m, &mut w, &mut cmds);
+        if !cmds.is_empty() {
+            // What the commands change is drawn next frame, even when no input
+            // comes (a drop that offers a popup).
+            ui.ctx().request_repaint();
+        }
         for cmd in cmds {
             self.apply(cmd);
         }
@@ -221,6 +243,7 @@ impl SolscopeApp {
             explanation: selected.and_then(|a| derived.explanation(a, revision)),
             explanation_error: selected.and_then(|a| derived.explanation_error(a, revision)),
             valid: selected.and_then(|a| derived.valid(a, revision)),
+            flex: self.flex.get(revision),
             nav: &self.ui.nav,
             messages: &self.ui.messages,
             exec: ExecModel {
@@ -255,6 +278,21 @@ impl SolscopeApp {
         self.campaign
             .result(self.revision)
             .and_then(|r| r.as_ref().ok())
+    }
+
+    /// The flexible schedule of the plan as it is, once derived (and when it
+    /// could be).
+    pub fn flex(&self) -> Option<&solscope_engine::Flex> {
+        self.flex
+            .get(self.revision)
+            .and_then(|r: &FlexResult| r.as_ref().ok())
+            .map(AsRef::as_ref)
+    }
+
+    /// Where activity `a`'s bar was drawn on the Gantt in the last frame (its
+    /// placement's bar, in schedule mode), if it was.
+    pub fn gantt_bar(&self, a: usize) -> Option<egui::Rect> {
+        self.view_cache.gantt_bar(a)
     }
 
     /// The Monte Carlo campaign running, if any.
@@ -431,6 +469,11 @@ impl SolscopeApp {
             Command::GroupByResource(on) => self.persisted.by_resource = on,
             Command::SetFilter(f) => self.ui.nav.filter = f,
             Command::ShowError(e) => self.ui.messages.error = Some(e),
+            Command::OfferPin { activity, start } => {
+                self.ui.messages.pin = Some(PinOffer { activity, start });
+            }
+            Command::DismissPin => self.ui.messages.pin = None,
+            Command::Pin { activity, start } => self.pin(activity, start),
             Command::DismissBanner => self.ui.messages.banner = None,
             Command::DismissError => self.ui.messages.error = None,
             Command::ConfirmDiscard(yes) => {
@@ -493,6 +536,7 @@ impl SolscopeApp {
             UiCommand::ShowExecution => self.ui.nav.mode = Mode::Execution,
             UiCommand::OpenActuals => self.dialog = Some(Dialog::OpenActuals),
             UiCommand::CancelCampaign => self.campaign.cancel(),
+            UiCommand::ToggleFlex => self.persisted.hide_flex = !self.persisted.hide_flex,
             UiCommand::NominalActuals => self.use_actuals(ActualsSource::Nominal, "Nominal"),
             UiCommand::PreviousCycle | UiCommand::NextCycle => {
                 let shown = self.ui.nav.mode == Mode::Execution;
@@ -570,6 +614,40 @@ impl SolscopeApp {
         self.derived.suggestions(a, self.revision)
     }
 
+    /// Pins activity `a` at `start` (one window `[start, start]`) through the
+    /// edit path, so the plan is validated, rescheduled and undoable.
+    fn pin(&mut self, a: usize, start: i64) {
+        self.ui.messages.pin = None;
+        let Some(act) = self.doc.plan.activities.get(a) else {
+            return;
+        };
+        let placed = self.analysis.placement(a).map(|p| p.0);
+        let (window, dropped) = pin_window(act, placed, start);
+        let mut description = format!(
+            "Pin {} at {}",
+            act.id,
+            solscope_engine::format_plan_time(&self.doc.plan.local_time, start)
+        );
+        if let Some(c) = dropped {
+            description.push_str(&format!(" (dropping its cutoff {c})"));
+        }
+        let windows = match serde_json::to_value([window]) {
+            Ok(v) => v,
+            Err(e) => {
+                self.ui.messages.error = Some(format!("{description}: not applied: {e}"));
+                return;
+            }
+        };
+        let mut set = serde_json::Map::new();
+        set.insert("windows".into(), windows);
+        let target = format!("activity:{}", act.id);
+        self.apply(Command::Edit {
+            target,
+            set,
+            description,
+        });
+    }
+
     fn set_step(&mut self, k: usize) {
         self.ui.nav.step = k.min(self.analysis.steps());
         self.step_view = step_view(&self.analysis, self.ui.nav.step);
@@ -592,6 +670,8 @@ impl SolscopeApp {
                     (&self.doc.plan, &self.analysis),
                 ));
                 self.ui.messages.error = None;
+                // An offer to pin was for the plan as it was.
+                self.ui.messages.pin = None;
                 self.revision += 1;
                 let mut k = self.ui.nav.step.min(self.analysis.steps());
                 if k == old.steps() {

@@ -56,6 +56,9 @@ pub enum UiCommand {
     NextCycle,
     /// Stop the Monte Carlo campaign running (its summary is not made).
     CancelCampaign,
+    /// Show or hide the Gantt's flexibility layer (slack whiskers, free slack,
+    /// dispatchable neighbours).
+    ToggleFlex,
 }
 
 impl UiCommand {
@@ -71,13 +74,14 @@ impl UiCommand {
     ];
 
     /// Commands on plain keys (stepping), taken only when no text field has focus.
-    pub const PLAIN_KEYS: [Self; 6] = [
+    pub const PLAIN_KEYS: [Self; 7] = [
         Self::PreviousStep,
         Self::NextStep,
         Self::FirstStep,
         Self::LastStep,
         Self::PreviousCycle,
         Self::NextCycle,
+        Self::ToggleFlex,
     ];
 
     /// The text of its button or menu item (also its accessibility label).
@@ -102,6 +106,7 @@ impl UiCommand {
             Self::PreviousCycle => "< Cycle",
             Self::NextCycle => "Cycle >",
             Self::CancelCampaign => "Cancel",
+            Self::ToggleFlex => "Flexibility layer",
         }
     }
 
@@ -128,6 +133,7 @@ impl UiCommand {
             Self::ShowExecution => cmd(Key::Num2),
             Self::PreviousCycle => plain(Key::PageUp),
             Self::NextCycle => plain(Key::PageDown),
+            Self::ToggleFlex => plain(Key::F),
             Self::SaveAs
             | Self::ExportSchedule
             | Self::ExportPng
@@ -206,6 +212,25 @@ pub enum Command {
         /// The campaign seed.
         seed: u64,
     },
+    /// Offer to pin `activity` at `start` (a bar dropped outside its slack).
+    OfferPin {
+        /// The activity.
+        activity: usize,
+        /// The start it was dropped at.
+        start: i64,
+    },
+    /// Pin `activity` at `start` and reschedule: its windows become the one
+    /// window `[start, start]` (preferred `start`; the cutoff of the window it
+    /// was placed in is kept when the activity still fits before it), applied
+    /// as an edit (undo restores the plan).
+    Pin {
+        /// The activity.
+        activity: usize,
+        /// The new start.
+        start: i64,
+    },
+    /// Forget the offer to pin.
+    DismissPin,
     /// Hide the outcome banner.
     DismissBanner,
     /// Hide the error message.

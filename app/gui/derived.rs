@@ -3,14 +3,15 @@
 //! revision it was derived for, and the worker thread that verifies suggestions.
 //! Also the step profiles ([`step_view`]), the execution of the plan with
 //! the scheduler runs of its cycles ([`ExecutionCache`], with its workers), and
-//! the Monte Carlo campaign ([`CampaignCache`], with its worker).
+//! the Monte Carlo campaign ([`CampaignCache`], with its worker), and the
+//! flexible form of the schedule ([`FlexCache`], with its worker).
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, TryRecvError};
 
-use solscope_engine::{CategoryIntervals, Explanation, Loss, Plan, RunOutcome, Suggestion};
+use solscope_engine::{CategoryIntervals, Explanation, Flex, Loss, Plan, RunOutcome, Suggestion};
 
 use super::document::Analysis;
 use super::execution::{ActualsSource, CycleRun, ExecutionRun};
@@ -476,6 +477,87 @@ impl ExecutionCache {
     /// Whether a worker is running (the frame loop polls until it is done).
     pub fn busy(&self) -> bool {
         self.pending.is_some() || self.pending_cycle.is_some() || self.pending_loss.is_some()
+    }
+}
+
+/// The flexible form of one plan revision's schedule, or why there is none.
+pub type FlexResult = Result<Arc<Flex>, String>;
+
+/// The flexible form of the schedule ([`solscope_engine::flex`]: bounds, start
+/// conditions, controllability and free slack), derived once per plan revision
+/// and read back only for it. Free slack replays the schedule once per
+/// activity (a quarter of a second on 1,000 activities, more on realistic
+/// plans), so with `background` it is computed on a worker thread (one at a
+/// time; a result for an older revision is dropped) and the Gantt draws
+/// without the layer until it is in.
+#[derive(Debug, Default)]
+pub struct FlexCache {
+    done: Option<(u64, FlexResult)>,
+    pending: Option<Job<u64, FlexResult>>,
+}
+
+/// The flexible form of `schedule`; a panic in the engine is an error, not a
+/// crash of the app.
+fn compute_flex(plan: &Plan, analysis: &Analysis) -> FlexResult {
+    let schedule = &analysis.schedule;
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        solscope_engine::flex(plan, schedule)
+    }))
+    .map(Arc::new)
+    .map_err(|_| "Computing the flexible schedule failed (an internal error)".to_string())
+}
+
+impl FlexCache {
+    /// The flexible schedule at `revision`, or why there is none, once derived.
+    pub fn get(&self, revision: u64) -> Option<&FlexResult> {
+        self.done
+            .as_ref()
+            .filter(|(r, _)| *r == revision)
+            .map(|(_, f)| f)
+    }
+
+    /// Starts deriving the flexible schedule of `plan` at `revision` unless it
+    /// is known or a worker is busy: in place, or with `background` on a worker.
+    pub fn request(&mut self, plan: &Plan, analysis: &Analysis, revision: u64, background: bool) {
+        if self.get(revision).is_some() || self.pending.is_some() {
+            return;
+        }
+        if background {
+            let (plan, analysis) = (plan.clone(), analysis.clone());
+            self.pending = Some(Job::spawn(revision, move || compute_flex(&plan, &analysis)));
+        } else {
+            self.done = Some((revision, compute_flex(plan, analysis)));
+        }
+    }
+
+    /// Takes the worker's result: kept when it is for `revision`, dropped
+    /// otherwise. A worker that stopped without a result is reported.
+    pub fn reap(&mut self, revision: u64) -> Result<(), String> {
+        let Some(job) = &self.pending else {
+            return Ok(());
+        };
+        let Some(result) = job.poll() else {
+            return Ok(());
+        };
+        let current = job.key == revision;
+        self.pending = None;
+        match result {
+            Ok(f) if current => self.done = Some((revision, f)),
+            Ok(_) => {}
+            Err(()) if current => {
+                let e =
+                    "Computing the flexible schedule failed: the worker stopped without a result";
+                self.done = Some((revision, Err(e.into())));
+                return Err(e.into());
+            }
+            Err(()) => {}
+        }
+        Ok(())
+    }
+
+    /// Whether a worker is running (the frame loop polls until it is done).
+    pub fn busy(&self) -> bool {
+        self.pending.is_some()
     }
 }
 

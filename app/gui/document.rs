@@ -172,6 +172,40 @@ impl Analysis {
     }
 }
 
+/// The edit that pins an activity at `start`: its windows become the one
+/// window `[start, start]` with `start` preferred. The cutoff of the window it
+/// was placed in (`placed`: its scheduled start) is kept when the activity's
+/// shortest duration still ends by it; otherwise it is dropped, and returned
+/// (the planner moved it past its cutoff on purpose and is told so).
+pub fn pin_window(
+    act: &solscope_engine::Activity,
+    placed: Option<i64>,
+    start: i64,
+) -> (solscope_engine::Window, Option<i64>) {
+    let cutoff = placed.and_then(|s| {
+        act.windows
+            .iter()
+            .flatten()
+            .find(|w| w.start <= s && s <= w.end)
+            .and_then(|w| w.cutoff)
+    });
+    // A cutoff must come after the start (validation): a zero duration needs one
+    // second.
+    let fits = |c: i64| start.saturating_add(act.duration.min().max(1)) <= c;
+    let (kept, dropped) = match cutoff {
+        Some(c) if fits(c) => (Some(c), None),
+        Some(c) => (None, Some(c)),
+        None => (None, None),
+    };
+    let window = solscope_engine::Window {
+        start,
+        end: start,
+        preferred: Some(start),
+        cutoff: kept,
+    };
+    (window, dropped)
+}
+
 /// What an edit changed in the outcome, by activity id.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct OutcomeDiff {

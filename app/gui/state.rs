@@ -21,6 +21,10 @@ pub struct Persisted {
     /// lanes.
     #[serde(default)]
     pub by_resource: bool,
+    /// Gantt: the flexibility layer (slack whiskers, free slack, dispatchable
+    /// neighbours) hidden.
+    #[serde(default)]
+    pub hide_flex: bool,
 }
 
 impl Persisted {
@@ -173,6 +177,19 @@ pub struct Messages {
     pub error: Option<String>,
     /// Waiting for "discard unsaved changes?".
     pub confirm: Option<Pending>,
+    /// A bar dropped outside its slack: waiting for "pin it there and
+    /// reschedule?".
+    pub pin: Option<PinOffer>,
+}
+
+/// An activity dragged on the Gantt to a start outside its slack, offered to be
+/// pinned there (an edit of its windows, then a reschedule).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PinOffer {
+    /// The activity.
+    pub activity: usize,
+    /// The start it was dropped at (plan seconds).
+    pub start: i64,
 }
 
 /// The number of runs the Monte Carlo panel proposes.

@@ -50,6 +50,19 @@ pub struct Theme {
     pub not_run: Color32,
     /// Execution: the scheduling cycle markers.
     pub cycle: Color32,
+    /// Flexibility: where a bar can move with every check passing and every
+    /// other placement fixed (free slack), shaded behind it.
+    pub slack_free: Color32,
+    /// Flexibility: where it is free of temporal conflicts only (breaking
+    /// energy, power, wake/sleep or heating).
+    pub slack_phase1: Color32,
+    /// Flexibility: the whiskers of the start bounds `[lb, ub]`.
+    pub whisker: Color32,
+    /// Flexibility: the outline of the selected activity's dispatchable
+    /// neighbours.
+    pub neighbour: Color32,
+    /// Flexibility: the ghost of a dragged bar.
+    pub ghost: Color32,
 }
 
 /// Height of one Gantt lane (points).
@@ -119,6 +132,14 @@ pub const SHARE_MIN_WIDTH: f32 = 1.0;
 pub const BAR_OUTLINE_STROKE: f32 = 1.0;
 /// Width of a limit's line on a histogram.
 pub const LIMIT_LINE_STROKE: f32 = 1.5;
+/// Width of the slack whiskers on the Gantt.
+pub const WHISKER_STROKE: f32 = 1.0;
+/// Height of the ticks at the ends of a whisker (points: the same at every zoom).
+pub const WHISKER_TICK: f32 = 8.0;
+/// Outline width of the selected activity's dispatchable neighbours.
+pub const NEIGHBOUR_STROKE: f32 = 1.5;
+/// Outline width of the ghost of a dragged bar.
+pub const GHOST_STROKE: f32 = 1.5;
 
 impl Theme {
     /// The palette for dark or light mode.
@@ -147,6 +168,11 @@ impl Theme {
                 aborted: Color32::from_rgb(200, 90, 200),
                 not_run: Color32::from_rgba_unmultiplied(220, 80, 70, 90),
                 cycle: Color32::from_gray(130),
+                slack_free: Color32::from_rgba_unmultiplied(90, 190, 120, 85),
+                slack_phase1: Color32::from_rgba_unmultiplied(235, 170, 50, 80),
+                whisker: Color32::from_gray(200),
+                neighbour: Color32::from_rgb(255, 120, 210),
+                ghost: Color32::from_rgba_unmultiplied(255, 255, 255, 40),
             }
         } else {
             Self {
@@ -172,6 +198,11 @@ impl Theme {
                 aborted: Color32::from_rgb(170, 50, 170),
                 not_run: Color32::from_rgba_unmultiplied(200, 50, 40, 80),
                 cycle: Color32::from_gray(120),
+                slack_free: Color32::from_rgba_unmultiplied(50, 150, 80, 60),
+                slack_phase1: Color32::from_rgba_unmultiplied(220, 140, 20, 60),
+                whisker: Color32::from_gray(60),
+                neighbour: Color32::from_rgb(200, 40, 150),
+                ghost: Color32::from_rgba_unmultiplied(0, 0, 0, 35),
             }
         }
     }

@@ -13,14 +13,15 @@ use eframe::egui::{
 use solscope_engine::{GeneratedKind, Outcome, RunOutcome, Schedule};
 
 use super::execution::{trigger_text, violation_text};
+use super::flex::{self, Slack};
 use super::{Model, Status, ViewCache};
 use crate::gui::commands::Command;
 use crate::gui::execution::{CycleRun, ExecutionRun};
 use crate::gui::state::Mode;
 use crate::gui::theme::{
-    BAR_FONT_SIZE, BAR_ROUNDING, BASELINE_HEIGHT, CURRENT_STROKE, CYCLE_LINE_STROKE,
-    LABEL_MIN_WIDTH, LABEL_WIDTH, LANE_GAP, LANE_HEIGHT, MARKER_WIDTH, PROBE_LINE_STROKE,
-    SELECTION_STROKE,
+    BAR_FONT_SIZE, BAR_ROUNDING, BASELINE_HEIGHT, CURRENT_STROKE, CYCLE_LINE_STROKE, GHOST_STROKE,
+    LABEL_MIN_WIDTH, LABEL_WIDTH, LANE_GAP, LANE_HEIGHT, MARKER_WIDTH, NEIGHBOUR_STROKE,
+    PROBE_LINE_STROKE, SELECTION_STROKE,
 };
 
 /// One bar.
@@ -37,6 +38,12 @@ struct Bar {
     cycle: Option<usize>,
     /// Drawn at least `MARKER_WIDTH` wide, never merged or hidden.
     marker: bool,
+    /// The bar of `activity`'s placement (schedule mode): it carries the
+    /// flexibility layer and can be dragged.
+    placed: bool,
+    /// What it takes in its lane: `[start, end]`, or with the flexibility layer
+    /// its whiskers and free slack too.
+    extent: (f64, f64),
 }
 
 impl Bar {
@@ -50,6 +57,8 @@ impl Bar {
             tip: None,
             cycle: None,
             marker: false,
+            placed: false,
+            extent: (start, end),
         }
     }
 }
@@ -120,7 +129,7 @@ fn lane_label(i: usize, label: &str) -> String {
 
 /// Packs bars into as few lanes as possible (by start; first lane that is free).
 fn pack(bars: Vec<Bar>, label: &str, max_lanes: usize) -> Vec<Row> {
-    lanes(bars, |b| (b.start, b.end), max_lanes)
+    lanes(bars, |b| b.extent, max_lanes)
         .into_iter()
         .enumerate()
         .map(|(i, bars)| Row::new(lane_label(i, label), bars))
@@ -182,6 +191,9 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
     }
     let (mut comm, mut scheduled, mut failed, mut pending) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    // With the flexibility layer, a placed bar takes its whiskers and free slack
+    // in its lane, so no other bar hides them.
+    let flex = m.flex_layer();
     for (a, act) in plan.activities.iter().enumerate() {
         let label = act.id.clone();
         match m.status(a, k) {
@@ -191,7 +203,11 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
                 } else {
                     t.scheduled
                 };
-                let bar = Bar::new(s as f64, e as f64, color, Some(a), label);
+                let mut bar = Bar::new(s as f64, e as f64, color, Some(a), label);
+                bar.placed = true;
+                if let Some(fa) = flex.and_then(|f| f.activity(a)) {
+                    bar.extent = flex::envelope(fa, e - s);
+                }
                 if act.comm_kind.is_some() {
                     comm.push(bar);
                 } else {
@@ -494,6 +510,8 @@ struct RowsKey {
     step: usize,
     by_resource: bool,
     palette: Color32,
+    /// The flexibility layer was shown (it widens what a bar takes in a lane).
+    flex: bool,
     exec: Option<(u64, usize, usize, bool, bool)>,
 }
 
@@ -503,6 +521,25 @@ struct RowsKey {
 pub struct GanttRows {
     key: RowsKey,
     rows: Vec<Row>,
+}
+
+/// A placed bar dragged to another start (schedule mode, with the flexibility
+/// layer): previewed as a ghost; dropped outside its slack, offered to be
+/// pinned there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BarDrag {
+    activity: usize,
+    /// The time under the pointer when it was pressed.
+    grab: f64,
+    /// Its scheduled start.
+    start: i64,
+    /// Its scheduled duration.
+    duration: i64,
+    /// Its lane on screen (top, height).
+    y: f32,
+    h: f32,
+    /// The start it is dragged to.
+    to: i64,
 }
 
 /// What hovering a bar shows, and what clicking it does.
@@ -539,6 +576,7 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
         step: k,
         by_resource: m.persisted.by_resource,
         palette: m.theme.scheduled,
+        flex: m.flex_layer().is_some(),
         exec: run.map(|_| {
             (
                 m.exec.actuals_rev,
@@ -561,8 +599,19 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
         egui::vec2(ui.available_width(), height),
         Sense::click_and_drag(),
     );
-    let response =
-        response.on_hover_text("Click a bar to inspect it; drag to pan; Ctrl+wheel to zoom");
+    // No hover text while a bar is dragged or a question is asked (it would
+    // cover the popup's buttons).
+    let quiet = cache.drag.is_some() || m.messages.pin.is_some() || m.messages.confirm.is_some();
+    let response = if quiet {
+        response
+    } else if m.flex_layer().is_some() {
+        response.on_hover_text(
+            "Click a bar to inspect it; drag a scheduled bar to try another start; drag \
+             elsewhere to pan; Ctrl+wheel to zoom",
+        )
+    } else {
+        response.on_hover_text("Click a bar to inspect it; drag to pan; Ctrl+wheel to zoom")
+    };
     response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, "Gantt chart"));
     // Share the plots' data area (last frame) so one time is one x everywhere.
     let (left, right) = cache
@@ -586,6 +635,14 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
     let font = FontId::proportional(BAR_FONT_SIZE);
     let mut hovered: Option<Hovered> = None;
     let pointer = response.hover_pos();
+    let flex_layer = m.flex_layer();
+    // The selected activity's neighbours in the minimum dispatchable network.
+    let neighbours: &[usize] = match (flex_layer, m.nav.selected) {
+        (Some(f), Some(a)) => f.activity(a).map_or(&[], |fa| fa.neighbours.as_slice()),
+        _ => &[],
+    };
+    // Where each placed bar is drawn this frame (what a drag picks up).
+    let mut drawn: Vec<(usize, Rect)> = Vec::new();
     let mut offset = 0.0_f32;
     for row in &rows {
         let y = rect.top() + offset;
@@ -599,6 +656,18 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
                 font.clone(),
                 m.theme.muted,
             );
+        }
+        // The flexibility layer, behind the row's bars.
+        if let Some(f) = flex_layer {
+            for bar in row.bars.iter().filter(|b| b.placed) {
+                if bar.extent.1 < axis.start || bar.extent.0 > axis.end {
+                    continue;
+                }
+                if let Some(fa) = bar.activity.and_then(|a| f.activity(a)) {
+                    let d = (bar.end - bar.start) as i64;
+                    flex::underlay(&painter, m, fa, d, axis, timeline, y, h);
+                }
+            }
         }
         let current = if row.steps { current } else { None };
         // Cull and merge: consecutive bars that fall in the same pixel column merge.
@@ -673,6 +742,19 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
                     StrokeKind::Outside,
                 );
             }
+            if bar.placed {
+                if let Some(a) = bar.activity {
+                    drawn.push((a, r));
+                    if neighbours.contains(&a) && !is_selected {
+                        painter.rect_stroke(
+                            r,
+                            BAR_ROUNDING,
+                            Stroke::new(NEIGHBOUR_STROKE, m.theme.neighbour),
+                            StrokeKind::Outside,
+                        );
+                    }
+                }
+            }
             if r.width() >= LABEL_MIN_WIDTH && h >= LANE_HEIGHT {
                 let text = painter.layout_no_wrap(bar.label.clone(), font.clone(), m.theme.label);
                 if text.size().x + 4.0 <= r.width() {
@@ -689,7 +771,7 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
                     (None, Some(c)) => Some(Command::SetCycle(c)),
                     (None, None) => None,
                 };
-                let text = bar.tip.clone().unwrap_or_else(|| {
+                let mut text = bar.tip.clone().unwrap_or_else(|| {
                     format!(
                         "{} {}–{}",
                         bar.label,
@@ -697,6 +779,15 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
                         m.time(bar.end as i64)
                     )
                 });
+                let fa = flex_layer
+                    .filter(|_| bar.placed)
+                    .and_then(|f| bar.activity.and_then(|a| f.activity(a)));
+                if let Some(fa) = fa {
+                    text.push_str(&format!(
+                        "\n{}; drag to try another start",
+                        flex::hover_line(m, fa)
+                    ));
+                }
                 if click.is_some() || bar.tip.is_some() {
                     hovered = Some(Hovered { text, click });
                 }
@@ -728,7 +819,7 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
         };
         painter.vline(x, timeline.y_range(), Stroke::new(PROBE_LINE_STROKE, color));
     }
-    if let Some(h) = hovered {
+    if let Some(h) = hovered.filter(|_| !quiet) {
         response.clone().on_hover_text_at_pointer(h.text);
         if response.clicked() {
             if let Some(c) = h.click {
@@ -736,8 +827,91 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
             }
         }
     }
+    // With the flexibility layer, dragging a placed bar tries another start.
+    if response.drag_started() {
+        cache.drag = None;
+        let press = ui.input(|i| i.pointer.press_origin());
+        if let (Some(f), Some(p)) = (flex_layer, press) {
+            let hit = drawn.iter().rev().find(|(_, r)| r.contains(p));
+            if let Some(&(a, r)) = hit {
+                if let (Some(fa), Some((s, e))) = (f.activity(a), m.analysis.placement(a)) {
+                    cache.drag = Some(BarDrag {
+                        activity: a,
+                        grab: axis.t(f64::from(p.x), timeline),
+                        start: s,
+                        duration: e - s,
+                        y: r.top(),
+                        h: r.height(),
+                        to: fa.start.nom,
+                    });
+                    if m.nav.selected != Some(a) {
+                        cmds.push(Command::Select(Some(a)));
+                    }
+                }
+            }
+        }
+    }
+    let dragging = cache.drag.is_some() && (response.dragged() || response.drag_stopped());
+    if !dragging {
+        cache.drag = None;
+    }
+    let drag_flex = cache.drag.and_then(|d| {
+        flex_layer
+            .and_then(|f| f.activity(d.activity))
+            .map(|fa| (d, fa))
+    });
+    if let Some((mut d, fa)) = drag_flex {
+        let pointer = ui.input(|i| i.pointer.interact_pos());
+        if let Some(p) = pointer {
+            let per_px = axis.seconds_per_pixel(f64::from(timeline.width()));
+            let moved = axis.t(f64::from(p.x), timeline) - d.grab;
+            let (lo, hi) = (m.doc.plan.horizon.start, m.doc.plan.horizon.end);
+            d.to = flex::snap(fa, d.start, moved, per_px)
+                .clamp(lo, hi.saturating_sub(d.duration).max(lo));
+        }
+        let (kind, _) = flex::classify(fa, d.to);
+        let color = match kind {
+            Slack::Free => m.theme.valid,
+            Slack::Bounds => m.theme.current,
+            Slack::Outside => m.theme.error,
+        };
+        let x0 = axis.x(d.to as f64, timeline) as f32;
+        let x1 = (axis.x((d.to + d.duration) as f64, timeline) as f32).max(x0 + 2.0);
+        let ghost = Rect::from_min_max(Pos2::new(x0, d.y), Pos2::new(x1, d.y + d.h));
+        painter.rect_filled(ghost, BAR_ROUNDING, m.theme.ghost);
+        painter.rect_stroke(
+            ghost,
+            BAR_ROUNDING,
+            Stroke::new(GHOST_STROKE, color),
+            StrokeKind::Outside,
+        );
+        let text = flex::drag_text(m, fa, d.to);
+        // The label next to the ghost, under the lane (the pointer stays free).
+        let at = Pos2::new(
+            pointer.map_or(ghost.left(), |p| p.x),
+            ghost.bottom() + GHOST_STROKE,
+        );
+        egui::Tooltip::always_open(
+            ui.ctx().clone(),
+            ui.layer_id(),
+            response.id,
+            egui::PopupAnchor::Position(at),
+        )
+        .show(|ui| ui.label(RichText::new(text).color(color)));
+        if response.drag_stopped() {
+            cache.drag = None;
+            if kind == Slack::Outside {
+                cmds.push(Command::OfferPin {
+                    activity: d.activity,
+                    start: d.to,
+                });
+            }
+        } else {
+            cache.drag = Some(d);
+        }
+    }
     // Pan by dragging, zoom with Ctrl+wheel (or pinch) about the pointer.
-    if response.dragged() {
+    if response.dragged() && cache.drag.is_none() {
         let dt = -f64::from(response.drag_delta().x)
             * axis.seconds_per_pixel(f64::from(timeline.width()));
         let mut a = axis;
@@ -755,6 +929,7 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
         }
     }
     cache.gantt = Some(GanttRows { key, rows });
+    cache.bars = drawn;
 }
 
 #[cfg(test)]
@@ -776,6 +951,7 @@ mod tests {
             explanation: None,
             explanation_error: None,
             valid: None,
+            flex: None,
             nav: &app.ui.nav,
             messages: &app.ui.messages,
             exec: crate::gui::views::ExecModel {

@@ -1,11 +1,12 @@
-//! The inspector (selected activity: outcome, valid intervals per category on the
-//! time axis, explanation, suggestions) and the constraint editor.
+//! The inspector (selected activity: outcome, its flexibility when placed, valid
+//! intervals per category on the time axis, explanation, suggestions) and the
+//! constraint editor.
 
 use eframe::egui::{self, Pos2, Rect, RichText, Sense, Stroke};
 use serde_json::{Map, Value};
 use solscope_engine::{CategoryIntervals, Phase, explanation_notes, reason_line, suggestion_line};
 
-use super::{Model, Status, execution};
+use super::{Model, Status, execution, flex};
 use crate::gui::commands::Command;
 use crate::gui::state::{Mode, TextBuffers};
 use crate::gui::theme::{
@@ -73,6 +74,13 @@ fn activity_ui(
     ));
     if ui.button("Show its step").clicked() {
         cmds.push(Command::SetStep(own_step));
+    }
+    if m.analysis.placement(a).is_some() {
+        // The flexible form of the final schedule (whatever step is shown:
+        // a placement never moves).
+        ui.separator();
+        flex::flex_section_ui(ui, m, a, cmds);
+        ui.separator();
     }
 
     // Valid intervals per category, drawn on the shared time axis.

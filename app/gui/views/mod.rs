@@ -7,8 +7,9 @@
 //! its derived-value cache or the host.
 
 mod execution;
+mod flex;
 mod gantt;
-pub use gantt::GanttRows;
+pub use gantt::{BarDrag, GanttRows};
 mod inspector;
 mod montecarlo;
 mod plots;
@@ -49,6 +50,9 @@ pub struct Model<'a> {
     pub explanation_error: Option<&'a str>,
     /// Valid intervals of the selected activity at its own step (full horizon).
     pub valid: Option<&'a [solscope_engine::CategoryIntervals]>,
+    /// The flexible schedule of this revision, or why there is none, once
+    /// derived (`None` meanwhile).
+    pub flex: Option<&'a Result<std::sync::Arc<solscope_engine::Flex>, String>>,
     /// Where the user is: step, selection, visible range, probe.
     pub nav: &'a Navigation,
     /// The outcome banner, the error and the unsaved-changes question.
@@ -123,6 +127,18 @@ pub struct ViewCache {
     pub plot_x: Option<(f32, f32)>,
     /// The Gantt rows last built, with what they were built for.
     pub gantt: Option<GanttRows>,
+    /// Where each placed activity's bar was drawn last frame (schedule mode,
+    /// visible bars only): what a drag picks up.
+    pub bars: Vec<(usize, egui::Rect)>,
+    /// The bar being dragged, if any.
+    pub drag: Option<BarDrag>,
+}
+
+impl ViewCache {
+    /// Where activity `a`'s placement bar was drawn last frame.
+    pub fn gantt_bar(&self, a: usize) -> Option<egui::Rect> {
+        self.bars.iter().find(|(b, _)| *b == a).map(|(_, r)| *r)
+    }
 }
 
 /// The state the views write while drawing, for one frame.
@@ -189,6 +205,18 @@ impl Model<'_> {
         } else {
             Status::Pending
         })
+    }
+
+    /// The flexible schedule, when derived without error.
+    pub fn flex_ready(&self) -> Option<&'_ solscope_engine::Flex> {
+        self.flex.and_then(|r| r.as_ref().ok()).map(AsRef::as_ref)
+    }
+
+    /// The flexible schedule when the Gantt shows its layer (schedule mode,
+    /// not hidden, derived).
+    pub fn flex_layer(&self) -> Option<&'_ solscope_engine::Flex> {
+        let shown = self.nav.mode == Mode::Schedule && !self.persisted.hide_flex;
+        self.flex_ready().filter(|_| shown)
     }
 
     /// Plan time as `t (hh:mm:ss)`.
@@ -305,6 +333,61 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
             });
     });
     confirm_ui(ui, m, cmds);
+    pin_ui(ui, m, cmds);
+}
+
+/// "Pin it at this start and reschedule?" after a bar was dropped outside its
+/// slack.
+fn pin_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
+    let Some(offer) = m.messages.pin else {
+        return;
+    };
+    let Some(act) = m.doc.plan.activities.get(offer.activity) else {
+        return;
+    };
+    let placed = m.analysis.placement(offer.activity);
+    let (_, dropped) = crate::gui::document::pin_window(act, placed.map(|p| p.0), offer.start);
+    let modal = egui::Modal::new(egui::Id::unique("pin_offer")).show(ui.ctx(), |ui| {
+        ui.heading("Move outside its slack");
+        let now = placed.map_or("not placed".to_string(), |p| {
+            format!("scheduled at {}", m.time(p.0))
+        });
+        ui.label(format!(
+            "{} is {now}. A start at {} is outside its slack: only an edit of the plan \
+             gets it there.",
+            act.id,
+            m.time(offer.start),
+        ));
+        ui.label(format!(
+            "Pin it at {} and reschedule? Its windows become the one window [{t}, {t}].",
+            m.time(offer.start),
+            t = offer.start
+        ));
+        if let Some(c) = dropped {
+            ui.colored_label(
+                m.theme.error,
+                format!(
+                    "It would end after its window's cutoff {}: the cutoff is dropped.",
+                    m.time(c)
+                ),
+            );
+        }
+        ui.label(RichText::new("Undo restores the plan.").color(m.theme.muted));
+        ui.horizontal(|ui| {
+            if ui.button("Pin and reschedule").clicked() {
+                cmds.push(Command::Pin {
+                    activity: offer.activity,
+                    start: offer.start,
+                });
+            }
+            if ui.button("Keep the schedule").clicked() {
+                cmds.push(Command::DismissPin);
+            }
+        });
+    });
+    if modal.should_close() {
+        cmds.push(Command::DismissPin);
+    }
 }
 
 /// File actions, undo/redo, theme, search.
@@ -340,6 +423,22 @@ fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
             .clicked()
         {
             cmds.push(Command::SetDark(!dark));
+        }
+        if m.nav.mode == Mode::Schedule {
+            let cmd = UiCommand::ToggleFlex;
+            let mut shown = !m.persisted.hide_flex;
+            let mut resp = ui.checkbox(&mut shown, cmd.label());
+            if let Some(shortcut) = cmd.kb_shortcut() {
+                resp = resp.on_hover_text(format!(
+                    "Gantt: slack whiskers [lb, ub], free slack shaded (green: every check \
+                     passes; amber: temporal only), the selected activity's dispatchable \
+                     neighbours outlined, and drag a bar to try another start ({})",
+                    ui.ctx().format_shortcut(&shortcut)
+                ));
+            }
+            if resp.changed() {
+                cmds.push(cmd.into());
+            }
         }
         let mut by_resource = m.persisted.by_resource;
         if ui
