@@ -855,3 +855,240 @@ fn a_plan_without_duration_models_cannot_run_a_campaign() {
     );
     assert!(h.get_by_label("Run").accesskit_node().is_disabled());
 }
+
+/// The default plan in a harness, its Gantt zoomed to `[from, to]`.
+fn default_plan_over(from: f64, to: f64) -> egui_kittest::Harness<'static, SolscopeApp> {
+    let mut app = SolscopeApp::with_default_plan().unwrap();
+    app.apply(Command::SetAxis(solscope::gui::TimeAxis::new(from, to)));
+    harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap()
+}
+
+#[test]
+fn the_flexibility_layer_toggles_by_checkbox_and_key() {
+    let mut h = default_plan_over(50_000.0, 80_000.0);
+    assert!(!h.state().persisted.hide_flex, "shown by default");
+    assert!(h.state().flex().is_some(), "derived in the frame");
+    let a = index(h.state(), "watson_pre_abrasion");
+    let with_layer = h.state().gantt_bar(a).expect("drawn");
+    h.get_by_label("Flexibility layer").click();
+    h.run_steps(3);
+    assert!(h.state().persisted.hide_flex);
+    // Without the layer, bars pack by their own span again (fewer lanes).
+    let without = h.state().gantt_bar(a).expect("drawn");
+    assert!(without.top() <= with_layer.top());
+    h.key_press(eframe::egui::Key::F);
+    h.run_steps(3);
+    assert!(!h.state().persisted.hide_flex);
+    assert_eq!(h.state().gantt_bar(a), Some(with_layer));
+}
+
+#[test]
+fn selecting_an_activity_shows_its_flexibility() {
+    let view = View {
+        select: Some("watson_pre_abrasion".into()),
+        ..View::default()
+    };
+    let mut h = harness(
+        SolscopeApp::with_default_plan().unwrap(),
+        SNAPSHOT_SIZE.into(),
+        &view,
+    )
+    .unwrap();
+    // The same numbers as `solscope flex --text`.
+    let text = solscope_engine::flex_text(&h.state().doc.plan, h.state().flex().unwrap());
+    assert!(text.contains(
+        "watson_pre_abrasion: scheduled at 57880 (09:25:05); may start from 56980 (09:10:05) \
+         to 63580 (11:00:05) (15 min earlier, 1 h 35 min later)."
+    ));
+    assert!(h.query_by_label("Flexibility").is_some());
+    for line in [
+        "Scheduled at 57880 (09:25:05).",
+        "May start from 56980 (09:10:05) to 63580 (11:00:05) (15 min earlier, 1 h 35 min later).",
+        "Starts no earlier than 10 min after arm_unstow_412 starts.",
+        "Starts no earlier than 10 min after fsw_housekeeping_412 starts.",
+        "Starts no later than 40 min after arm_unstow_412 starts.",
+        "Skipped once the earliest of 63580 (11:00:05) and 40 min after arm_unstow_412 starts \
+         has passed without it starting.",
+        "Free slack (every check, others fixed): 57880 (09:25:05) to 58480 (09:35:05)",
+        // The bundled plan's sol-413 drive is not dynamically controllable.
+        "NOT dynamically controllable. The constraints that make it so:",
+        "• drive_413 lasts 50 min to 1 h 35 min",
+    ] {
+        assert!(h.query_by_label(line).is_some(), "missing: {line}");
+    }
+    // Its dispatchable neighbours, to select.
+    let fa = h
+        .state()
+        .flex()
+        .unwrap()
+        .activity(index(h.state(), "watson_pre_abrasion"))
+        .unwrap()
+        .clone();
+    let unstow = index(h.state(), "arm_unstow_412");
+    assert!(fa.neighbours.contains(&unstow));
+    h.get_by_label("arm_unstow_412").click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.selected, Some(unstow));
+    assert!(
+        h.query_by_label(
+            "May start from 56380 (09:00:05) to 61780 (10:30:05) (15 min earlier, 1 h 15 min later)."
+        )
+        .is_some()
+    );
+    // A plan without uncertain durations has no verdict to show.
+    let mut h = tutorial_with_selected("zcam_pano");
+    h.run_steps(2);
+    assert!(h.query_by_label("Flexibility").is_some());
+    assert!(
+        h.query_by_label_contains("dynamically controllable")
+            .is_none()
+    );
+}
+
+type H = egui_kittest::Harness<'static, SolscopeApp>;
+
+/// The screen point of activity `a`'s bar shifted by `dt` seconds (x from its
+/// drawn rect: its start and end are known times).
+fn bar_point(h: &H, a: usize, dt: i64) -> eframe::egui::Pos2 {
+    let r = h.state().gantt_bar(a).expect("bar drawn");
+    let (s, e) = h.state().analysis.placement(a).unwrap();
+    let px_per_s = r.width() / (e - s) as f32;
+    r.center() + eframe::egui::vec2(dt as f32 * px_per_s, 0.0)
+}
+
+/// Presses on activity `a`'s bar and moves by `dt` seconds, without releasing.
+fn drag_bar(h: &mut H, a: usize, dt: i64) -> eframe::egui::Pos2 {
+    let from = bar_point(h, a, 0);
+    let to = bar_point(h, a, dt);
+    h.hover_at(from);
+    h.run_steps(1);
+    h.drag_at(from);
+    h.run_steps(1);
+    h.hover_at(eframe::egui::pos2((from.x + to.x) / 2.0, from.y));
+    h.run_steps(1);
+    h.hover_at(to);
+    h.run_steps(2);
+    to
+}
+
+#[test]
+fn dragging_a_bar_inside_its_slack_previews_and_changes_nothing() {
+    let mut h = default_plan_over(55_000.0, 72_000.0);
+    let meda = index(h.state(), "meda_412_1200");
+    let before = (h.state().doc.plan.clone(), h.state().revision);
+    let placed = h.state().analysis.placement(meda);
+    let axis = h.state().ui.nav.axis;
+    // 15 min later: inside its free slack (67180-68980).
+    let to = drag_bar(&mut h, meda, 900);
+    assert!(
+        h.query_by_label_contains("meda_412_1200 at")
+            .is_some_and(|n| n
+                .accesskit_node()
+                .value()
+                .unwrap_or_default()
+                .contains("inside its free slack")),
+        "the preview says where it is"
+    );
+    assert_eq!(h.state().ui.nav.selected, Some(meda), "dragging selects it");
+    assert_eq!(h.state().ui.nav.axis, axis, "a bar drag does not pan");
+    h.drop_at(to);
+    h.run_steps(3);
+    assert!(h.state().ui.messages.pin.is_none(), "nothing to confirm");
+    assert_eq!((h.state().doc.plan.clone(), h.state().revision), before);
+    assert_eq!(h.state().analysis.placement(meda), placed);
+    // Inside [lb, ub] but not its free slack: said so, nothing changes either.
+    let watson = index(h.state(), "watson_pre_abrasion");
+    let to = drag_bar(&mut h, watson, 3000);
+    assert!(
+        h.query_by_label_contains("watson_pre_abrasion at 60880")
+            .is_some_and(|n| n
+                .accesskit_node()
+                .value()
+                .unwrap_or_default()
+                .contains("inside its bounds [lb, ub] only")),
+        "bounds only"
+    );
+    h.drop_at(to);
+    h.run_steps(3);
+    assert!(h.state().ui.messages.pin.is_none());
+    assert_eq!((h.state().doc.plan.clone(), h.state().revision), before);
+}
+
+#[test]
+fn dropping_a_bar_outside_its_slack_offers_to_pin_it_and_undo_restores() {
+    let mut h = default_plan_over(55_000.0, 72_000.0);
+    let meda = index(h.state(), "meda_412_1200");
+    let before = h.state().doc.plan.clone();
+    let placed = h.state().analysis.placement(meda);
+    // 50 min later: past its window (it ends at 68980).
+    let to = drag_bar(&mut h, meda, 3000);
+    assert!(
+        h.query_by_label_contains("outside its slack: release to pin it here")
+            .is_some()
+    );
+    h.drop_at(to);
+    h.run_steps(3);
+    let offer = h.state().ui.messages.pin.expect("offered");
+    assert_eq!(offer.activity, meda);
+    assert!((70_100..=70_260).contains(&offer.start), "{}", offer.start);
+    assert_eq!(
+        h.state().doc.plan,
+        before,
+        "nothing changes before confirming"
+    );
+    // Keeping the schedule forgets the offer.
+    h.get_by_label("Keep the schedule").click();
+    h.run_steps(3);
+    assert!(h.state().ui.messages.pin.is_none());
+    assert_eq!(h.state().doc.plan, before);
+    let to = drag_bar(&mut h, meda, 3000);
+    h.drop_at(to);
+    h.run_steps(3);
+    let offer = h.state().ui.messages.pin.expect("offered again");
+    h.get_by_label("Pin and reschedule").click();
+    h.run_steps(3);
+    let act = &h.state().doc.plan.activities[meda];
+    let w = act.windows.as_ref().expect("windows")[0];
+    assert_eq!(act.windows.as_ref().map(Vec::len), Some(1));
+    assert_eq!(
+        (w.start, w.end, w.preferred),
+        (offer.start, offer.start, Some(offer.start))
+    );
+    assert_eq!(
+        h.state().analysis.placement(meda).map(|p| p.0),
+        Some(offer.start),
+        "rescheduled there"
+    );
+    assert!(h.state().doc.dirty);
+    assert!(h.query_by_label_contains("Pin meda_412_1200 at").is_some());
+    h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::Z);
+    h.run_steps(3);
+    assert_eq!(h.state().doc.plan, before);
+    assert_eq!(h.state().analysis.placement(meda), placed);
+}
+
+#[test]
+fn the_flexible_schedule_is_derived_off_the_frame_per_revision() {
+    let mut app = SolscopeApp::with_default_plan().unwrap();
+    app.background = true;
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    wait_until(&mut h, "the flexible schedule", |app| app.flex().is_some());
+    let direct = solscope_engine::flex(&h.state().doc.plan, &h.state().analysis.schedule);
+    assert_eq!(h.state().flex(), Some(&direct));
+    // After an edit the old one is not shown; the new revision's arrives.
+    let meda = index(h.state(), "meda_412_1200");
+    h.state_mut().push(Command::Pin {
+        activity: meda,
+        start: 70_000,
+    });
+    h.run_steps(1);
+    if let Some(f) = h.state().flex() {
+        assert_eq!(f.activity(meda).map(|fa| fa.start.nom), Some(70_000));
+    }
+    wait_until(&mut h, "the edited plan's", |app| app.flex().is_some());
+    let fa = h.state().flex().unwrap().activity(meda).unwrap();
+    assert_eq!(
+        (fa.start.lb, fa.start.nom, fa.start.ub),
+        (70_000, 70_000, 70_000)
+    );
+}
