@@ -5,7 +5,7 @@
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
 use serde_json::json;
-use solscope::gui::{Command, SolscopeApp, UiCommand};
+use solscope::gui::{Command, SolscopeApp, TimeAxis, UiCommand};
 use solscope::screenshot::{SNAPSHOT_SIZE, View, harness, snapshot_options};
 
 fn app() -> SolscopeApp {
@@ -202,4 +202,51 @@ fn monte_carlo_of_the_default_plan() {
             ..View::default()
         },
     );
+}
+
+/// The sol-412 arm campaign zoomed in, with the flexibility layer: whiskers,
+/// free slack in two tones, and the WATSON pre-abrasion image selected with its
+/// dispatchable neighbours outlined and its Flexibility section.
+#[test]
+fn flexibility_of_the_arm_campaign() {
+    let mut app = app();
+    app.apply(Command::SetAxis(TimeAxis::new(52_000.0, 72_000.0)));
+    check(
+        "flex_arm_412",
+        app,
+        View {
+            select: Some("watson_pre_abrasion".into()),
+            ..View::default()
+        },
+    );
+}
+
+/// PIXL's bar dragged 40 minutes later (inside its bounds, outside its free
+/// slack): the ghost and the label saying so, nothing rescheduled.
+#[test]
+fn dragging_a_bar_previews_the_shift() {
+    let mut app = app();
+    app.apply(Command::SetAxis(TimeAxis::new(52_000.0, 72_000.0)));
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).expect("harness");
+    let a = h
+        .state()
+        .doc
+        .plan
+        .activities
+        .iter()
+        .position(|x| x.id == "pixl_abrasion")
+        .expect("activity");
+    let r = h.state().gantt_bar(a).expect("drawn");
+    let (s, e) = h.state().analysis.placement(a).expect("placed");
+    let dx = 2400.0 * r.width() / (e - s) as f32;
+    let from = r.center();
+    h.hover_at(from);
+    h.run_steps(1);
+    h.drag_at(from);
+    h.run_steps(1);
+    h.hover_at(from + eframe::egui::vec2(dx / 2.0, 0.0));
+    h.run_steps(1);
+    h.hover_at(from + eframe::egui::vec2(dx, 0.0));
+    h.run_steps(3);
+    h.snapshot_options("flex_drag_preview", &snapshot_options());
 }

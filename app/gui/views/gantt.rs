@@ -262,7 +262,7 @@ fn window_span(plan: &solscope_engine::Plan, act: &solscope_engine::Activity) ->
 fn by_resource(plan: &solscope_engine::Plan, scheduled: Vec<Bar>) -> Vec<Row> {
     let mut groups: std::collections::BTreeMap<&str, Vec<Bar>> = std::collections::BTreeMap::new();
     let mut none = Vec::new();
-    for bar in scheduled {
+    for mut bar in scheduled {
         let held = bar
             .activity
             .and_then(|a| plan.activities.get(a))
@@ -272,6 +272,9 @@ fn by_resource(plan: &solscope_engine::Plan, scheduled: Vec<Bar>) -> Vec<Row> {
             none.push(bar);
             continue;
         }
+        // One row per resource with the flexibility layer too: a whisker
+        // reaching past the next bar on the resource runs under it.
+        bar.extent = (bar.start, bar.end);
         for r in held {
             groups.entry(r.as_str()).or_default().push(bar.clone());
         }
@@ -1008,10 +1011,11 @@ mod tests {
             let mut out = ctx.run_ui(egui::RawInput::default(), |ui| app.frame_ui(ui));
             out.textures_delta.clear();
             let cached = app.view_cache.gantt.clone().expect("rows kept");
-            assert_eq!(
-                shape(&cached.rows),
-                shape(&rows(&model(app), app.ui.nav.step))
-            );
+            // The app's own model: with the flexible schedule, which widens
+            // what a placed bar takes in its lane.
+            let (m, _) = app.model_and_widgets();
+            assert!(m.flex_layer().is_some());
+            assert_eq!(shape(&cached.rows), shape(&rows(&m, m.nav.step)));
         };
         check(&mut app);
         for k in [0, 10, 35] {
@@ -1019,6 +1023,19 @@ mod tests {
             check(&mut app);
         }
         app.apply(Command::GroupByResource(true));
+        check(&mut app);
+        app.apply(Command::GroupByResource(false));
+        app.apply(crate::gui::UiCommand::ToggleFlex.into());
+        let mut out = ctx.run_ui(egui::RawInput::default(), |ui| app.frame_ui(ui));
+        out.textures_delta.clear();
+        let (m, _) = app.model_and_widgets();
+        assert!(m.flex_layer().is_none(), "hidden");
+        let plain = shape(&rows(&m, m.nav.step));
+        assert_eq!(
+            shape(&app.view_cache.gantt.clone().expect("kept").rows),
+            plain
+        );
+        app.apply(crate::gui::UiCommand::ToggleFlex.into());
         check(&mut app);
         let mut set = serde_json::Map::new();
         set.insert("mandatory".into(), serde_json::json!(false));
