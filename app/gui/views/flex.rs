@@ -211,6 +211,37 @@ pub fn underlay(
     }
 }
 
+/// What the flexibility layer's marks mean (over the Gantt in schedule mode),
+/// or that it is being computed.
+pub fn legend_ui(ui: &mut egui::Ui, m: &Model<'_>) {
+    let t = &m.theme;
+    ui.horizontal_wrapped(|ui| {
+        ui.label(RichText::new("Flexibility:").color(t.muted));
+        match m.flex {
+            None => {
+                ui.spinner();
+                ui.label(RichText::new("computing the flexible schedule…").color(t.muted));
+            }
+            Some(Err(e)) => {
+                ui.label(RichText::new(e).color(t.error));
+            }
+            Some(Ok(_)) => {
+                ui.label(RichText::new("|–| start bounds [lb, ub]").color(t.whisker))
+                    .on_hover_text("From the earliest start to the latest start plus the duration");
+                ui.label(RichText::new(" free slack ").background_color(t.slack_free))
+                    .on_hover_text("Every check passes with every other placement where it is");
+                ui.label(RichText::new(" temporal only ").background_color(t.slack_phase1))
+                    .on_hover_text(
+                        "Free of temporal conflicts, but breaks energy, power, wake/sleep or heating",
+                    );
+                ui.label(RichText::new("selected's neighbours").color(t.neighbour))
+                    .on_hover_text("Adjacent in the minimum dispatchable network");
+                ui.label(RichText::new("· drag a bar to try another start").color(t.muted));
+            }
+        }
+    });
+}
+
 /// The hover text's flexibility part for a bar.
 pub fn hover_line(m: &Model<'_>, fa: &FlexActivity) -> String {
     let s = fa.start;

@@ -573,6 +573,8 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
     };
     if run.is_some() {
         legend_ui(ui, m);
+    } else if !m.persisted.hide_flex {
+        flex::legend_ui(ui, m);
     }
     let key = RowsKey {
         revision: m.revision,
