@@ -73,6 +73,11 @@ enum Command {
         /// stream RUN of the seed).
         #[arg(long, default_value_t = 0, requires = "sample")]
         run: u64,
+        /// How activities are started: rescheduling every cycle (replan), by the
+        /// flexible schedule's conditions (dispatch), or at their scheduled times
+        /// (fixed).
+        #[arg(long, value_enum, default_value_t = Policy::Replan)]
+        policy: Policy,
     },
     /// Run many executions with durations drawn from the plan's duration_models
     /// and print the summary JSON (solscope.montecarlo/1). Run indices are the
@@ -100,6 +105,10 @@ enum Command {
         /// records.
         #[arg(long, value_name = "I/K")]
         shard: Option<String>,
+        /// How activities are started (the same seed draws the same durations
+        /// under every policy, so campaigns compare run by run).
+        #[arg(long, value_enum, default_value_t = Policy::Replan)]
+        policy: Policy,
     },
     /// Schedule a plan and print its flexible (dispatchable) form: per activity the
     /// start bounds [lb, ub], the free slack, start conditions, and the minimum
@@ -110,9 +119,10 @@ enum Command {
         /// Print planner-facing text instead of JSON.
         #[arg(long)]
         text: bool,
-        /// Skip the free slack (one replay of the schedule per activity).
+        /// Also compute the free slack of every activity (one re-check of the
+        /// schedule after each activity's step: seconds on large plans).
         #[arg(long)]
-        no_free_slack: bool,
+        free_slack: bool,
     },
     /// Validate a plan and print its warnings.
     Check {
@@ -186,6 +196,27 @@ impl From<Profile> for solscope_engine::Profile {
         match p {
             Profile::Standard => solscope_engine::Profile::Standard,
             Profile::Realistic => solscope_engine::Profile::Realistic,
+        }
+    }
+}
+
+/// The `--policy` of `solscope execute` and `solscope montecarlo`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Policy {
+    /// The onboard scheduler reschedules at every cycle (the default).
+    Replan,
+    /// The flexible schedule, executed by its start and skip conditions.
+    Dispatch,
+    /// Every activity at its scheduled time, skipped if it cannot start then.
+    Fixed,
+}
+
+impl From<Policy> for solscope_engine::Policy {
+    fn from(p: Policy) -> Self {
+        match p {
+            Policy::Replan => solscope_engine::Policy::Replan,
+            Policy::Dispatch => solscope_engine::Policy::Dispatch,
+            Policy::Fixed => solscope_engine::Policy::Fixed,
         }
     }
 }
@@ -365,6 +396,7 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
             sample,
             write_actuals,
             run,
+            policy,
         } => {
             let loaded = load(&plan)?;
             let actuals = match (actuals, sample) {
@@ -383,7 +415,11 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
                 (None, Some(seed)) => solscope_engine::sample_run(&loaded.plan, seed, run),
                 (None, None) => solscope_engine::Actuals::nominal(),
             };
-            let execution = solscope_engine::execute(&loaded.plan, &actuals)?;
+            let options = solscope_engine::ExecuteOptions {
+                policy: policy.into(),
+                ..Default::default()
+            };
+            let execution = solscope_engine::execute_with(&loaded.plan, &actuals, options)?;
             let losses = solscope_engine::losses(&loaded.plan, &execution)?;
             let doc = solscope_engine::execution_document(
                 &loaded.plan,
@@ -439,6 +475,7 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
             seed,
             csv,
             shard,
+            policy,
         } => {
             let Some(plan) = plan else {
                 return Err(Failure::Input(solscope_engine::Error::invalid(
@@ -468,8 +505,13 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
                     ),
                 )));
             }
-            let campaign =
-                solscope_engine::campaign(&loaded.plan, seed, runs, &default_name(&plan))?;
+            let campaign = solscope_engine::campaign_with(
+                &loaded.plan,
+                seed,
+                runs,
+                &default_name(&plan),
+                policy.into(),
+            )?;
             let indices: Vec<u64> = (part..runs).step_by(of as usize).collect();
             let records = with_progress(indices.len() as u64, |tick| {
                 solscope_engine::campaign_runs(&loaded.plan, &campaign, &indices, tick, None)
@@ -513,13 +555,11 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
         Command::Flex {
             plan,
             text,
-            no_free_slack,
+            free_slack,
         } => {
             let loaded = load(&plan)?;
             let sched = solscope_engine::schedule(&loaded.plan)?;
-            let opts = solscope_engine::FlexOptions {
-                free_slack: !no_free_slack,
-            };
+            let opts = solscope_engine::FlexOptions { free_slack };
             let flex = solscope_engine::flex_with(&loaded.plan, &sched, opts);
             if text {
                 Ok(solscope_engine::flex_text(&loaded.plan, &flex))

@@ -10,7 +10,10 @@
 //! median and the worst (the plan of a sweep that costs most, not only the seed-1
 //! plan the table measures). `--execution` measures executions instead: the bundled
 //! plan (nominal and sampled), 1,000 activities of both profiles, and a Monte Carlo
-//! campaign of 1,000 runs of the bundled plan.
+//! campaign of 1,000 runs of the bundled plan. `--flex` measures flexible schedules:
+//! the network, bounds, minimum dispatchable network and controllability, and the
+//! free slack apart, on 1,000 and 10,000 activities of both profiles (worst of
+//! `--sweep N` seeds too when given).
 
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
@@ -85,6 +88,13 @@ fn main() {
     };
     if std::env::args().any(|a| a == "--execution") {
         execution();
+        return;
+    }
+    if std::env::args().any(|a| a == "--flex") {
+        let seeds = arg("--sweep")
+            .and_then(|v| v.parse::<u64>().ok())
+            .unwrap_or(1);
+        flex(&profiles, quick, seeds);
         return;
     }
     if let Some(n) = arg("--sweep").and_then(|v| v.parse::<u64>().ok()) {
@@ -254,4 +264,55 @@ fn execution() {
         ms(runs_time),
         ms(t.elapsed())
     );
+}
+
+/// Flexible schedules (`--flex`): per size and profile, the median over `seeds`
+/// seeds and the worst one, of the network without free slack and of the free
+/// slack alone (the schedule is not timed).
+fn flex(profiles: &[(&str, Profile)], quick: bool, seeds: u64) {
+    use solscope_engine::{FlexOptions, flex_with};
+    let sizes: &[(usize, usize)] = if quick {
+        &[(1000, 3)]
+    } else {
+        &[(1000, 3), (10_000, 30)]
+    };
+    println!(
+        "| profile | activities | sols | seeds | network edges | dispatchable edges | bounds + network: median | worst (seed) | free slack: median | worst (seed) |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for &(name, profile) in profiles {
+        for &(n, sols) in sizes {
+            let mut net: Vec<(Duration, u64)> = Vec::new();
+            let mut free: Vec<(Duration, u64)> = Vec::new();
+            let mut edges = (0, 0);
+            for seed in 1..=seeds {
+                let plan = generate_plan_with(profile, n, sols, seed);
+                let sched = schedule(&plan).expect("schedules");
+                let t = Instant::now();
+                let f = flex_with(&plan, &sched, FlexOptions { free_slack: false });
+                net.push((t.elapsed(), seed));
+                if seed == 1 {
+                    edges = (f.network_edges, f.dispatchable.len());
+                }
+                let t = Instant::now();
+                std::hint::black_box(flex_with(&plan, &sched, FlexOptions { free_slack: true }));
+                free.push((t.elapsed().saturating_sub(net[net.len() - 1].0), seed));
+            }
+            net.sort();
+            free.sort();
+            let (nm, _) = net[net.len() / 2];
+            let (nw, ns) = net[net.len() - 1];
+            let (fm, _) = free[free.len() / 2];
+            let (fw, fs) = free[free.len() - 1];
+            println!(
+                "| {name} | {n} | {sols} | {seeds} | {} | {} | {} | {} ({ns}) | {} | {} ({fs}) |",
+                edges.0,
+                edges.1,
+                ms(nm),
+                ms(nw),
+                ms(fm),
+                ms(fw)
+            );
+        }
+    }
 }

@@ -29,10 +29,10 @@ pub use error::{Error, Warning};
 pub use execute::{
     ACTUALS_FORMAT, ActivityRun, ActivitySummary, Actuals, Campaign, Cause, CauseCount, Cycle,
     Distribution, Dropped, Event, ExecuteOptions, ExecutedProfile, Execution, Guard, LimitSummary,
-    Loss, LossRecord, LostSummary, MONTECARLO_FORMAT, MONTECARLO_RUNS_FORMAT, PairSummary,
+    Loss, LossRecord, LostSummary, MONTECARLO_FORMAT, MONTECARLO_RUNS_FORMAT, PairSummary, Policy,
     Predictor, Quantiles, RunOutcome, RunRecord, RunsDoc, Summary, Trigger, Violation,
-    ViolationKind, campaign, campaign_runs, execute, execute_with, load_actuals, loss, loss_line,
-    losses, merge_parts, run_record, sample_actuals, sample_run, summarize,
+    ViolationKind, campaign, campaign_runs, campaign_with, execute, execute_with, load_actuals,
+    loss, loss_line, losses, merge_parts, run_record, sample_actuals, sample_run, summarize,
 };
 pub use explain::{
     Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,
@@ -42,7 +42,7 @@ pub use explain::{
 pub use flex::{
     Bound, Constraint, Controllability, DispatchEdge, EventBounds, Flex, FlexActivity, FlexOptions,
     OrderKind, StartCondition, TimePoint, Wait, constraint_line, flex, flex_text, flex_with,
-    time_point_name,
+    free_slack_of, time_point_name,
 };
 pub use generate::{Profile, generate_plan, generate_plan_with};
 pub use load::{

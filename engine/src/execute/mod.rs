@@ -14,6 +14,7 @@
 mod actuals;
 mod cycle;
 mod montecarlo;
+mod policy;
 mod record;
 mod text;
 mod why;
@@ -23,8 +24,9 @@ pub use cycle::Dropped;
 pub use montecarlo::{
     ActivitySummary, Campaign, CauseCount, Distribution, LimitSummary, LossRecord, LostSummary,
     MONTECARLO_FORMAT, MONTECARLO_RUNS_FORMAT, PairSummary, Predictor, Quantiles, RunRecord,
-    RunsDoc, Summary, campaign, campaign_runs, merge_parts, run_record, summarize,
+    RunsDoc, Summary, campaign, campaign_runs, campaign_with, merge_parts, run_record, summarize,
 };
+pub use policy::Policy;
 pub use record::{ExecutedProfile, Violation, ViolationKind};
 pub use text::loss_line;
 pub use why::{Cause, Loss, loss, losses};
@@ -113,6 +115,8 @@ impl Cycle {
 pub struct ExecuteOptions {
     /// Drop each cycle's plan (a Monte Carlo run needs only the outcomes).
     pub outcomes_only: bool,
+    /// How activities are started (default: replanning every cycle).
+    pub policy: Policy,
 }
 
 /// A dispatch event.
@@ -145,6 +149,8 @@ pub enum Guard {
     Resource(usize),
     /// A required state did not hold (state index, value index).
     State(usize, usize),
+    /// Dispatch policy: its skip condition passed before its start condition held.
+    Skipped,
 }
 
 /// How an activity ended.
@@ -199,6 +205,17 @@ pub fn execute_with(
     options: ExecuteOptions,
 ) -> Result<Execution, Error> {
     let problem = Problem::compile(plan)?;
+    if !options.policy.is_replan() {
+        let prepared = policy::Prepared::new(plan, options.policy)?;
+        return Ok(policy::run(
+            &problem,
+            plan,
+            &prepared,
+            actuals,
+            options.policy,
+            options,
+        ));
+    }
     let mut sim = Sim::new(&problem, plan, actuals);
     while sim.cycle(&problem, plan, options)? {}
     Ok(sim.finish(problem, plan))

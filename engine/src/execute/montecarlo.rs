@@ -17,7 +17,9 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::actuals::sample_run;
-use super::{Cause, ExecuteOptions, Prefix, RunOutcome, ViolationKind, execute_with, losses};
+use super::{
+    Cause, ExecuteOptions, Policy, Prefix, RunOutcome, ViolationKind, execute_with, losses,
+};
 use crate::error::Error;
 use crate::model::Plan;
 use crate::units::{MJ_PER_WH, wh};
@@ -49,6 +51,9 @@ pub struct Campaign {
     pub predicted: Vec<Option<(i64, i64)>>,
     /// Indices of the activities with a `duration_model`, in file order.
     pub uncertain: Vec<usize>,
+    /// How the runs start activities (absent: `replan`).
+    #[serde(default, skip_serializing_if = "Policy::is_replan")]
+    pub policy: Policy,
 }
 
 /// One run: everything the summary needs.
@@ -106,6 +111,19 @@ pub struct RunsDoc {
 /// The campaign of `runs` runs of `plan` seeded with `seed`: runs the first
 /// cycle for the prediction.
 pub fn campaign(plan: &Plan, seed: u64, runs: u64, name: &str) -> Result<Campaign, Error> {
+    campaign_with(plan, seed, runs, name, Policy::Replan)
+}
+
+/// [`campaign`] with another execution policy: the same samples (run `i` draws
+/// from stream `i` of the seed whatever the policy), so that campaigns of the
+/// three policies compare run by run.
+pub fn campaign_with(
+    plan: &Plan,
+    seed: u64,
+    runs: u64,
+    name: &str,
+    policy: Policy,
+) -> Result<Campaign, Error> {
     let first = crate::scheduler::run_outcomes(plan)?;
     let text = serde_json::to_string(plan).map_err(|e| Error::invalid("$", e.to_string()))?;
     Ok(Campaign {
@@ -123,6 +141,7 @@ pub fn campaign(plan: &Plan, seed: u64, runs: u64, name: &str) -> Result<Campaig
             .filter(|(_, a)| a.duration_model.is_some())
             .map(|(i, _)| i)
             .collect(),
+        policy,
     })
 }
 
@@ -145,9 +164,19 @@ pub fn campaign_runs(
     progress: &(dyn Fn() + Sync),
     cancel: Option<&AtomicBool>,
 ) -> Result<Option<Vec<RunRecord>>, Error> {
-    // Every run shares the nominal execution up to its first changed end.
+    // Every run shares the nominal execution up to its first changed end; the
+    // other policies share the schedule (and its flexible form).
     let problem = crate::scheduler::Problem::compile(plan)?;
-    let prefix = Prefix::nominal(&problem, plan, ExecuteOptions::default())?;
+    let policy = campaign.policy;
+    let options = ExecuteOptions {
+        policy,
+        ..ExecuteOptions::default()
+    };
+    let (prefix, prepared) = if policy.is_replan() {
+        (Some(Prefix::nominal(&problem, plan, options)?), None)
+    } else {
+        (None, Some(super::policy::Prepared::new(plan, policy)?))
+    };
     let records: Vec<Option<Result<RunRecord, Error>>> = indices
         .par_iter()
         .map(|&r| {
@@ -155,9 +184,14 @@ pub fn campaign_runs(
                 return None;
             }
             let actuals = sample_run(plan, campaign.seed, r);
-            let record = prefix
-                .execute(&problem, plan, &actuals, ExecuteOptions::default())
-                .and_then(|ex| record_of(plan, campaign, r, &actuals, &ex));
+            let ex = match (&prefix, &prepared) {
+                (Some(prefix), _) => prefix.execute(&problem, plan, &actuals, options),
+                (None, Some(prepared)) => Ok(super::policy::run(
+                    &problem, plan, prepared, &actuals, policy, options,
+                )),
+                (None, None) => execute_with(plan, &actuals, options),
+            };
+            let record = ex.and_then(|ex| record_of(plan, campaign, r, &actuals, &ex));
             progress();
             Some(record)
         })
@@ -175,7 +209,11 @@ pub fn campaign_runs(
 /// One run's record (executed from the start).
 pub fn run_record(plan: &Plan, campaign: &Campaign, run: u64) -> Result<RunRecord, Error> {
     let actuals = sample_run(plan, campaign.seed, run);
-    let ex = execute_with(plan, &actuals, ExecuteOptions::default())?;
+    let options = ExecuteOptions {
+        policy: campaign.policy,
+        ..ExecuteOptions::default()
+    };
+    let ex = execute_with(plan, &actuals, options)?;
     record_of(plan, campaign, run, &actuals, &ex)
 }
 
@@ -260,6 +298,9 @@ pub struct Summary {
     pub seed: u64,
     /// Number of runs.
     pub runs: u64,
+    /// The execution policy (absent: `replan`).
+    #[serde(skip_serializing_if = "Policy::is_replan")]
+    pub policy: Policy,
     /// Per activity, in file order.
     pub activities: Vec<ActivitySummary>,
     /// Pairs of activities that ran in parallel or swapped order in some run.
@@ -442,6 +483,7 @@ pub fn summarize(campaign: &Campaign, records: &[RunRecord]) -> Summary {
         plan: campaign.plan.clone(),
         seed: campaign.seed,
         runs: records.len() as u64,
+        policy: campaign.policy,
         activities,
         pairs: pairs(campaign, &records),
         lowest_soc: distribution(&lowest),

@@ -181,6 +181,14 @@ impl Default for FlexOptions {
     }
 }
 
+/// The free slack of placed activity `a` alone (`None` when it is not placed):
+/// `(phase 1 only, every check)`, as [`FlexActivity`] reports them. One replay of
+/// the schedule after its step: what an app asks for the selected activity.
+pub fn free_slack_of(sched: &Schedule, a: usize) -> Option<(IntervalSet, IntervalSet)> {
+    let placed = sched.placement(a)?;
+    Some(slack::free_slack(sched, a, placed))
+}
+
 /// The flexible form of `sched`, a schedule of `plan`, with free slack.
 pub fn flex(plan: &Plan, sched: &Schedule) -> Flex {
     flex_with(plan, sched, FlexOptions::default())
@@ -269,7 +277,12 @@ pub fn flex_with(plan: &Plan, sched: &Schedule, opts: FlexOptions) -> Flex {
             let (lead, off) = disp.leader[s];
             // The origin's bounds are `lb`/`ub`; the activity's own end follows its
             // start.
-            let keep = |b: &Bound| b.event != TimePoint::Origin && !is_own(b.event, a);
+            // Members of its own rigid component follow it: they are not bounds.
+            let keep = |b: &Bound| {
+                b.event != TimePoint::Origin
+                    && !is_own(b.event, a)
+                    && index_of(&net, b.event).is_none_or(|x| disp.leader[x].0 != s)
+            };
             if lead != s && lead != 0 {
                 // Rigid with its leader: it happens exactly `off` after it.
                 let b = Bound {

@@ -305,6 +305,7 @@ pub fn execution_document(
                             let (name, by) = match guard {
                                 Guard::Dependency(b) => ("dependency", id(b)),
                                 Guard::Resource(b) => ("resource", id(b)),
+                                Guard::Skipped => ("skip_condition", String::new()),
                                 Guard::State(s, v) => {
                                     let (state, def) = plan
                                         .states
@@ -325,7 +326,7 @@ pub fn execution_document(
                                 event: "held",
                                 activity: id(activity),
                                 guard: Some(name),
-                                by: Some(by),
+                                by: (!by.is_empty()).then_some(by),
                             }
                         }
                     })

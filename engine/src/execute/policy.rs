@@ -1,0 +1,275 @@
+//! Execution policies beside onboard replanning (issue 12): `fixed`, every
+//! activity at its scheduled time like a time-tagged sequence, and `dispatch`, the
+//! flexible plan executed by its start and skip conditions. Neither reschedules:
+//! the schedule (and its flexible form) is made once, at `horizon.start`, and the
+//! generated awake and heating periods run as scheduled.
+
+use std::collections::BTreeMap;
+
+use super::{
+    Actuals, Cycle, Event, ExecuteOptions, Execution, Sim, Started, Trigger, end_of, guard,
+};
+use crate::error::Error;
+use crate::flex::{Flex, FlexOptions, TimePoint, flex_with};
+use crate::model::Plan;
+use crate::scheduler::{Problem, RunOutcomes, run_outcomes, schedule};
+
+/// How activities are started while the plan executes.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    PartialOrd,
+    Ord,
+    Hash,
+    serde::Serialize,
+    serde::Deserialize,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum Policy {
+    /// The onboard scheduler runs again at every cycle (`spec/execution.md`).
+    #[default]
+    Replan,
+    /// Every activity at its scheduled start, skipped if the guard does not let it
+    /// start then.
+    Fixed,
+    /// The flexible schedule: each activity by its start and skip conditions.
+    Dispatch,
+}
+
+impl Policy {
+    /// The name on the command line and in documents.
+    pub fn name(self) -> &'static str {
+        match self {
+            Policy::Replan => "replan",
+            Policy::Fixed => "fixed",
+            Policy::Dispatch => "dispatch",
+        }
+    }
+
+    /// Whether this is the default, [`Policy::Replan`].
+    pub fn is_replan(&self) -> bool {
+        *self == Policy::Replan
+    }
+}
+
+/// What a non-replanning policy needs once per plan: the schedule's outcomes and,
+/// for dispatch, the flexible form.
+#[derive(Clone, Debug)]
+pub(crate) struct Prepared {
+    outcomes: RunOutcomes,
+    flex: Option<Flex>,
+}
+
+impl Prepared {
+    pub(crate) fn new(plan: &Plan, policy: Policy) -> Result<Self, Error> {
+        let outcomes = run_outcomes(plan)?;
+        let flex = if policy == Policy::Dispatch {
+            let sched = schedule(plan)?;
+            Some(flex_with(plan, &sched, FlexOptions { free_slack: false }))
+        } else {
+            None
+        };
+        Ok(Self { outcomes, flex })
+    }
+}
+
+/// One execution under `policy` (not [`Policy::Replan`]).
+pub(crate) fn run(
+    problem: &Problem,
+    plan: &Plan,
+    prepared: &Prepared,
+    actuals: &Actuals,
+    policy: Policy,
+    options: ExecuteOptions,
+) -> Execution {
+    let mut sim = Sim::new(problem, plan, actuals);
+    let events = match (&prepared.flex, policy) {
+        (Some(flex), Policy::Dispatch) => dispatch(problem, plan, flex, &mut sim),
+        _ => fixed(problem, plan, prepared, &mut sim),
+    };
+    // The generated periods run as scheduled.
+    let out = &prepared.outcomes;
+    sim.record.awake.extend(out.awake.iter().copied());
+    for &(zone, start, end, _) in &out.preheats {
+        sim.record
+            .heat
+            .push((zone, start, end, problem.zones[zone].preheat));
+    }
+    let n = plan.activities.len();
+    sim.cycles.push(Cycle {
+        time: problem.h0,
+        trigger: Trigger::Start,
+        plan: (!options.outcomes_only).then(|| plan.clone()),
+        soc: problem.soc0,
+        placements: out.placements.clone(),
+        activity_of: (0..n).collect(),
+        dropped: Vec::new(),
+        events,
+    });
+    sim.finish(problem.clone(), plan)
+}
+
+/// Starts activity `a` at `s` for its scheduled `planned` seconds.
+fn start(problem: &Problem, plan: &Plan, sim: &mut Sim, a: usize, s: i64, planned: i64) {
+    let seq = sim.runs.iter().flatten().count();
+    let (end, aborted) = end_of(plan, a, s, planned, sim.actual[a]);
+    sim.runs[a] = Some(Started {
+        start: s,
+        end,
+        planned_end: s + planned,
+        aborted,
+        cycle: 0,
+        seq,
+    });
+    sim.record.activity(problem, a, s, end);
+}
+
+/// Every activity at its scheduled start, in time then step order, if the guard
+/// lets it start then; otherwise it does not run.
+fn fixed(problem: &Problem, plan: &Plan, prepared: &Prepared, sim: &mut Sim) -> Vec<Event> {
+    let out = &prepared.outcomes;
+    let mut due: Vec<(i64, usize, usize, i64)> = out
+        .placements
+        .iter()
+        .enumerate()
+        .filter_map(|(a, p)| p.map(|(s, e)| (s, out.step_of[a], a, e - s)))
+        .collect();
+    due.sort_unstable();
+    let mut events = Vec::new();
+    for (s, _, a, planned) in due {
+        if let Some(g) = guard(problem, plan, a, s, &sim.runs) {
+            events.push(Event::Held {
+                activity: a,
+                time: s,
+                guard: g,
+            });
+            continue;
+        }
+        start(problem, plan, sim, a, s, planned);
+        events.push(Event::Started {
+            activity: a,
+            time: s,
+        });
+    }
+    events
+}
+
+/// The flexible schedule by its conditions: in time order, the next event is the
+/// earliest actual end of a running activity or the earliest start an enabled
+/// activity's condition allows (ends first at the same time). An activity is
+/// enabled once every event of its `after` list with a non-negative offset has
+/// happened (one with a negative offset binds only if its event happened first)
+/// and every activity it waits for has started; it starts at `max(lb, after..., min(nom, ub,
+/// within...))` (and not before a wait's time unless that activity has ended),
+/// and is skipped when that is later than `min(ub, within...)` or the guard does
+/// not let it start. An activity some event of whose `after` list never happens
+/// does not run.
+fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<Event> {
+    let mut times: BTreeMap<TimePoint, i64> = BTreeMap::new();
+    times.insert(TimePoint::Origin, problem.h0);
+    let waits: Vec<crate::flex::Wait> = match &flex.controllability {
+        crate::flex::Controllability::Controllable { waits, .. } => waits.clone(),
+        _ => Vec::new(),
+    };
+    let mut pending: Vec<usize> = (0..flex.activities.len()).collect();
+    // Running activities whose end has not happened: (end, activity).
+    let mut running: Vec<(i64, usize)> = Vec::new();
+    let mut events = Vec::new();
+    loop {
+        // The earliest allowed start of each enabled pending activity.
+        let mut next: Option<(i64, usize, usize)> = None; // (time, step, index)
+        let mut skipped = Vec::new();
+        for (i, &j) in pending.iter().enumerate() {
+            let fa = &flex.activities[j];
+            let a = fa.activity;
+            let c = &fa.condition;
+            let mut t = fa.start.lb;
+            let mut enabled = true;
+            for b in &c.after {
+                match times.get(&b.event) {
+                    Some(&x) => t = t.max(x + b.offset),
+                    // A bound at or after the event needs it to have happened; one
+                    // before it binds only if it happened first.
+                    None if b.offset >= 0 => enabled = false,
+                    None => {}
+                }
+            }
+            let mut latest = fa.start.ub;
+            for b in &c.within {
+                if let Some(&x) = times.get(&b.event) {
+                    latest = latest.min(x + b.offset);
+                }
+            }
+            for w in waits.iter().filter(|w| w.activity == a) {
+                match (
+                    times.get(&TimePoint::Start(w.on)),
+                    times.get(&TimePoint::End(w.on)),
+                ) {
+                    // Ended: nothing to wait for.
+                    (_, Some(_)) => {}
+                    (Some(&s), None) => t = t.max(s + w.offset),
+                    (None, None) => enabled = false,
+                }
+            }
+            if !enabled {
+                continue;
+            }
+            let t = t.max(fa.start.nom.min(latest));
+            if t > latest {
+                skipped.push((i, a, latest));
+                continue;
+            }
+            let key = (t, problem.step_of[a], i);
+            if next.is_none_or(|n| key < n) {
+                next = Some(key);
+            }
+        }
+        if !skipped.is_empty() {
+            for &(i, a, latest) in skipped.iter().rev() {
+                pending.remove(i);
+                events.push(Event::Held {
+                    activity: a,
+                    time: latest,
+                    guard: super::Guard::Skipped,
+                });
+            }
+            continue;
+        }
+        let end = running.iter().copied().min();
+        match (end, next) {
+            (Some((e, a)), n) if n.is_none_or(|n| e <= n.0) => {
+                times.insert(TimePoint::End(a), e);
+                running.retain(|&(_, b)| b != a);
+            }
+            (_, Some((t, _, i))) => {
+                let j = pending.remove(i);
+                let fa = &flex.activities[j];
+                let a = fa.activity;
+                if let Some(g) = guard(problem, plan, a, t, &sim.runs) {
+                    events.push(Event::Held {
+                        activity: a,
+                        time: t,
+                        guard: g,
+                    });
+                    continue;
+                }
+                let planned = fa.end.nom - fa.start.nom;
+                start(problem, plan, sim, a, t, planned);
+                events.push(Event::Started {
+                    activity: a,
+                    time: t,
+                });
+                times.insert(TimePoint::Start(a), t);
+                if let Some(r) = sim.runs[a] {
+                    running.push((r.end, a));
+                }
+            }
+            _ => break,
+        }
+    }
+    events
+}
