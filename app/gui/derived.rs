@@ -851,4 +851,27 @@ mod tests {
             "read back only for its key"
         );
     }
+
+    #[test]
+    fn a_flexible_schedule_of_an_older_revision_is_dropped() {
+        let plan = plan();
+        let analysis = Analysis::of(&plan).expect("scheduled");
+        let mut cache = FlexCache::default();
+        cache.request(&plan, &analysis, 0, true);
+        assert!(cache.busy());
+        // One worker at a time: a request for a newer revision waits.
+        cache.request(&plan, &analysis, 1, true);
+        for _ in 0..2000 {
+            cache.reap(1).expect("worker result");
+            if !cache.busy() {
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        assert!(cache.get(0).is_none() && cache.get(1).is_none());
+        cache.request(&plan, &analysis, 1, false);
+        let flex = cache.get(1).expect("derived").as_ref().expect("computed");
+        assert_eq!(**flex, solscope_engine::flex(&plan, &analysis.schedule));
+        assert!(cache.get(0).is_none(), "read back only for its revision");
+    }
 }

@@ -283,3 +283,45 @@ impl From<Schedule> for Analysis {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An activity of `duration` seconds with one window `[1000, 2000]`
+    /// (cutoff 2600) and one `[5000, 6000]`.
+    fn activity(duration: serde_json::Value) -> solscope_engine::Activity {
+        serde_json::from_value(serde_json::json!({
+            "id": "a",
+            "priority": 1,
+            "duration": duration,
+            "windows": [
+                {"start": 1000, "end": 2000, "cutoff": 2600},
+                {"start": 5000, "end": 6000}
+            ]
+        }))
+        .expect("activity")
+    }
+
+    #[test]
+    fn a_pin_keeps_the_cutoff_of_its_window_while_it_still_fits() {
+        let act = activity(serde_json::json!(500));
+        let (w, dropped) = pin_window(&act, Some(1500), 2100);
+        assert_eq!(
+            (w.start, w.end, w.preferred, w.cutoff, dropped),
+            (2100, 2100, Some(2100), Some(2600), None)
+        );
+        // Past it: the cutoff goes, and the caller is told which.
+        let (w, dropped) = pin_window(&act, Some(1500), 2200);
+        assert_eq!((w.cutoff, dropped), (None, Some(2600)));
+        // An expanding activity keeps it while its shortest duration fits.
+        let act = activity(serde_json::json!({"min": 300, "max": 900}));
+        assert_eq!(pin_window(&act, Some(1500), 2300).0.cutoff, Some(2600));
+        // Placed in the window without a cutoff, or not placed: none.
+        assert_eq!(
+            pin_window(&act, Some(5500), 100),
+            (pin_window(&act, None, 100).0, None)
+        );
+        assert_eq!(pin_window(&act, None, 100).0.cutoff, None);
+    }
+}
