@@ -398,6 +398,76 @@ fn index_of(net: &network::Network, e: TimePoint) -> Option<usize> {
     }
 }
 
+/// A not-controllable verdict reduced to a minimal conflict (deletion filter):
+/// the input edges and links its paths used, each dropped in turn when the
+/// network of the rest is still not controllable. Controllable verdicts pass
+/// through.
+fn minimal(n: usize, ordinary: &[(usize, usize, i64)], links: &[Link], dc: Dc) -> Dc {
+    let Dc::Not {
+        events,
+        mut edges,
+        links: mut used,
+    } = dc
+    else {
+        return dc;
+    };
+    let not_dc = |e: &[usize], l: &[usize]| {
+        let sub: Vec<(usize, usize, i64)> = e.iter().map(|&i| ordinary[i]).collect();
+        let lk: Vec<Link> = l.iter().map(|&k| links[k]).collect();
+        matches!(controllable::check(n, &sub, &lk), Dc::Not { .. })
+    };
+    // The paths found may not close a conflict on their own: then start from
+    // every edge among the events they touch, and every link (reported as found
+    // if even that is controllable).
+    if !not_dc(&edges, &used) {
+        let mut touched = vec![false; n];
+        touched[0] = true;
+        for &i in &edges {
+            touched[ordinary[i].0] = true;
+            touched[ordinary[i].1] = true;
+        }
+        for &k in &used {
+            touched[links[k].start] = true;
+            touched[links[k].end] = true;
+        }
+        let wider: Vec<usize> = (0..ordinary.len())
+            .filter(|&i| touched[ordinary[i].0] && touched[ordinary[i].1])
+            .collect();
+        let all: Vec<usize> = (0..links.len()).collect();
+        if not_dc(&wider, &all) {
+            edges = wider;
+            used = all;
+        }
+    }
+    if not_dc(&edges, &used) {
+        let mut i = 0;
+        while i < edges.len() {
+            let mut rest = edges.clone();
+            rest.remove(i);
+            if not_dc(&rest, &used) {
+                edges = rest;
+            } else {
+                i += 1;
+            }
+        }
+        let mut k = 0;
+        while k < used.len() {
+            let mut rest = used.clone();
+            rest.remove(k);
+            if not_dc(&edges, &rest) {
+                used = rest;
+            } else {
+                k += 1;
+            }
+        }
+    }
+    Dc::Not {
+        events,
+        edges,
+        links: used,
+    }
+}
+
 /// Whether `e` is one of activity `a`'s own events.
 fn is_own(e: TimePoint, a: usize) -> bool {
     matches!(e, TimePoint::Start(x) | TimePoint::End(x) if x == a)
@@ -439,7 +509,14 @@ fn controllability(
     let dc = std::thread::scope(|scope| {
         std::thread::Builder::new()
             .stack_size(1 << 30)
-            .spawn_scoped(scope, || controllable::check(n, &ordinary, &links))
+            .spawn_scoped(scope, || {
+                minimal(
+                    n,
+                    &ordinary,
+                    &links,
+                    controllable::check(n, &ordinary, &links),
+                )
+            })
             .map(|h| h.join())
     });
     let dc = match dc {
