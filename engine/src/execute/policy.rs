@@ -129,7 +129,8 @@ fn start(problem: &Problem, plan: &Plan, sim: &mut Sim, a: usize, s: i64, planne
 }
 
 /// Every activity at its scheduled start, in time then step order, if the guard
-/// lets it start then; otherwise it does not run.
+/// lets it start then (once the others due at that instant have started);
+/// otherwise it does not run.
 fn fixed(problem: &Problem, plan: &Plan, prepared: &Prepared, sim: &mut Sim) -> Vec<Event> {
     let out = &prepared.outcomes;
     let mut due: Vec<(i64, usize, usize, i64)> = out
@@ -140,20 +141,45 @@ fn fixed(problem: &Problem, plan: &Plan, prepared: &Prepared, sim: &mut Sim) -> 
         .collect();
     due.sort_unstable();
     let mut events = Vec::new();
-    for (s, _, a, planned) in due {
-        if let Some(g) = guard(problem, plan, a, s, &sim.runs) {
-            events.push(Event::Held {
-                activity: a,
-                time: s,
-                guard: g,
-            });
-            continue;
+    // Activities due at the same time start together: one held back (a required
+    // state another sets at that instant, a dependency ending then) is tried again
+    // after the others of its instant.
+    let mut i = 0;
+    while i < due.len() {
+        let t = due[i].0;
+        let mut group: Vec<(usize, i64)> = due[i..]
+            .iter()
+            .take_while(|x| x.0 == t)
+            .map(|x| (x.2, x.3))
+            .collect();
+        i += group.len();
+        loop {
+            let before = group.len();
+            let mut held = Vec::new();
+            for &(a, planned) in &group {
+                match guard(problem, plan, a, t, &sim.runs) {
+                    Some(g) => held.push((a, planned, g)),
+                    None => {
+                        start(problem, plan, sim, a, t, planned);
+                        events.push(Event::Started {
+                            activity: a,
+                            time: t,
+                        });
+                    }
+                }
+            }
+            group = held.iter().map(|&(a, p, _)| (a, p)).collect();
+            if group.is_empty() || group.len() == before {
+                for (a, _, g) in held {
+                    events.push(Event::Held {
+                        activity: a,
+                        time: t,
+                        guard: g,
+                    });
+                }
+                break;
+            }
         }
-        start(problem, plan, sim, a, s, planned);
-        events.push(Event::Started {
-            activity: a,
-            time: s,
-        });
     }
     events
 }
@@ -166,7 +192,7 @@ fn fixed(problem: &Problem, plan: &Plan, prepared: &Prepared, sim: &mut Sim) -> 
 /// and every activity it waits for has started; it starts at `max(lb, after..., min(nom, ub,
 /// within...))` (and not before a wait's time unless that activity has ended),
 /// and is skipped when that is later than `min(ub, within...)` or the guard does
-/// not let it start. An activity some event of whose `after` list never happens
+/// not let it start (once the others starting at that instant have started). An activity some event of whose `after` list never happens
 /// does not run.
 fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<Event> {
     let mut times: BTreeMap<TimePoint, i64> = BTreeMap::new();
@@ -179,6 +205,9 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
     // Running activities whose end has not happened: (end, activity).
     let mut running: Vec<(i64, usize)> = Vec::new();
     let mut events = Vec::new();
+    // Held back by the guard at an instant when others may still start: (index,
+    // activity, time, guard).
+    let mut deferred: Vec<(usize, usize, i64, super::Guard)> = Vec::new();
     loop {
         // The earliest allowed start of each enabled pending activity.
         let mut next: Option<(i64, usize, usize)> = None; // (time, step, index)
@@ -240,6 +269,25 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
             continue;
         }
         let end = running.iter().copied().min();
+        // Held back at an earlier instant than the next event: final.
+        let now = match (end, next) {
+            (Some((e, _)), Some((t, ..))) => e.min(t),
+            (Some((e, _)), None) => e,
+            (None, Some((t, ..))) => t,
+            (None, None) => i64::MAX,
+        };
+        deferred.retain(|&(_, a, t, g)| {
+            if t < now {
+                events.push(Event::Held {
+                    activity: a,
+                    time: t,
+                    guard: g,
+                });
+                false
+            } else {
+                true
+            }
+        });
         match (end, next) {
             (Some((e, a)), n) if n.is_none_or(|n| e <= n.0) => {
                 times.insert(TimePoint::End(a), e);
@@ -250,11 +298,8 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
                 let fa = &flex.activities[j];
                 let a = fa.activity;
                 if let Some(g) = guard(problem, plan, a, t, &sim.runs) {
-                    events.push(Event::Held {
-                        activity: a,
-                        time: t,
-                        guard: g,
-                    });
+                    // Tried again if another activity starts at this instant.
+                    deferred.push((j, a, t, g));
                     continue;
                 }
                 let planned = fa.end.nom - fa.start.nom;
@@ -267,9 +312,20 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
                 if let Some(r) = sim.runs[a] {
                     running.push((r.end, a));
                 }
+                for (j, ..) in deferred.drain(..) {
+                    pending.push(j);
+                }
+                pending.sort_unstable();
             }
             _ => break,
         }
+    }
+    for (_, a, t, g) in deferred {
+        events.push(Event::Held {
+            activity: a,
+            time: t,
+            guard: g,
+        });
     }
     events
 }
