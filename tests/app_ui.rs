@@ -1092,3 +1092,32 @@ fn the_flexible_schedule_is_derived_off_the_frame_per_revision() {
         (70_000, 70_000, 70_000)
     );
 }
+
+#[test]
+fn an_activity_fixed_in_time_outlines_no_unrelated_neighbours() {
+    let view = View {
+        select: Some("uhf_mro_411_eve".into()),
+        ..View::default()
+    };
+    let h = harness(
+        SolscopeApp::with_default_plan().unwrap(),
+        SNAPSHOT_SIZE.into(),
+        &view,
+    )
+    .unwrap();
+    let uhf = index(h.state(), "uhf_mro_411_eve");
+    // The engine lists every activity adjacent to the horizon start for a pass
+    // rigid with it.
+    let listed = &h.state().flex().unwrap().activity(uhf).unwrap().neighbours;
+    assert!(listed.len() > 20, "{}", listed.len());
+    assert!(
+        h.query_by_label(
+            "May start from 4200 (19:10:00) to 4200 (19:10:00) (0 s earlier, 0 s later)."
+        )
+        .is_some()
+    );
+    assert!(
+        h.query_by_label("Dispatchable neighbours (click to select)")
+            .is_none()
+    );
+}

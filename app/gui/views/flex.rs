@@ -4,8 +4,8 @@
 
 use eframe::egui::{self, Painter, Pos2, Rect, RichText, Stroke};
 use solscope_engine::{
-    Bound, Controllability, Flex, FlexActivity, IntervalSet, constraint_line, format_span,
-    time_point_name,
+    Bound, Controllability, Flex, FlexActivity, IntervalSet, TimePoint, constraint_line,
+    format_span, time_point_name,
 };
 
 use super::Model;
@@ -58,6 +58,47 @@ pub fn skip_line(m: &Model<'_>, fa: &FlexActivity) -> String {
         "Skipped once the earliest of {ub} and {} has passed without it starting.",
         others.join(", ")
     )
+}
+
+/// Activity `a`'s neighbours in the minimum dispatchable network, as the
+/// engine lists them (`FlexActivity::neighbours`), except for an activity fixed
+/// in time (rigid with the horizon start): the engine then lists every activity
+/// adjacent to the horizon start, which is every other fixed or bounded one,
+/// and the Gantt would outline half the plan. Such an activity starts on the
+/// clock, so only what is rigidly tied to it is shown.
+pub fn neighbours(flex: &Flex, a: usize) -> Vec<usize> {
+    let Some(fa) = flex.activity(a) else {
+        return Vec::new();
+    };
+    let leader = |e: TimePoint| flex.rigid.iter().find(|r| r.0 == e).map(|r| r.1);
+    if leader(TimePoint::Start(a)) != Some(TimePoint::Origin) {
+        return fa.neighbours.clone();
+    }
+    let own = [TimePoint::Start(a), TimePoint::End(a)];
+    let mut out: Vec<usize> = flex
+        .rigid
+        .iter()
+        .filter(|r| r.1 != TimePoint::Origin && own.contains(&r.1))
+        .filter_map(|r| activity_of(r.0))
+        .chain(
+            flex.rigid
+                .iter()
+                .filter(|r| r.1 != TimePoint::Origin && own.contains(&r.0))
+                .filter_map(|r| activity_of(r.1)),
+        )
+        .filter(|&b| b != a)
+        .collect();
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// The activity of an event (none for the horizon start).
+fn activity_of(e: TimePoint) -> Option<usize> {
+    match e {
+        TimePoint::Origin => None,
+        TimePoint::Start(b) | TimePoint::End(b) => Some(b),
+    }
 }
 
 /// Where a start lies in an activity's slack.
@@ -323,10 +364,11 @@ pub fn flex_section_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Ve
         }
     }
     controllability_ui(ui, m, flex, fa);
-    if !fa.neighbours.is_empty() {
+    let near = neighbours(flex, a);
+    if !near.is_empty() {
         ui.label(RichText::new("Dispatchable neighbours (click to select)").strong());
         ui.horizontal_wrapped(|ui| {
-            for &b in &fa.neighbours {
+            for &b in &near {
                 if ui.link(&m.doc.plan.activities[b].id).clicked() {
                     cmds.push(Command::Select(Some(b)));
                 }

@@ -642,9 +642,9 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
     let pointer = response.hover_pos();
     let flex_layer = m.flex_layer();
     // The selected activity's neighbours in the minimum dispatchable network.
-    let neighbours: &[usize] = match (flex_layer, m.nav.selected) {
-        (Some(f), Some(a)) => f.activity(a).map_or(&[], |fa| fa.neighbours.as_slice()),
-        _ => &[],
+    let neighbours: Vec<usize> = match (flex_layer, m.nav.selected) {
+        (Some(f), Some(a)) => flex::neighbours(f, a),
+        _ => Vec::new(),
     };
     // Where each placed bar is drawn this frame (what a drag picks up).
     let mut drawn: Vec<(usize, Rect)> = Vec::new();
