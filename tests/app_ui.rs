@@ -1121,3 +1121,22 @@ fn an_activity_fixed_in_time_outlines_no_unrelated_neighbours() {
             .is_none()
     );
 }
+
+#[test]
+fn a_controllable_plan_shows_the_waits_of_the_selected_activity() {
+    let mut app = uncertain_drive();
+    let post = index(&app, "post_drive_imaging");
+    app.apply(Command::Select(Some(post)));
+    let h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    for line in [
+        "May start from 4600 (11:16:40) to 9400 (12:36:40) (30 min earlier, 50 min later).",
+        "Starts no earlier than when drive ends.",
+        "Starts no later than 30 min after drive ends.",
+        "Skipped once the earliest of 9400 (12:36:40) and 30 min after drive ends has passed \
+         without it starting.",
+        "Dynamically controllable: every outcome of the uncertain durations can be met.",
+        "Waits until drive ends or 1 h 50 min after it starts.",
+    ] {
+        assert!(h.query_by_label(line).is_some(), "missing: {line}");
+    }
+}
