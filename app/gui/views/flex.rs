@@ -48,15 +48,12 @@ pub fn skip_line(m: &Model<'_>, fa: &FlexActivity) -> String {
     if fa.condition.within.is_empty() {
         return format!("Skipped if it has not started by {ub}.");
     }
-    let others: Vec<String> = fa
-        .condition
-        .within
-        .iter()
-        .map(|b| bound_line(m, b))
-        .collect();
+    let mut times: Vec<String> = vec![ub];
+    times.extend(fa.condition.within.iter().map(|b| bound_line(m, b)));
+    let last = times.pop().unwrap_or_default();
     format!(
-        "Skipped once the earliest of {ub} and {} has passed without it starting.",
-        others.join(", ")
+        "Skipped once the earliest of {} and {last} has passed without it starting.",
+        times.join(", ")
     )
 }
 
