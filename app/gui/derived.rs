@@ -490,18 +490,24 @@ pub type FlexResult = Result<Arc<Flex>, String>;
 /// plans), so with `background` it is computed on a worker thread (one at a
 /// time; a result for an older revision is dropped) and the Gantt draws
 /// without the layer until it is in.
+///
+/// The worker works in two stages: first without free slack (milliseconds: the
+/// whiskers and conditions show at once), then with it (the shading follows).
 #[derive(Debug, Default)]
 pub struct FlexCache {
     done: Option<(u64, FlexResult)>,
-    pending: Option<Job<u64, FlexResult>>,
+    /// The worker: (revision, with free slack).
+    pending: Option<Job<(u64, bool), FlexResult>>,
+    /// What the second stage needs, kept while the first runs.
+    source: Option<(u64, Plan, Analysis)>,
 }
 
-/// The flexible form of `schedule`; a panic in the engine is an error, not a
-/// crash of the app.
-fn compute_flex(plan: &Plan, analysis: &Analysis) -> FlexResult {
+/// The flexible form of `schedule` (with or without free slack); a panic in the
+/// engine is an error, not a crash of the app.
+fn compute_flex(plan: &Plan, analysis: &Analysis, free_slack: bool) -> FlexResult {
     let schedule = &analysis.schedule;
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        solscope_engine::flex(plan, schedule)
+        solscope_engine::flex_with(plan, schedule, solscope_engine::FlexOptions { free_slack })
     }))
     .map(Arc::new)
     .map_err(|_| "Computing the flexible schedule failed (an internal error)".to_string())
@@ -523,10 +529,13 @@ impl FlexCache {
             return;
         }
         if background {
+            self.source = Some((revision, plan.clone(), analysis.clone()));
             let (plan, analysis) = (plan.clone(), analysis.clone());
-            self.pending = Some(Job::spawn(revision, move || compute_flex(&plan, &analysis)));
+            self.pending = Some(Job::spawn((revision, false), move || {
+                compute_flex(&plan, &analysis, false)
+            }));
         } else {
-            self.done = Some((revision, compute_flex(plan, analysis)));
+            self.done = Some((revision, compute_flex(plan, analysis, true)));
         }
     }
 
@@ -539,11 +548,24 @@ impl FlexCache {
         let Some(result) = job.poll() else {
             return Ok(());
         };
-        let current = job.key == revision;
+        let (key, full) = job.key;
+        let current = key == revision;
         self.pending = None;
         match result {
-            Ok(f) if current => self.done = Some((revision, f)),
-            Ok(_) => {}
+            Ok(f) if current => {
+                let ok = f.is_ok();
+                self.done = Some((revision, f));
+                // The first stage is in: the free slack follows.
+                match self.source.take() {
+                    Some((r, plan, analysis)) if !full && ok && r == revision => {
+                        self.pending = Some(Job::spawn((revision, true), move || {
+                            compute_flex(&plan, &analysis, true)
+                        }));
+                    }
+                    _ => {}
+                }
+            }
+            Ok(_) => self.source = None,
             Err(()) if current => {
                 let e =
                     "Computing the flexible schedule failed: the worker stopped without a result";

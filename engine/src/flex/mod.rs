@@ -320,8 +320,11 @@ pub fn flex_with(plan: &Plan, sched: &Schedule, opts: FlexOptions) -> Flex {
             let mut neighbours: Vec<usize> = [s, e]
                 .iter()
                 .flat_map(|&x| {
+                    // An event fixed in time (rigid with the origin) has no
+                    // neighbours through the origin: nothing propagates there.
                     let l = disp.leader[x].0;
-                    adjacent[l]
+                    let via = if l == 0 { x } else { l };
+                    adjacent[via]
                         .iter()
                         .copied()
                         .chain(adjacent[x].iter().copied())
