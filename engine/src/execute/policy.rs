@@ -115,7 +115,9 @@ pub(crate) fn run(
 
 /// Starts activity `a` at `s` for its scheduled `planned` seconds.
 fn start(problem: &Problem, plan: &Plan, sim: &mut Sim, a: usize, s: i64, planned: i64) {
-    let seq = sim.runs.iter().flatten().count();
+    // Same-time effects apply in the schedule's step order, as the schedule
+    // that placed them assumed (no cycle reorders them).
+    let seq = problem.step_of[a];
     let (end, aborted) = end_of(plan, a, s, planned, sim.actual[a]);
     sim.runs[a] = Some(Started {
         start: s,
