@@ -5,7 +5,8 @@
 //! potential (the schedule satisfies every edge, so reduced lengths are >= 0).
 //!
 //! Rigid components (events whose distance is fixed: zero-length cycles, whose
-//! edges all have reduced length 0) collapse onto a leader, the earliest member;
+//! edges all have reduced length 0) collapse onto a leader, the earliest member
+//! (ties: the earlier step);
 //! members are linked to it and happen at its time plus their offset. On the
 //! collapsed graph, an edge `A -> C` of the
 //! all-pairs graph is dominated when some `B` on a shortest path from `A` to `C`
@@ -44,13 +45,17 @@ pub(crate) fn bounds(h0: i64, fwd: &Graph, rev: &Graph, nominal: &[i64]) -> (Vec
 }
 
 /// The minimum dispatchable network of the graph `fwd` (event 0 the origin at
-/// `h0`), given its bounds and a feasible assignment `nominal`.
+/// `h0`), given its bounds and a feasible assignment `nominal`. A rigid
+/// component's leader is its earliest member, ties going to the lower `tie` (the
+/// step of the event's activity: dispatch then starts simultaneous activities in
+/// the order the schedule placed them).
 pub(crate) fn dispatchable(
     h0: i64,
     fwd: &Graph,
     nominal: &[i64],
     lb: &[i64],
     ub: &[i64],
+    tie: &[usize],
 ) -> Dispatchable {
     let n = fwd.len();
     let comp = components(fwd, |u, v, w| w + nominal[u] - nominal[v] == 0);
@@ -60,7 +65,7 @@ pub(crate) fn dispatchable(
     for e in 0..n {
         let c = comp[e];
         let l = lead[c];
-        if l == usize::MAX || (nominal[e], e) < (nominal[l], l) {
+        if l == usize::MAX || (nominal[e], tie[e], e) < (nominal[l], tie[l], l) {
             lead[c] = e;
         }
     }

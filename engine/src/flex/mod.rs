@@ -230,7 +230,16 @@ pub fn flex_with(plan: &Plan, sched: &Schedule, opts: FlexOptions) -> Flex {
             (l, u, g)
         }
     };
-    let disp = dispatchable(h0, &graph, &potential, &dlb, &dub);
+    let tie: Vec<usize> = (0..n)
+        .map(|e| {
+            if e == 0 {
+                0
+            } else {
+                sched.problem.step_of[net.placed[(e - 1) / 2]]
+            }
+        })
+        .collect();
+    let disp = dispatchable(h0, &graph, &potential, &dlb, &dub, &tie);
     let controllability = match controllability {
         Controllability::Controllable { waits, .. } => Controllability::Controllable {
             tightened: (0..net.placed.len())
