@@ -43,8 +43,9 @@ pub(crate) fn placement_after_edit(
     a: usize,
 ) -> Result<Option<(i64, i64)>, Error> {
     let problem = super::Problem::compile(plan)?;
-    let run = Run::up_to(prev, &problem, a);
-    let placed = run.placements[a];
+    let until = problem.step_of.get(a).copied().unwrap_or(0);
+    let run = Run::up_to(prev, &problem, until, Some(a));
+    let placed = run.placements.get(a).copied().flatten();
     #[cfg(debug_assertions)]
     if let Ok(full) = super::schedule(plan) {
         debug_assert_eq!(placed, full.placement(a), "the outcome-only run disagrees");
@@ -52,34 +53,60 @@ pub(crate) fn placement_after_edit(
     Ok(placed)
 }
 
-/// Where each activity is placed in the run of the edited `plan`, when activity
-/// `a` is placed in it; `None` when `a` is not (only the steps up to `a`'s are
-/// then run). `prev` is the run of the plan before the edit.
+/// Where each activity is placed in the run of the edited `plan`, when one of
+/// the activities `targets` is placed in it; `None` when none is (only the steps
+/// up to the last target's are then run). `prev` is the run of the plan before
+/// the edit.
+///
+/// One run answers every target: the suggestion verifier asks once for an edit
+/// that several failures propose, and once, with every activity as a target, for
+/// an edit whose whole run it keeps. With a single target `a`, the steps after
+/// `a`'s keep their original placement where `a`'s new placement can only take
+/// starts away from them (the module docs).
 pub(crate) fn placements_if_placed(
     prev: &Schedule,
     plan: &Plan,
-    a: usize,
+    targets: &[usize],
 ) -> Result<Option<Placements>, Error> {
     let problem = super::Problem::compile(plan)?;
+    let until = targets
+        .iter()
+        .filter_map(|&t| problem.step_of.get(t).copied())
+        .max()
+        .unwrap_or(0);
+    let single = match targets {
+        &[a] => Some(a),
+        _ => None,
+    };
     let Run {
         mut state,
         mut placements,
         placed_a,
         done,
-    } = Run::up_to(prev, &problem, a);
-    let Some(placed_a) = placed_a else {
-        return Ok(None);
+    } = Run::up_to(prev, &problem, until, single);
+    let any_placed = match single {
+        Some(_) => placed_a.is_some(),
+        None => targets
+            .iter()
+            .any(|&t| placements.get(t).is_some_and(Option::is_some)),
     };
+    if !any_placed {
+        return Ok(None);
+    }
     // The original run's state, stepped alongside while only `a`'s placement
     // differs (the same step order and every other activity unchanged).
-    let drain = placed_a.energy;
-    let mut old = (problem.differs_only_in(&prev.problem, a) && restrictive(&problem, &placed_a))
-        .then(|| {
-            (
+    let drain = placed_a.as_ref().map_or(0, |ev| ev.energy);
+    let mut old = match (single, placed_a) {
+        (Some(a), Some(placed_a))
+            if problem.differs_only_in(&prev.problem, a) && restrictive(&problem, &placed_a) =>
+        {
+            Some((
                 State::replayed(&prev.problem, &prev.steps[..done]),
                 placed_a.placement,
-            )
-        });
+            ))
+        }
+        _ => None,
+    };
     for (k, &j) in problem.order.iter().enumerate().skip(done) {
         let step_no = k + 1;
         if let Some((old_state, pa)) = old.as_mut() {
@@ -186,21 +213,20 @@ pub fn run_outcomes(plan: &Plan) -> Result<RunOutcomes, Error> {
     })
 }
 
-/// The state and placements of an outcome-only run up to activity `a`'s step.
+/// The state and placements of an outcome-only run up to some step.
 struct Run<'p> {
     state: State<'p>,
     placements: Placements,
-    /// `a`'s evaluation, when it is placed.
+    /// The evaluation of the activity looked at (`a`), when it is placed.
     placed_a: Option<Evaluated>,
-    /// Steps run (`a`'s is the last).
+    /// Steps run.
     done: usize,
 }
 
 impl<'p> Run<'p> {
-    /// Runs `problem` (an edit of `prev`'s) up to `a`'s step, replaying the
-    /// steps of `prev` the edit cannot change.
-    fn up_to(prev: &Schedule, problem: &'p super::Problem, a: usize) -> Self {
-        let until = problem.step_of.get(a).copied().unwrap_or(0);
+    /// Runs `problem` (an edit of `prev`'s) up to step `until`, replaying the
+    /// steps of `prev` the edit cannot change; keeps the evaluation of `a`.
+    fn up_to(prev: &Schedule, problem: &'p super::Problem, until: usize, a: Option<usize>) -> Self {
         let common = prev.problem.common_steps(problem).min(until);
         let mut state = State::new(problem);
         let mut placements = vec![None; problem.acts.len()];
@@ -208,7 +234,7 @@ impl<'p> Run<'p> {
         for step in &prev.steps[..common] {
             placements[step.activity] = step.outcome.placement();
             let ev = state.replay(step);
-            if step.activity == a {
+            if Some(step.activity) == a {
                 placed_a = ev;
             }
         }
@@ -228,7 +254,7 @@ impl<'p> Run<'p> {
                     placements[j],
                     "a step the relaxation {relaxed:?} keeps changed: {before:?}"
                 );
-                if j == a {
+                if Some(j) == a {
                     placed_a = ev;
                 }
                 continue;
@@ -239,7 +265,7 @@ impl<'p> Run<'p> {
             if let Some(ev) = ev {
                 placements[j] = placement;
                 state.apply(k + 1, &ev.placement);
-                if j == a {
+                if Some(j) == a {
                     placed_a = Some(ev);
                 }
             }
