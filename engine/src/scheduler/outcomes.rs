@@ -23,6 +23,10 @@
 //!   time that `j` cannot use), `j`'s feasible set can only shrink, so if `j`'s
 //!   original placement still fits it is still the choice, and if `j` failed it
 //!   still fails. From the first step whose outcome changes, steps are searched.
+//!   The same holds when the edit also moves `a` in the step order (a new
+//!   priority) and `a` failed in the original run: its original step changed
+//!   nothing, so the others' steps, in their unchanged order, see only `a`'s new
+//!   placement.
 //!
 //! Debug builds compare every outcome with the full scheduler's.
 
@@ -94,23 +98,33 @@ pub(crate) fn placements_if_placed(
         return Ok(None);
     }
     // The original run's state, stepped alongside while only `a`'s placement
-    // differs (the same step order and every other activity unchanged).
+    // differs: every other activity unchanged, in the same order, and `a` either
+    // at its own step or, when it failed in the original run (so its step there
+    // changed nothing), moved earlier or later in the order (a new priority).
+    // Steps are matched by activity: `orig[j]` is `j`'s index in `prev.steps`.
+    let orig = |j: usize| prev.problem.step_of[j] - 1;
     let drain = placed_a.as_ref().map_or(0, |ev| ev.energy);
     let mut old = match (single, placed_a) {
         (Some(a), Some(placed_a))
-            if problem.differs_only_in(&prev.problem, a) && restrictive(&problem, &placed_a) =>
+            if (problem.differs_only_in(&prev.problem, a)
+                || (prev.placement(a).is_none() && moved_only(&prev.problem, &problem, a)))
+                && restrictive(&problem, &placed_a) =>
         {
-            Some((
-                State::replayed(&prev.problem, &prev.steps[..done]),
-                placed_a.placement,
-            ))
+            // The original steps of the activities run so far, in their order.
+            let mut run: Vec<usize> = problem.order[..done].iter().map(|&j| orig(j)).collect();
+            run.sort_unstable();
+            let mut old_state = State::new(&prev.problem);
+            for i in run {
+                old_state.replay(&prev.steps[i]);
+            }
+            Some((old_state, placed_a.placement))
         }
         _ => None,
     };
     for (k, &j) in problem.order.iter().enumerate().skip(done) {
         let step_no = k + 1;
         if let Some((old_state, pa)) = old.as_mut() {
-            let before = &prev.steps[k];
+            let before = &prev.steps[orig(j)];
             if !interacts(&problem, pa, j) {
                 let old_ev = old_state.replay(before);
                 match (before.outcome.placement(), old_ev) {
@@ -120,7 +134,7 @@ pub(crate) fn placements_if_placed(
                         // by at most the charge `a`'s placement drains (a capped
                         // integrator falls by at most the extra drain), so a
                         // margin at least that large needs no energy check.
-                        let soc = prev.margins()[k].is_none_or(|m| m < drain);
+                        let soc = prev.margins()[orig(j)].is_none_or(|m| m < drain);
                         if let Some(ev) = state.fitting_inner(j, s, e - s, &Scope::default(), soc) {
                             if !same_generated(&ev.placement, &old_ev.placement) {
                                 old = None;
@@ -139,7 +153,7 @@ pub(crate) fn placements_if_placed(
         let ev = outcome_step(&state, j, step_no);
         let placement = ev.as_ref().map(|ev| span(&ev.placement));
         if let Some((old_state, _)) = old.as_mut() {
-            let before = &prev.steps[k];
+            let before = &prev.steps[orig(j)];
             let old_ev = old_state.replay(before);
             let same = placement == before.outcome.placement()
                 && match (&ev, &old_ev) {
@@ -435,6 +449,25 @@ fn ideal(state: &State<'_>, a: usize) -> Option<Evaluated> {
 /// `[start, end)` of a placement.
 fn span(p: &Placement) -> (i64, i64) {
     (p.start, p.start + p.duration)
+}
+
+/// Whether `new` is `old` with only activity `a` changed, possibly at another
+/// place in the step order: the same plan-wide parameters, every other activity
+/// the same and in the same relative order.
+fn moved_only(old: &super::Problem, new: &super::Problem, a: usize) -> bool {
+    old.acts.len() == new.acts.len()
+        && old
+            .acts
+            .iter()
+            .zip(&new.acts)
+            .enumerate()
+            .all(|(j, (x, y))| j == a || x == y)
+        && old
+            .order
+            .iter()
+            .filter(|&&j| j != a)
+            .eq(new.order.iter().filter(|&&j| j != a))
+        && old.plan_wide() == new.plan_wide()
 }
 
 /// Whether the placement `ev` of activity `a` only ever takes starts away from
