@@ -15,7 +15,6 @@ mod replay;
 mod suggest;
 mod text;
 
-use rayon::prelude::*;
 use serde::Serialize;
 
 pub use conflicts::{Relaxation, minimal_conflicts};
@@ -186,11 +185,12 @@ pub fn explain(
         out.push(ex);
     }
     if !opts.no_suggestions {
-        // Independent per failure: in parallel, each written to its own slot, so
-        // the output does not depend on the number of threads.
-        out.par_iter_mut()
-            .filter(|ex| ex.failure_step.is_some())
-            .for_each(|ex| ex.suggestions = suggest::suggestions(plan, sched, ex));
+        // In parallel, collected in order, so the output does not depend on the
+        // number of threads.
+        let lists = suggest::suggestions(plan, sched, &out);
+        for (ex, list) in out.iter_mut().zip(lists) {
+            ex.suggestions = list;
+        }
     }
     Ok(out)
 }
@@ -203,7 +203,9 @@ pub fn verified_suggestions(plan: &Plan, sched: &Schedule, ex: &Explanation) -> 
     if ex.failure_step.is_none() {
         return Vec::new();
     }
-    suggest::suggestions(plan, sched, ex)
+    suggest::suggestions(plan, sched, std::slice::from_ref(ex))
+        .pop()
+        .unwrap_or_default()
 }
 
 /// The explanation skeleton of a scheduled activity (its own step's record).

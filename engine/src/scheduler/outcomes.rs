@@ -23,6 +23,10 @@
 //!   time that `j` cannot use), `j`'s feasible set can only shrink, so if `j`'s
 //!   original placement still fits it is still the choice, and if `j` failed it
 //!   still fails. From the first step whose outcome changes, steps are searched.
+//!   The same holds when the edit also moves `a` in the step order (a new
+//!   priority) and `a` failed in the original run: its original step changed
+//!   nothing, so the others' steps, in their unchanged order, see only `a`'s new
+//!   placement.
 //!
 //! Debug builds compare every outcome with the full scheduler's.
 
@@ -43,8 +47,9 @@ pub(crate) fn placement_after_edit(
     a: usize,
 ) -> Result<Option<(i64, i64)>, Error> {
     let problem = super::Problem::compile(plan)?;
-    let run = Run::up_to(prev, &problem, a);
-    let placed = run.placements[a];
+    let until = problem.step_of.get(a).copied().unwrap_or(0);
+    let run = Run::up_to(prev, &problem, until, Some(a));
+    let placed = run.placements.get(a).copied().flatten();
     #[cfg(debug_assertions)]
     if let Ok(full) = super::schedule(plan) {
         debug_assert_eq!(placed, full.placement(a), "the outcome-only run disagrees");
@@ -52,38 +57,74 @@ pub(crate) fn placement_after_edit(
     Ok(placed)
 }
 
-/// Where each activity is placed in the run of the edited `plan`, when activity
-/// `a` is placed in it; `None` when `a` is not (only the steps up to `a`'s are
-/// then run). `prev` is the run of the plan before the edit.
+/// Where each activity is placed in the run of the edited `plan`, when one of
+/// the activities `targets` is placed in it; `None` when none is (only the steps
+/// up to the last target's are then run). `prev` is the run of the plan before
+/// the edit.
+///
+/// One run answers every target: the suggestion verifier asks once for an edit
+/// that several failures propose, and once, with every activity as a target, for
+/// an edit whose whole run it keeps. With a single target `a`, the steps after
+/// `a`'s keep their original placement where `a`'s new placement can only take
+/// starts away from them (the module docs).
 pub(crate) fn placements_if_placed(
     prev: &Schedule,
     plan: &Plan,
-    a: usize,
+    targets: &[usize],
 ) -> Result<Option<Placements>, Error> {
     let problem = super::Problem::compile(plan)?;
+    let until = targets
+        .iter()
+        .filter_map(|&t| problem.step_of.get(t).copied())
+        .max()
+        .unwrap_or(0);
+    let single = match targets {
+        &[a] => Some(a),
+        _ => None,
+    };
     let Run {
         mut state,
         mut placements,
         placed_a,
         done,
-    } = Run::up_to(prev, &problem, a);
-    let Some(placed_a) = placed_a else {
-        return Ok(None);
+    } = Run::up_to(prev, &problem, until, single);
+    let any_placed = match single {
+        Some(_) => placed_a.is_some(),
+        None => targets
+            .iter()
+            .any(|&t| placements.get(t).is_some_and(Option::is_some)),
     };
+    if !any_placed {
+        return Ok(None);
+    }
     // The original run's state, stepped alongside while only `a`'s placement
-    // differs (the same step order and every other activity unchanged).
-    let drain = placed_a.energy;
-    let mut old = (problem.differs_only_in(&prev.problem, a) && restrictive(&problem, &placed_a))
-        .then(|| {
-            (
-                State::replayed(&prev.problem, &prev.steps[..done]),
-                placed_a.placement,
-            )
-        });
+    // differs: every other activity unchanged, in the same order, and `a` either
+    // at its own step or, when it failed in the original run (so its step there
+    // changed nothing), moved earlier or later in the order (a new priority).
+    // Steps are matched by activity: `orig[j]` is `j`'s index in `prev.steps`.
+    let orig = |j: usize| prev.problem.step_of[j] - 1;
+    let drain = placed_a.as_ref().map_or(0, |ev| ev.energy);
+    let mut old = match (single, placed_a) {
+        (Some(a), Some(placed_a))
+            if (problem.differs_only_in(&prev.problem, a)
+                || (prev.placement(a).is_none() && moved_only(&prev.problem, &problem, a)))
+                && restrictive(&problem, &placed_a) =>
+        {
+            // The original steps of the activities run so far, in their order.
+            let mut run: Vec<usize> = problem.order[..done].iter().map(|&j| orig(j)).collect();
+            run.sort_unstable();
+            let mut old_state = State::new(&prev.problem);
+            for i in run {
+                old_state.replay(&prev.steps[i]);
+            }
+            Some((old_state, placed_a.placement))
+        }
+        _ => None,
+    };
     for (k, &j) in problem.order.iter().enumerate().skip(done) {
         let step_no = k + 1;
         if let Some((old_state, pa)) = old.as_mut() {
-            let before = &prev.steps[k];
+            let before = &prev.steps[orig(j)];
             if !interacts(&problem, pa, j) {
                 let old_ev = old_state.replay(before);
                 match (before.outcome.placement(), old_ev) {
@@ -93,7 +134,7 @@ pub(crate) fn placements_if_placed(
                         // by at most the charge `a`'s placement drains (a capped
                         // integrator falls by at most the extra drain), so a
                         // margin at least that large needs no energy check.
-                        let soc = prev.margins()[k].is_none_or(|m| m < drain);
+                        let soc = prev.margins()[orig(j)].is_none_or(|m| m < drain);
                         if let Some(ev) = state.fitting_inner(j, s, e - s, &Scope::default(), soc) {
                             if !same_generated(&ev.placement, &old_ev.placement) {
                                 old = None;
@@ -112,7 +153,7 @@ pub(crate) fn placements_if_placed(
         let ev = outcome_step(&state, j, step_no);
         let placement = ev.as_ref().map(|ev| span(&ev.placement));
         if let Some((old_state, _)) = old.as_mut() {
-            let before = &prev.steps[k];
+            let before = &prev.steps[orig(j)];
             let old_ev = old_state.replay(before);
             let same = placement == before.outcome.placement()
                 && match (&ev, &old_ev) {
@@ -186,21 +227,20 @@ pub fn run_outcomes(plan: &Plan) -> Result<RunOutcomes, Error> {
     })
 }
 
-/// The state and placements of an outcome-only run up to activity `a`'s step.
+/// The state and placements of an outcome-only run up to some step.
 struct Run<'p> {
     state: State<'p>,
     placements: Placements,
-    /// `a`'s evaluation, when it is placed.
+    /// The evaluation of the activity looked at (`a`), when it is placed.
     placed_a: Option<Evaluated>,
-    /// Steps run (`a`'s is the last).
+    /// Steps run.
     done: usize,
 }
 
 impl<'p> Run<'p> {
-    /// Runs `problem` (an edit of `prev`'s) up to `a`'s step, replaying the
-    /// steps of `prev` the edit cannot change.
-    fn up_to(prev: &Schedule, problem: &'p super::Problem, a: usize) -> Self {
-        let until = problem.step_of.get(a).copied().unwrap_or(0);
+    /// Runs `problem` (an edit of `prev`'s) up to step `until`, replaying the
+    /// steps of `prev` the edit cannot change; keeps the evaluation of `a`.
+    fn up_to(prev: &Schedule, problem: &'p super::Problem, until: usize, a: Option<usize>) -> Self {
         let common = prev.problem.common_steps(problem).min(until);
         let mut state = State::new(problem);
         let mut placements = vec![None; problem.acts.len()];
@@ -208,7 +248,7 @@ impl<'p> Run<'p> {
         for step in &prev.steps[..common] {
             placements[step.activity] = step.outcome.placement();
             let ev = state.replay(step);
-            if step.activity == a {
+            if Some(step.activity) == a {
                 placed_a = ev;
             }
         }
@@ -228,7 +268,7 @@ impl<'p> Run<'p> {
                     placements[j],
                     "a step the relaxation {relaxed:?} keeps changed: {before:?}"
                 );
-                if j == a {
+                if Some(j) == a {
                     placed_a = ev;
                 }
                 continue;
@@ -239,7 +279,7 @@ impl<'p> Run<'p> {
             if let Some(ev) = ev {
                 placements[j] = placement;
                 state.apply(k + 1, &ev.placement);
-                if j == a {
+                if Some(j) == a {
                     placed_a = Some(ev);
                 }
             }
@@ -409,6 +449,25 @@ fn ideal(state: &State<'_>, a: usize) -> Option<Evaluated> {
 /// `[start, end)` of a placement.
 fn span(p: &Placement) -> (i64, i64) {
     (p.start, p.start + p.duration)
+}
+
+/// Whether `new` is `old` with only activity `a` changed, possibly at another
+/// place in the step order: the same plan-wide parameters, every other activity
+/// the same and in the same relative order.
+fn moved_only(old: &super::Problem, new: &super::Problem, a: usize) -> bool {
+    old.acts.len() == new.acts.len()
+        && old
+            .acts
+            .iter()
+            .zip(&new.acts)
+            .enumerate()
+            .all(|(j, (x, y))| j == a || x == y)
+        && old
+            .order
+            .iter()
+            .filter(|&&j| j != a)
+            .eq(new.order.iter().filter(|&&j| j != a))
+        && old.plan_wide() == new.plan_wide()
 }
 
 /// Whether the placement `ev` of activity `a` only ever takes starts away from

@@ -3,7 +3,7 @@
 
 use serde_json::{Value, json};
 
-use super::verify::tune_limit;
+use super::verify::{Runs, tune_limit};
 use super::{Candidate, round3};
 use crate::explain::Explanation;
 use crate::model::{Activity, Dependency, Plan, Window};
@@ -11,7 +11,8 @@ use crate::scheduler::{Category, Schedule};
 use crate::timeline::IntervalSet;
 
 /// The candidates of every single-category relaxation, in relaxation order.
-pub(super) fn candidates(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec<Candidate> {
+pub(super) fn candidates(runs: &Runs<'_>, ex: &Explanation) -> Vec<Candidate> {
+    let (plan, sched) = (runs.plan, runs.sched);
     let activity = &plan.activities[ex.activity];
     let mut out = Vec::new();
     for relaxation in &ex.relaxations {
@@ -29,7 +30,7 @@ pub(super) fn candidates(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec
             [Category::Dependency] => out.extend(dependencies(plan, sched, ex)),
             [Category::SequenceEngines] => out.push(more_engines(plan)),
             [Category::StateRequirement] => out.extend(initial_states(plan, activity)),
-            [Category::DataVolume] => out.extend(data_limits(plan, sched, ex)),
+            [Category::DataVolume] => out.extend(data_limits(runs, ex)),
             _ => {}
         }
     }
@@ -202,7 +203,8 @@ fn initial_states(plan: &Plan, activity: &Activity) -> Vec<Candidate> {
 
 /// The least raise of the data capacity, and for an optional activity of the data
 /// allowed before handover, that makes the activity schedule.
-fn data_limits(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec<Candidate> {
+fn data_limits(runs: &Runs<'_>, ex: &Explanation) -> Vec<Candidate> {
+    let plan = runs.plan;
     let a = ex.activity;
     let activity = &plan.activities[a];
     let extra = activity.data_rate.max(0.0) * ex.duration as f64;
@@ -217,15 +219,7 @@ fn data_limits(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec<Candidate
                 mbit,
             )
         };
-        out.extend(tune_limit(
-            plan,
-            sched,
-            a,
-            &make,
-            cap,
-            round3(cap + extra),
-            1e12,
-        ));
+        out.extend(tune_limit(runs, a, &make, cap, round3(cap + extra), 1e12));
     }
     if let (false, Some(h)) = (activity.mandatory, plan.handover) {
         if let Some(max) = h.max_data_volume {
@@ -238,15 +232,7 @@ fn data_limits(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec<Candidate
                     mbit,
                 )
             };
-            out.extend(tune_limit(
-                plan,
-                sched,
-                a,
-                &make,
-                max,
-                round3(max + extra),
-                1e12,
-            ));
+            out.extend(tune_limit(runs, a, &make, max, round3(max + extra), 1e12));
         }
     }
     out

@@ -10,6 +10,7 @@ mod intervals;
 mod placement;
 mod verify;
 
+use rayon::prelude::*;
 use serde::Serialize;
 use serde_json::{Map, Value, json};
 
@@ -64,18 +65,50 @@ fn set1(key: &str, value: Value) -> Map<String, Value> {
     m
 }
 
-/// Verified suggestions for one explanation.
-pub fn suggestions(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec<Suggestion> {
+/// Verified suggestions for each explanation, in order (none for an activity
+/// that did not fail).
+///
+/// The candidates of each failure are built in parallel (the least-relaxation
+/// searches run then), and every distinct edit among them is verified once for
+/// all the failures that propose it.
+pub fn suggestions(plan: &Plan, sched: &Schedule, exs: &[Explanation]) -> Vec<Vec<Suggestion>> {
+    let runs = verify::Runs::new(plan, sched);
+    let failures: Vec<(usize, Vec<Candidate>)> = exs
+        .par_iter()
+        .map(|ex| {
+            let candidates = if ex.failure_step.is_some() {
+                candidates(&runs, ex)
+            } else {
+                Vec::new()
+            };
+            (ex.activity, candidates)
+        })
+        .collect();
+    verify::verified(&runs, &failures)
+}
+
+/// The candidates for one failure, each edit once (the first keeps its place).
+fn candidates(runs: &verify::Runs<'_>, ex: &Explanation) -> Vec<Candidate> {
+    let plan = runs.plan;
     let activity = &plan.activities[ex.activity];
     let mut candidates = match ex.phase {
         Some(Phase::Group) => vec![leave_group(activity)],
         Some(Phase::Dependency) => drop_failed_dependency(plan, ex).into_iter().collect(),
-        Some(Phase::ValidIntervals) => intervals::candidates(plan, sched, ex),
-        Some(Phase::Placement) => placement::candidates(plan, sched, ex),
+        Some(Phase::ValidIntervals) => intervals::candidates(runs, ex),
+        Some(Phase::Placement) => placement::candidates(runs, ex),
         None => Vec::new(),
     };
     candidates.extend(reprioritise(plan, ex));
-    verify::verified(plan, sched, ex.activity, candidates)
+    let mut unique: Vec<Candidate> = Vec::with_capacity(candidates.len());
+    for c in candidates {
+        if !unique
+            .iter()
+            .any(|u| u.target == c.target && u.set == c.set)
+        {
+            unique.push(c);
+        }
+    }
+    unique
 }
 
 /// Phase `group`: leave the group.

@@ -4,7 +4,7 @@
 
 use serde_json::{Value, json};
 
-use super::verify::tune_limit;
+use super::verify::{Runs, tune_limit};
 use super::{Candidate, floor3};
 use crate::explain::Explanation;
 use crate::model::Plan;
@@ -63,17 +63,18 @@ impl Closest {
 
 /// The candidates of every reason kind present, in a fixed order: state of
 /// charge, handover state of charge, peak power, operability.
-pub(super) fn candidates(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec<Candidate> {
+pub(super) fn candidates(runs: &Runs<'_>, ex: &Explanation) -> Vec<Candidate> {
+    let (plan, sched) = (runs.plan, runs.sched);
     let closest = Closest::of(ex);
     let mut out = Vec::new();
     if let Some(mj) = closest.soc {
-        out.extend(lower_min_soc(plan, sched, ex.activity, mj));
+        out.extend(lower_min_soc(runs, ex.activity, mj));
     }
     if let Some(mj) = closest.handover_soc {
-        out.extend(handover_soc(plan, sched, ex.activity, mj));
+        out.extend(handover_soc(runs, ex.activity, mj));
     }
     if let Some(mw) = closest.peak {
-        out.extend(raise_max_peak(plan, sched, ex.activity, mw));
+        out.extend(raise_max_peak(runs, ex.activity, mw));
     }
     if let Some((zone, preheat_start)) = closest.operability {
         out.extend(extend_operable(plan, sched, zone, preheat_start));
@@ -151,7 +152,8 @@ fn shorten_min_awake(plan: &Plan, first: i64) -> Option<Candidate> {
 }
 
 /// `min_soc`: the least lowering of `battery.min_soc` that makes it schedule.
-fn lower_min_soc(plan: &Plan, sched: &Schedule, a: usize, soc_mj: i64) -> Option<Candidate> {
+fn lower_min_soc(runs: &Runs<'_>, a: usize, soc_mj: i64) -> Option<Candidate> {
+    let plan = runs.plan;
     let make = |wh: f64| {
         Candidate::plan_section(
             format!("Lower the minimum state of charge to {wh} Wh"),
@@ -162,12 +164,13 @@ fn lower_min_soc(plan: &Plan, sched: &Schedule, a: usize, soc_mj: i64) -> Option
         )
     };
     let needed = floor3(wh(i128::from(soc_mj))).max(0.0);
-    tune_limit(plan, sched, a, &make, plan.battery.min_soc, needed, 0.0)
+    tune_limit(runs, a, &make, plan.battery.min_soc, needed, 0.0)
 }
 
 /// `handover_soc`: the least lowering of `handover.min_soc`, or making the
 /// activity mandatory (handover limits bind only optional activities).
-fn handover_soc(plan: &Plan, sched: &Schedule, a: usize, soc_mj: i64) -> Vec<Candidate> {
+fn handover_soc(runs: &Runs<'_>, a: usize, soc_mj: i64) -> Vec<Candidate> {
+    let plan = runs.plan;
     let Some(h) = plan.handover else {
         return Vec::new();
     };
@@ -183,7 +186,7 @@ fn handover_soc(plan: &Plan, sched: &Schedule, a: usize, soc_mj: i64) -> Vec<Can
     };
     let needed = floor3(wh(i128::from(soc_mj))).max(0.0);
     let current = h.min_soc.unwrap_or(0.0);
-    let mut out: Vec<Candidate> = tune_limit(plan, sched, a, &make, current, needed, 0.0)
+    let mut out: Vec<Candidate> = tune_limit(runs, a, &make, current, needed, 0.0)
         .into_iter()
         .collect();
     out.push(Candidate::activity(
@@ -199,7 +202,8 @@ fn handover_soc(plan: &Plan, sched: &Schedule, a: usize, soc_mj: i64) -> Vec<Can
 }
 
 /// `max_peak_power`: the least raise of `power.max_peak`.
-fn raise_max_peak(plan: &Plan, sched: &Schedule, a: usize, peak_mw: i64) -> Option<Candidate> {
+fn raise_max_peak(runs: &Runs<'_>, a: usize, peak_mw: i64) -> Option<Candidate> {
+    let plan = runs.plan;
     let make = |w: f64| {
         Candidate::plan_section(
             format!("Raise the peak power limit to {w} W"),
@@ -211,7 +215,7 @@ fn raise_max_peak(plan: &Plan, sched: &Schedule, a: usize, peak_mw: i64) -> Opti
     };
     let needed = watts(peak_mw).ceil();
     let current = plan.power.max_peak.unwrap_or(needed);
-    tune_limit(plan, sched, a, &make, current, needed, 1e6)
+    tune_limit(runs, a, &make, current, needed, 1e6)
 }
 
 /// `preheat_operability`: extend the zone's operable period that starts nearest

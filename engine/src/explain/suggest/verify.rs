@@ -1,6 +1,14 @@
 //! Verification: a candidate is kept only when the edited plan, rescheduled,
 //! places the activity; numeric limits are searched to the least relaxation that
 //! does.
+//!
+//! The run of an edited plan depends on the edit alone, not on the failure that
+//! proposed it, and one edit is often proposed for many failures (a blocker moved
+//! after them, the loosest value of a plan-wide limit): each distinct edit is
+//! rescheduled once and its run answers every failure that asks.
+
+use std::collections::BTreeMap;
+use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 
 use rayon::prelude::*;
 
@@ -10,45 +18,202 @@ use crate::explain::Suggestion;
 use crate::model::Plan;
 use crate::scheduler::{Schedule, placement_after_edit, placements_if_placed, schedule};
 
-/// The candidates that make activity `a` schedule, each once, with the activities
-/// they make fail; fewest side effects first (stable: candidate order breaks ties).
-///
-/// A candidate is first checked by running the edited plan only up to `a`'s step
-/// (the greedy run never looks ahead, so that decides whether `a` is placed); only
-/// one that passes is run to the end for its side effects. Both runs reuse the
-/// steps of `sched` that the edit cannot change. Candidates are verified in
-/// parallel and collected in candidate order, so the result does not depend on
-/// the number of threads.
-pub(super) fn verified(
-    plan: &Plan,
-    sched: &Schedule,
-    a: usize,
-    candidates: Vec<Candidate>,
-) -> Vec<Suggestion> {
-    let mut unique: Vec<Candidate> = Vec::with_capacity(candidates.len());
-    for c in candidates {
-        if !unique
-            .iter()
-            .any(|u| u.target == c.target && u.set == c.set)
-        {
-            unique.push(c);
+/// Placements by activity index in the run of an edited plan (`None`: not
+/// placed, or its step not run).
+type Placements = Vec<Option<(i64, i64)>>;
+
+/// An edit's identity: its target and its fields as JSON text.
+type EditKey = (String, String);
+
+fn key(c: &Candidate) -> EditKey {
+    (
+        c.target.clone(),
+        serde_json::to_string(&c.set).unwrap_or_default(),
+    )
+}
+
+/// The plan and run being explained, with the whole runs of edited plans that
+/// several failures ask about (each computed once, by the first that asks).
+pub(super) struct Runs<'a> {
+    pub(super) plan: &'a Plan,
+    pub(super) sched: &'a Schedule,
+    /// What is known per edit asked about.
+    edits: Mutex<BTreeMap<EditKey, Asked>>,
+}
+
+/// An edit asked about: how many times, and its whole run once computed
+/// (`None` inside: no activity is placed, or the edit gives no valid plan).
+#[derive(Default)]
+struct Asked {
+    times: usize,
+    run: Arc<OnceLock<Option<Placements>>>,
+}
+
+impl<'a> Runs<'a> {
+    pub(super) fn new(plan: &'a Plan, sched: &'a Schedule) -> Self {
+        Self {
+            plan,
+            sched,
+            edits: Mutex::new(BTreeMap::new()),
         }
     }
-    let mut out: Vec<Suggestion> = unique
-        .into_par_iter()
-        .filter_map(|c| {
-            let edited = edited(plan, &c.target, &c.set)?;
-            let side_effects = side_effects(&edited, a, sched)?;
-            Some(Suggestion {
-                description: c.description,
-                target: c.target,
-                set: c.set,
-                side_effects,
+
+    /// The whole run of the plan edited by `c`, if one was computed.
+    fn known_run(&self, c: &Candidate) -> Option<Arc<OnceLock<Option<Placements>>>> {
+        let map = self.edits.lock().unwrap_or_else(PoisonError::into_inner);
+        map.get(&key(c))
+            .filter(|e| e.run.get().is_some())
+            .map(|e| Arc::clone(&e.run))
+    }
+
+    /// Whether activity `a` is placed in the run of the plan edited by `c`.
+    ///
+    /// An edit asked about a second time (the same value of a limit in the
+    /// least-relaxation searches of several failures), or `shared` (the loosest
+    /// value, which every search that gets that far asks about), is answered
+    /// from its whole run, computed once; otherwise the edited plan is run only
+    /// up to `a`'s step.
+    fn places(&self, c: &Candidate, a: usize, shared: bool) -> bool {
+        let whole = {
+            let mut map = self.edits.lock().unwrap_or_else(PoisonError::into_inner);
+            let e = map.entry(key(c)).or_default();
+            e.times += 1;
+            (shared || e.times > 1 || e.run.get().is_some()).then(|| Arc::clone(&e.run))
+        };
+        match whole {
+            Some(cell) => {
+                let placements = cell.get_or_init(|| {
+                    let plan = edited(self.plan, &c.target, &c.set)?;
+                    let all: Vec<usize> = (0..plan.activities.len()).collect();
+                    placements_if_placed(self.sched, &plan, &all).ok().flatten()
+                });
+                placed_in(placements.as_ref(), a)
+            }
+            None => edited(self.plan, &c.target, &c.set).is_some_and(|p| places(&p, a, self.sched)),
+        }
+    }
+
+    /// The activities scheduled in the original run that are not in the run of
+    /// `placements`.
+    fn lost(&self, placements: &[Option<(i64, i64)>]) -> Vec<usize> {
+        self.sched
+            .steps
+            .iter()
+            .filter(|s| {
+                s.outcome.placement().is_some() && placements.get(s.activity) == Some(&None)
             })
-        })
+            .map(|s| s.activity)
+            .collect()
+    }
+
+    /// For each of the activities `asking` (distinct), whether the edit `c`
+    /// places it, with the side effects when it does: one run for all of them.
+    fn verify(&self, c: &Candidate, asking: &[usize]) -> Vec<Option<Vec<usize>>> {
+        let answer = |placements: Option<&Placements>| -> Vec<Option<Vec<usize>>> {
+            let Some(placements) = placements else {
+                return vec![None; asking.len()];
+            };
+            let lost = self.lost(placements);
+            asking
+                .iter()
+                .map(|&a| placed_in(Some(placements), a).then(|| lost.clone()))
+                .collect()
+        };
+        if let Some(cell) = self.known_run(c) {
+            if let Some(placements) = cell.get() {
+                return answer(placements.as_ref());
+            }
+        }
+        let Some(plan) = edited(self.plan, &c.target, &c.set) else {
+            return vec![None; asking.len()];
+        };
+        if let [a] = asking {
+            return vec![side_effects(&plan, *a, self.sched)];
+        }
+        let placements = placements_if_placed(self.sched, &plan, asking)
+            .ok()
+            .flatten();
+        #[cfg(debug_assertions)]
+        for &a in asking {
+            debug_assert_eq!(
+                placed_in(placements.as_ref(), a),
+                side_effects(&plan, a, self.sched).is_some(),
+                "one run for several activities disagrees with the run for one"
+            );
+        }
+        answer(placements.as_ref())
+    }
+}
+
+fn placed_in(placements: Option<&Placements>, a: usize) -> bool {
+    placements.is_some_and(|p| p.get(a).is_some_and(Option::is_some))
+}
+
+/// For each failure, its candidates (distinct within the failure) kept when the
+/// edited plan places the failed activity, with the activities they make fail;
+/// fewest side effects first (stable: candidate order breaks ties).
+///
+/// Every distinct edit is verified once, for all the failures that propose it,
+/// in parallel; the results are collected in edit order and handed back in
+/// candidate order, so the output does not depend on the number of threads.
+/// A candidate proposed by one failure alone is first checked by running the
+/// edited plan only up to the activity's step (the greedy run never looks ahead,
+/// so that decides whether it is placed); only one that passes is run to the end
+/// for its side effects. Every run reuses the steps of the original run that the
+/// edit cannot change.
+pub(super) fn verified(
+    runs: &Runs<'_>,
+    failures: &[(usize, Vec<Candidate>)],
+) -> Vec<Vec<Suggestion>> {
+    // The distinct edits in order of first appearance, each with the activities
+    // asking about it.
+    let mut index: BTreeMap<EditKey, usize> = BTreeMap::new();
+    let mut edits: Vec<(&Candidate, Vec<usize>)> = Vec::new();
+    let mut slots: Vec<Vec<(usize, usize)>> = Vec::with_capacity(failures.len());
+    for (a, candidates) in failures {
+        let mut mine = Vec::with_capacity(candidates.len());
+        for c in candidates {
+            let e = *index.entry(key(c)).or_insert_with(|| {
+                edits.push((c, Vec::new()));
+                edits.len() - 1
+            });
+            let asking = &mut edits[e].1;
+            let slot = match asking.iter().position(|x| x == a) {
+                Some(i) => i,
+                None => {
+                    asking.push(*a);
+                    asking.len() - 1
+                }
+            };
+            mine.push((e, slot));
+        }
+        slots.push(mine);
+    }
+    let results: Vec<Vec<Option<Vec<usize>>>> = edits
+        .par_iter()
+        .map(|(c, asking)| runs.verify(c, asking))
         .collect();
-    out.sort_by_key(|s| s.side_effects.len());
-    out
+    failures
+        .iter()
+        .zip(slots)
+        .map(|((_, candidates), mine)| {
+            let mut out: Vec<Suggestion> = candidates
+                .iter()
+                .zip(mine)
+                .filter_map(|(c, (e, slot))| {
+                    let side_effects = results[e][slot].clone()?;
+                    Some(Suggestion {
+                        description: c.description.clone(),
+                        target: c.target.clone(),
+                        set: c.set.clone(),
+                        side_effects,
+                    })
+                })
+                .collect();
+            out.sort_by_key(|s| s.side_effects.len());
+            out
+        })
+        .collect()
 }
 
 /// Whether activity `a` is placed in the run of the edited `plan` (only the steps
@@ -68,7 +233,7 @@ fn places(plan: &Plan, a: usize, before: &Schedule) -> bool {
 /// only when it is placed, and only where `a`'s placement can change them
 /// ([`placements_if_placed`], which debug builds check against a full run).
 fn side_effects(plan: &Plan, a: usize, before: &Schedule) -> Option<Vec<usize>> {
-    let after = placements_if_placed(before, plan, a).ok().flatten()?;
+    let after = placements_if_placed(before, plan, &[a]).ok().flatten()?;
     Some(
         before
             .steps
@@ -84,18 +249,22 @@ fn side_effects(plan: &Plan, a: usize, before: &Schedule) -> Option<Vec<usize>> 
 /// knock-on effects on earlier steps can ask for less or more, so the value is
 /// binary-searched between `current` and `needed` when `needed` works, else between
 /// `needed` and `loosest`, to a resolution of 0.001.
+///
+/// The loosest value is the same edit for every failure that gets that far, so
+/// its whole run is kept and shared.
 pub(super) fn tune_limit(
-    plan: &Plan,
-    sched: &Schedule,
+    runs: &Runs<'_>,
     a: usize,
     make: &dyn Fn(f64) -> Candidate,
     current: f64,
     needed: f64,
     loosest: f64,
 ) -> Option<Candidate> {
+    let loose = make(loosest);
     let works = |v: f64| {
         let c = make(v);
-        edited(plan, &c.target, &c.set).is_some_and(|p| places(&p, a, sched))
+        let shared = c.target == loose.target && c.set == loose.set;
+        runs.places(&c, a, shared)
     };
     let (mut bad, mut good) = if works(needed) {
         (current, needed)
