@@ -121,8 +121,13 @@ fn bad_actuals_are_refused_at_their_path() {
 
 #[test]
 fn a_sampled_run_written_out_replays() {
-    let written = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli_execute/sampled.json");
-    let _ = std::fs::remove_file(&written);
+    // Its own scratch directory: the tests run in any order, in parallel.
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli_execute_sampled");
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let written = dir.join("sampled.json");
+    if written.exists() {
+        std::fs::remove_file(&written).expect("remove the previous run's file");
+    }
     let sampled = ok_json(&[
         "execute",
         EXAMPLE,
