@@ -762,6 +762,148 @@ fn a_campaign_runs_off_the_frame_and_cancel_keeps_nothing() {
     assert!(h.query_by_label_contains("16 runs, seed 1").is_some());
 }
 
+/// What the panel says of `n` of 20 runs (every share of 20 is a whole
+/// percentage).
+fn of_20(n: u64) -> String {
+    if n == 0 {
+        "0".into()
+    } else {
+        format!("{n} ({}%)", n * 5)
+    }
+}
+
+#[test]
+fn comparing_policies_shows_each_policy_s_summary_side_by_side() {
+    let mut app = SolscopeApp::with_default_plan().unwrap();
+    app.apply(UiCommand::ShowExecution.into());
+    app.background = true;
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    h.get_by_label("Compare policies").click();
+    h.run_steps(2);
+    assert!(h.state().persisted.compare_policies);
+    type_into(&mut h, "Runs", "20");
+    h.get_by_label("Run").click();
+    h.run_steps(1);
+    let p = h.state().campaign_progress().expect("running");
+    assert!(p.compare && p.runs == 20 && p.total() == 60);
+    wait_until(&mut h, "the comparison", |app| {
+        app.campaign_result().is_some()
+    });
+    h.run_steps(3);
+    let result = h.state().campaign_result().unwrap().clone();
+    let plan = h.state().doc.plan.clone();
+    let compared = result.compared();
+    assert_eq!(compared.len(), 3);
+    // Each policy's summary is the engine's of the same runs under it.
+    let mut summaries = Vec::new();
+    for (k, policy) in [
+        solscope_engine::Policy::Replan,
+        solscope_engine::Policy::Dispatch,
+        solscope_engine::Policy::Fixed,
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let c = solscope_engine::campaign_with(&plan, 1, 20, "plan", policy).unwrap();
+        let indices: Vec<u64> = (0..20).collect();
+        let records = solscope_engine::campaign_runs(&plan, &c, &indices, &|| {}, None)
+            .unwrap()
+            .unwrap();
+        let s = solscope_engine::summarize(&c, &records);
+        assert_eq!(compared[k], s, "{}", policy.name());
+        summaries.push(s);
+    }
+    // The replan campaign is the one the rest of the app details.
+    assert_eq!(result.summary, summaries[0]);
+    // Per policy: the runs that broke a limit and the median lowest state
+    // of charge, as shown.
+    for s in &summaries {
+        let lowest = solscope_engine::format_wh(
+            (s.lowest_soc.p50 * solscope_engine::MJ_PER_WH).round() as i128,
+        );
+        let b = s.limits.runs_breaking;
+        let line = if b == 0 {
+            format!(
+                "{}: no run broke a limit · median lowest state of charge {lowest}",
+                s.policy.name()
+            )
+        } else {
+            format!(
+                "{}: {b} of 20 runs broke a limit ({}%) · median lowest state of charge {lowest}",
+                s.policy.name(),
+                b * 5
+            )
+        };
+        assert!(h.query_by_label(&line).is_some(), "{line}");
+    }
+    let counts: Vec<String> = summaries
+        .iter()
+        .map(|s| format!("{} {}", s.policy.name(), s.limits.runs_breaking))
+        .collect();
+    let headline = format!(
+        "Broke a limit: {} (20 runs each, seed 1)",
+        counts.join(", ")
+    );
+    assert!(h.query_by_label(&headline).is_some(), "{headline}");
+    // Per activity lost in some run under some policy (and run under some),
+    // those whose completed runs differ most between the policies first: its
+    // shares under each policy. The list scrolls: the first rows are laid
+    // out.
+    let mut listed: Vec<(std::cmp::Reverse<u64>, std::cmp::Reverse<u64>, usize)> =
+        (0..plan.activities.len())
+            .filter_map(|a| {
+                let of = || summaries.iter().map(|s| &s.activities[a]);
+                let lost = of().map(|x| x.aborted + x.not_run).max().unwrap();
+                let ran = of().any(|x| x.completed + x.aborted > 0);
+                let most = of().map(|x| x.completed).max().unwrap();
+                let least = of().map(|x| x.completed).min().unwrap();
+                (lost > 0 && ran).then_some((
+                    std::cmp::Reverse(most - least),
+                    std::cmp::Reverse(lost),
+                    a,
+                ))
+            })
+            .collect();
+    listed.sort();
+    let listed: Vec<usize> = listed.into_iter().map(|(_, _, a)| a).collect();
+    assert!(!listed.is_empty(), "some activity lost in some run");
+    let mut shown = 0;
+    for (row, &a) in listed.iter().enumerate() {
+        for s in &summaries {
+            let x = &s.activities[a];
+            let label = format!(
+                "{}, {}: completed {}, aborted {}, not run {} of 20 runs",
+                s.policy.name(),
+                x.id,
+                of_20(x.completed),
+                of_20(x.aborted),
+                of_20(x.not_run)
+            );
+            let found = h.query_by_label(&label).is_some();
+            assert!(found || row >= 3, "{label}");
+            shown += usize::from(found);
+        }
+    }
+    assert!(shown >= 3.min(listed.len()) * 3);
+    // Off again: Run runs the replanning executive alone, and the
+    // single-policy view is back. (Moved off Run first: its tooltip, under
+    // the pointer, would take the click.)
+    h.get_by_label("Compare policies").hover();
+    h.run_steps(2);
+    h.get_by_label("Compare policies").click();
+    h.run_steps(2);
+    assert!(!h.state().persisted.compare_policies);
+    h.get_by_label("Run").click();
+    h.run_steps(1);
+    wait_until(&mut h, "the replan campaign", |app| {
+        app.campaign_result()
+            .is_some_and(|r| r.compared().is_empty())
+    });
+    h.run_steps(3);
+    assert_eq!(h.state().campaign_result().unwrap().summary, summaries[0]);
+    assert!(h.query_by_label("Lowest state of charge per run").is_some());
+}
+
 /// The edit that raises the minimum state of charge of the example to 950 Wh.
 fn raise_min_soc() -> Command {
     let mut set = serde_json::Map::new();

@@ -425,10 +425,15 @@ impl SolscopeApp {
                 let source = ActualsSource::Sampled { seed, run };
                 self.use_actuals(source, "Could not sample actuals");
             }
-            Command::RunCampaign { runs, seed } => {
+            Command::RunCampaign { runs, seed } | Command::ComparePolicies { runs, seed } => {
                 if (1..=MAX_RUNS).contains(&runs) {
-                    self.campaign
-                        .start(&self.doc.plan, self.revision, seed, runs, self.background);
+                    let compare = matches!(cmd, Command::ComparePolicies { .. });
+                    self.campaign.start(
+                        &self.doc.plan,
+                        self.revision,
+                        (seed, runs, compare),
+                        self.background,
+                    );
                 } else {
                     self.ui.messages.error =
                         Some(format!("Runs: enter a whole number from 1 to {MAX_RUNS}"));
@@ -537,6 +542,9 @@ impl SolscopeApp {
             UiCommand::OpenActuals => self.dialog = Some(Dialog::OpenActuals),
             UiCommand::CancelCampaign => self.campaign.cancel(),
             UiCommand::ToggleFlex => self.persisted.hide_flex = !self.persisted.hide_flex,
+            UiCommand::ToggleComparePolicies => {
+                self.persisted.compare_policies = !self.persisted.compare_policies;
+            }
             UiCommand::NominalActuals => self.use_actuals(ActualsSource::Nominal, "Nominal"),
             UiCommand::PreviousCycle | UiCommand::NextCycle => {
                 let shown = self.ui.nav.mode == Mode::Execution;

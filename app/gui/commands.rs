@@ -59,6 +59,10 @@ pub enum UiCommand {
     /// Show or hide the Gantt's flexibility layer (slack whiskers, free slack,
     /// dispatchable neighbours).
     ToggleFlex,
+    /// Whether Run in the Monte Carlo panel compares the execution policies
+    /// (replan, dispatch, fixed over the same runs) or runs the replanning
+    /// executive alone.
+    ToggleComparePolicies,
 }
 
 impl UiCommand {
@@ -107,6 +111,7 @@ impl UiCommand {
             Self::NextCycle => "Cycle >",
             Self::CancelCampaign => "Cancel",
             Self::ToggleFlex => "Flexibility layer",
+            Self::ToggleComparePolicies => "Compare policies",
         }
     }
 
@@ -140,7 +145,8 @@ impl UiCommand {
             | Self::Quit
             | Self::OpenActuals
             | Self::NominalActuals
-            | Self::CancelCampaign => None,
+            | Self::CancelCampaign
+            | Self::ToggleComparePolicies => None,
         }
     }
 }
@@ -208,6 +214,16 @@ pub enum Command {
     /// worker in the desktop app); a campaign running is cancelled first.
     RunCampaign {
         /// Number of runs.
+        runs: u64,
+        /// The campaign seed.
+        seed: u64,
+    },
+    /// Run the same Monte Carlo campaign (`runs` runs seeded with `seed`)
+    /// under each execution policy, replan, dispatch and fixed, one after the
+    /// other (on a worker in the desktop app), to compare them run by run; a
+    /// campaign running is cancelled first.
+    ComparePolicies {
+        /// Number of runs per policy.
         runs: u64,
         /// The campaign seed.
         seed: u64,

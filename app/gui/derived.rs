@@ -15,7 +15,7 @@ use solscope_engine::{CategoryIntervals, Explanation, Flex, Loss, Plan, RunOutco
 
 use super::document::Analysis;
 use super::execution::{ActualsSource, CycleRun, ExecutionRun};
-use super::montecarlo::{CampaignResult, Progress, StopReason, Stopped};
+use super::montecarlo::{CampaignResult, Progress, StopReason, Stopped, total_runs};
 use super::state::StepView;
 
 /// A value derived for one activity at one plan revision (its explanation, valid
@@ -594,6 +594,8 @@ struct CampaignJob {
     job: Job<u64, CampaignOutcome>,
     seed: u64,
     runs: u64,
+    /// It compares the policies (`runs` runs each).
+    compare: bool,
     /// Runs done (counted by the workers).
     done: Arc<AtomicU64>,
     /// Set to stop starting runs.
@@ -605,7 +607,11 @@ impl CampaignJob {
         Progress {
             seed: self.seed,
             runs: self.runs,
-            done: self.done.load(Ordering::Relaxed).min(self.runs),
+            compare: self.compare,
+            done: self
+                .done
+                .load(Ordering::Relaxed)
+                .min(total_runs(self.runs, self.compare)),
             cancelling: self.cancel.load(Ordering::Relaxed),
         }
     }
@@ -615,6 +621,7 @@ impl CampaignJob {
         Stopped {
             seed: p.seed,
             runs: p.runs,
+            compare: p.compare,
             done: p.done,
             why,
         }
@@ -642,10 +649,17 @@ pub struct CampaignCache {
 
 impl CampaignCache {
     /// Starts a campaign of `runs` runs of `plan` (at `revision`) seeded with
-    /// `seed`: in place, or with `background` on a worker thread. A campaign
-    /// still running is cancelled first. What the last one came to stays
-    /// until this one is done.
-    pub fn start(&mut self, plan: &Plan, revision: u64, seed: u64, runs: u64, background: bool) {
+    /// `seed`, with `compare` under each policy one after the other: in
+    /// place, or with `background` on a worker thread. A campaign still
+    /// running is cancelled first. What the last one came to stays until
+    /// this one is done.
+    pub fn start(
+        &mut self,
+        plan: &Plan,
+        revision: u64,
+        (seed, runs, compare): (u64, u64, bool),
+        background: bool,
+    ) {
         self.job = None;
         if background {
             let done = Arc::new(AtomicU64::new(0));
@@ -655,18 +669,19 @@ impl CampaignCache {
                 let progress = move || {
                     count.fetch_add(1, Ordering::Relaxed);
                 };
-                CampaignResult::of(&plan, seed, runs, &progress, Some(&flag))
+                CampaignResult::of(&plan, seed, runs, compare, &progress, Some(&flag))
             });
             self.job = Some(CampaignJob {
                 job,
                 seed,
                 runs,
+                compare,
                 done,
                 cancel,
             });
         } else {
             self.stopped = None;
-            match CampaignResult::of(plan, seed, runs, &|| {}, None) {
+            match CampaignResult::of(plan, seed, runs, compare, &|| {}, None) {
                 Ok(Some(result)) => self.done = Some((revision, Ok(result))),
                 // Nothing cancels a campaign run in place.
                 Ok(None) => {}

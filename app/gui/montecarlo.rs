@@ -1,15 +1,23 @@
 //! Monte Carlo campaigns of the open plan (execution mode): one campaign's
 //! summary with, per activity and cause, the first runs that lost it
 //! ([`CampaignResult`]), and what the panel says about a campaign that is
-//! running or did not finish ([`Progress`], [`Stopped`]). Built from the plan,
+//! running or did not finish ([`Progress`], [`Stopped`]). A campaign can also
+//! compare the execution policies: the same runs under replan, dispatch and
+//! fixed, one after the other ([`COMPARED`]). Built from the plan,
 //! never edited; the app runs a campaign on a worker (`derived::CampaignCache`)
 //! and shows its result only for the plan revision it ran on.
 
 use std::sync::atomic::AtomicBool;
 
 use solscope_engine::{
-    ActivitySummary, MJ_PER_WH, Plan, Summary, campaign, campaign_runs, summarize,
+    ActivitySummary, MJ_PER_WH, Plan, Policy, Summary, campaign_runs, campaign_with, summarize,
 };
+
+/// The policies a comparison runs, in this order: the replanning executive
+/// first (its campaign is the one the panel, the activity list and the
+/// inspector detail), then the flexible schedule's dispatcher, then the
+/// schedule executed as it is.
+pub const COMPARED: [Policy; 3] = [Policy::Replan, Policy::Dispatch, Policy::Fixed];
 
 /// The most runs the app runs in one campaign: every run's record (a few kB
 /// on the bundled plan) is held until the summary is made, and 20,000 runs of
@@ -62,20 +70,53 @@ pub struct CampaignResult {
     /// `(activity, runs that lost it)` of every activity lost in some run,
     /// most runs first (then plan order).
     most_lost: Vec<(usize, u64)>,
+    /// In a comparison, the summary of each policy of [`COMPARED`] over the
+    /// same runs (the first is `summary`); empty otherwise.
+    compared: Vec<Summary>,
 }
 
 impl CampaignResult {
-    /// Runs `runs` runs of `plan` seeded with `seed` and summarises them;
-    /// `progress` is called after each run (from worker threads). `Ok(None)`
-    /// when `cancel` was set before every run was done.
+    /// Runs `runs` runs of `plan` seeded with `seed` under the replanning
+    /// executive and summarises them; with `compare`, then the same runs
+    /// under each other policy of [`COMPARED`], one campaign after the other.
+    /// `progress` is called after each run (from worker threads): `runs`
+    /// times per policy. `Ok(None)` when `cancel` was set before every run
+    /// was done.
     pub fn of(
+        plan: &Plan,
+        seed: u64,
+        runs: u64,
+        compare: bool,
+        progress: &(dyn Fn() + Sync),
+        cancel: Option<&AtomicBool>,
+    ) -> Result<Option<Self>, String> {
+        let Some(mut result) = Self::of_replan(plan, seed, runs, progress, cancel)? else {
+            return Ok(None);
+        };
+        if compare {
+            let mut compared = vec![result.summary.clone()];
+            for policy in COMPARED.into_iter().skip(1) {
+                let Some(s) = policy_summary(plan, seed, runs, policy, progress, cancel)? else {
+                    return Ok(None);
+                };
+                compared.push(s);
+            }
+            result.compared = compared;
+        }
+        Ok(Some(result))
+    }
+
+    /// The replanning executive's campaign with everything the panel and the
+    /// inspector show of it.
+    fn of_replan(
         plan: &Plan,
         seed: u64,
         runs: u64,
         progress: &(dyn Fn() + Sync),
         cancel: Option<&AtomicBool>,
     ) -> Result<Option<Self>, String> {
-        let c = campaign(plan, seed, runs, "plan").map_err(|e| e.to_string())?;
+        let c =
+            campaign_with(plan, seed, runs, "plan", Policy::Replan).map_err(|e| e.to_string())?;
         let indices: Vec<u64> = (0..runs).collect();
         let Some(records) =
             campaign_runs(plan, &c, &indices, progress, cancel).map_err(|e| e.to_string())?
@@ -129,7 +170,15 @@ impl CampaignResult {
             handover_bins: bins(&handover, handover_min),
             lost_runs,
             most_lost,
+            compared: Vec::new(),
         }))
+    }
+
+    /// In a comparison, each policy's summary over the same runs, in the
+    /// order of [`COMPARED`]; empty for a campaign of the replanning executive
+    /// alone.
+    pub fn compared(&self) -> &[Summary] {
+        &self.compared
     }
 
     /// The number of runs.
@@ -156,6 +205,22 @@ impl CampaignResult {
             .and_then(|c| c.iter().find(|(k, _)| k == cause))
             .map_or(&[], |(_, runs)| runs.as_slice())
     }
+}
+
+/// The summary of `runs` runs of `plan` seeded with `seed` under `policy`
+/// (`None` when cancelled).
+fn policy_summary(
+    plan: &Plan,
+    seed: u64,
+    runs: u64,
+    policy: Policy,
+    progress: &(dyn Fn() + Sync),
+    cancel: Option<&AtomicBool>,
+) -> Result<Option<Summary>, String> {
+    let c = campaign_with(plan, seed, runs, "plan", policy).map_err(|e| e.to_string())?;
+    let indices: Vec<u64> = (0..runs).collect();
+    let records = campaign_runs(plan, &c, &indices, progress, cancel).map_err(|e| e.to_string())?;
+    Ok(records.map(|r| summarize(&c, &r)))
 }
 
 /// At most about twenty equal bins of a round width over `values` (mJ), with
@@ -217,12 +282,45 @@ fn nice_width(at_least: i128) -> i128 {
 pub struct Progress {
     /// Its seed.
     pub seed: u64,
-    /// Its number of runs.
+    /// Its number of runs (per policy in a comparison).
     pub runs: u64,
-    /// Runs done so far.
+    /// It compares the policies of [`COMPARED`] (`runs` runs each, one
+    /// policy after the other).
+    pub compare: bool,
+    /// Runs done so far (of every policy: at most [`Progress::total`]).
     pub done: u64,
     /// Cancel was asked for (the runs already started finish first).
     pub cancelling: bool,
+}
+
+impl Progress {
+    /// The runs to do: `runs`, times three in a comparison.
+    pub fn total(&self) -> u64 {
+        total_runs(self.runs, self.compare)
+    }
+
+    /// In a comparison, the policy running and the runs done of it.
+    pub fn policy(&self) -> Option<(Policy, u64)> {
+        if !self.compare || self.runs == 0 {
+            return None;
+        }
+        let k = usize::try_from(self.done / self.runs)
+            .unwrap_or(usize::MAX)
+            .min(COMPARED.len() - 1);
+        let before = k as u64 * self.runs;
+        COMPARED
+            .get(k)
+            .map(|&p| (p, self.done.saturating_sub(before).min(self.runs)))
+    }
+}
+
+/// The runs of a campaign of `runs` runs: times three in a comparison.
+pub fn total_runs(runs: u64, compare: bool) -> u64 {
+    if compare {
+        runs.saturating_mul(COMPARED.len() as u64)
+    } else {
+        runs
+    }
 }
 
 /// Why a campaign stopped before its summary was made.
@@ -241,9 +339,11 @@ pub enum StopReason {
 pub struct Stopped {
     /// Its seed.
     pub seed: u64,
-    /// Its number of runs.
+    /// Its number of runs (per policy in a comparison).
     pub runs: u64,
-    /// Runs done when it stopped.
+    /// It compared the policies.
+    pub compare: bool,
+    /// Runs done when it stopped (of every policy).
     pub done: u64,
     /// Why.
     pub why: StopReason,
@@ -257,11 +357,11 @@ mod tests {
     fn lost_runs_are_those_of_the_records() {
         let text = include_str!("../../assets/execution-examples/uncertain-drive.json");
         let plan = solscope_engine::load_plan(text).expect("example plan").plan;
-        let result = CampaignResult::of(&plan, 1, 20, &|| {}, None)
+        let result = CampaignResult::of(&plan, 1, 20, false, &|| {}, None)
             .expect("campaign")
             .expect("not cancelled");
         assert_eq!(result.runs(), 20);
-        let c = campaign(&plan, 1, 20, "plan").expect("campaign");
+        let c = solscope_engine::campaign(&plan, 1, 20, "plan").expect("campaign");
         let a = plan
             .activities
             .iter()
@@ -301,11 +401,55 @@ mod tests {
     }
 
     #[test]
+    fn a_comparison_counts_its_runs_policy_by_policy() {
+        let p = |done| Progress {
+            seed: 1,
+            runs: 10,
+            compare: true,
+            done,
+            cancelling: false,
+        };
+        assert_eq!(p(0).total(), 30);
+        assert_eq!(p(0).policy(), Some((Policy::Replan, 0)));
+        assert_eq!(p(9).policy(), Some((Policy::Replan, 9)));
+        assert_eq!(p(10).policy(), Some((Policy::Dispatch, 0)));
+        assert_eq!(p(25).policy(), Some((Policy::Fixed, 5)));
+        assert_eq!(p(30).policy(), Some((Policy::Fixed, 10)));
+        let single = Progress {
+            compare: false,
+            ..p(3)
+        };
+        assert_eq!((single.total(), single.policy()), (10, None));
+    }
+
+    #[test]
+    fn a_comparison_summarises_each_policy_over_the_same_runs() {
+        let text = include_str!("../../assets/execution-examples/uncertain-drive.json");
+        let plan = solscope_engine::load_plan(text).expect("example plan").plan;
+        let alone = CampaignResult::of(&plan, 1, 12, false, &|| {}, None)
+            .expect("campaign")
+            .expect("not cancelled");
+        assert!(alone.compared().is_empty());
+        let counted = std::sync::atomic::AtomicU64::new(0);
+        let count = || {
+            counted.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        };
+        let both = CampaignResult::of(&plan, 1, 12, true, &count, None)
+            .expect("campaign")
+            .expect("not cancelled");
+        assert_eq!(counted.into_inner(), 36, "each run once per policy");
+        assert_eq!(both.summary, alone.summary, "replan's detail as alone");
+        let policies: Vec<Policy> = both.compared().iter().map(|s| s.policy).collect();
+        assert_eq!(policies, COMPARED);
+        assert_eq!(both.compared()[0], alone.summary);
+    }
+
+    #[test]
     fn a_cancelled_campaign_has_no_result() {
         let text = include_str!("../../assets/execution-examples/uncertain-drive.json");
         let plan = solscope_engine::load_plan(text).expect("example plan").plan;
         let cancel = AtomicBool::new(true);
-        let result = CampaignResult::of(&plan, 1, 20, &|| {}, Some(&cancel));
+        let result = CampaignResult::of(&plan, 1, 20, true, &|| {}, Some(&cancel));
         assert_eq!(result, Ok(None));
     }
 }

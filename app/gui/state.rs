@@ -25,6 +25,11 @@ pub struct Persisted {
     /// neighbours) hidden.
     #[serde(default)]
     pub hide_flex: bool,
+    /// Monte Carlo: Run compares the execution policies (replan, dispatch,
+    /// fixed over the same runs) instead of running the replanning executive
+    /// alone.
+    #[serde(default)]
+    pub compare_policies: bool,
 }
 
 impl Persisted {

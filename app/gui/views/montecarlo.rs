@@ -6,18 +6,24 @@
 //! execution inspector): its completed / aborted / not-run shares as a
 //! stacked bar (small in the activity list, larger in the inspector), its
 //! start across runs, why it was lost across runs, and the first runs that
-//! lost it, to open.
+//! lost it, to open. With "Compare policies" a campaign runs the same runs
+//! under replan, dispatch and fixed, and the panel shows them side by side:
+//! per policy the runs that broke a limit and the median lowest state of
+//! charge, and per activity lost in some run under some policy its three
+//! stacked bars (the rest of the app details the replan campaign).
+
+use std::cmp::Reverse;
 
 use eframe::egui::{self, RichText, Sense, Stroke};
 use egui_plot::{Bar, BarChart, Plot, VLine};
 use solscope_engine::{
-    ActivitySummary, Distribution, LostSummary, MJ_PER_WH, Predictor, format_wh,
+    ActivitySummary, Distribution, LostSummary, MJ_PER_WH, Predictor, Summary, format_wh,
 };
 
 use super::{CampaignModel, Model};
 use crate::gui::commands::{Command, UiCommand};
 use crate::gui::execution::ActualsSource;
-use crate::gui::montecarlo::{Bin, CampaignResult, MAX_RUNS, StopReason};
+use crate::gui::montecarlo::{Bin, COMPARED, CampaignResult, MAX_RUNS, StopReason, total_runs};
 use crate::gui::state::TextBuffers;
 use crate::gui::theme::{
     BAR_OUTLINE_STROKE, CAMPAIGN_FIELD_WIDTH, HISTOGRAM_HEIGHT, LIMIT_LINE_STROKE,
@@ -26,6 +32,12 @@ use crate::gui::theme::{
 
 /// How many of the activities lost most often the panel lists.
 const MOST_LOST_SHOWN: usize = 5;
+
+/// Width of one policy's stacked bar in the comparison (px).
+const COMPARE_BAR_WIDTH: f32 = 52.0;
+
+/// Height of the comparison's scrolled list of activities (px).
+const COMPARE_LIST_HEIGHT: f32 = 120.0;
 
 /// The Monte Carlo panel under the Gantt and plots (execution mode): the
 /// controls and progress in its header (shown folded too), the plan-wide
@@ -49,6 +61,9 @@ pub fn campaign_panel_ui(
                 None => {}
                 Some(Err(e)) => {
                     ui.colored_label(m.theme.error, format!("The campaign failed: {e}"));
+                }
+                Some(Ok(result)) if !result.compared().is_empty() => {
+                    compare_ui(ui, m, result, cmds);
                 }
                 Some(Ok(result)) => summary_ui(ui, m, result),
             }
@@ -86,6 +101,21 @@ fn controls_ui(ui: &mut egui::Ui, m: &Model<'_>, text: &mut TextBuffers, cmds: &
         );
     let enter =
         (runs.lost_focus() || seed.lost_focus()) && ui.input(|i| i.key_pressed(egui::Key::Enter));
+    let compare = m.persisted.compare_policies;
+    let toggle = UiCommand::ToggleComparePolicies;
+    let mut checked = compare;
+    if ui
+        .add_enabled(!running, egui::Checkbox::new(&mut checked, toggle.label()))
+        .on_hover_text(
+            "Run the same runs under each execution policy, one after the other: replan (the \
+             onboard scheduler again at every cycle), dispatch (each activity by the flexible \
+             schedule's start and skip conditions) and fixed (each activity at its scheduled \
+             start), and show them side by side",
+        )
+        .changed()
+    {
+        cmds.push(toggle.into());
+    }
     let run = ui
         .add_enabled(uncertain && !running, egui::Button::new("Run"))
         .on_hover_text(
@@ -103,7 +133,11 @@ fn controls_ui(ui: &mut egui::Ui, m: &Model<'_>, text: &mut TextBuffers, cmds: &
         );
         match parsed {
             (Ok(runs), Ok(seed)) if (1..=MAX_RUNS).contains(&runs) => {
-                cmds.push(Command::RunCampaign { runs, seed });
+                cmds.push(if compare {
+                    Command::ComparePolicies { runs, seed }
+                } else {
+                    Command::RunCampaign { runs, seed }
+                });
             }
             (_, Ok(_)) => cmds.push(Command::ShowError(format!(
                 "Runs: enter a whole number from 1 to {MAX_RUNS}"
@@ -116,15 +150,21 @@ fn controls_ui(ui: &mut egui::Ui, m: &Model<'_>, text: &mut TextBuffers, cmds: &
     super::command_button(ui, UiCommand::CancelCampaign, running, cmds);
     ui.separator();
     if let Some(p) = c.running {
-        let share = if p.runs == 0 {
+        let total = p.total();
+        let share = if total == 0 {
             0.0
         } else {
-            p.done as f32 / p.runs as f32
+            p.done as f32 / total as f32
         };
-        let what = if p.cancelling {
-            format!("cancelling… {} / {} runs", p.done, p.runs)
-        } else {
-            format!("{} / {} runs (seed {})", p.done, p.runs, p.seed)
+        let what = match (p.cancelling, p.policy()) {
+            (true, _) => format!("cancelling… {} / {total} runs", p.done),
+            (false, None) => format!("{} / {} runs (seed {})", p.done, p.runs, p.seed),
+            (false, Some((policy, done))) => format!(
+                "{}: {done} / {} runs (seed {}; replan, dispatch, fixed in turn)",
+                policy.name(),
+                p.runs,
+                p.seed
+            ),
         };
         let bar = ui.add(egui::ProgressBar::new(share).text(what));
         if c.result.is_some() {
@@ -140,22 +180,43 @@ fn controls_ui(ui: &mut egui::Ui, m: &Model<'_>, text: &mut TextBuffers, cmds: &
     }
 }
 
-/// `200 runs, seed 1: 98 broke a limit` (by kind in the panel's body).
+/// `200 runs, seed 1: 98 broke a limit` (by kind in the panel's body); of a
+/// comparison, `broke a limit: replan 82, dispatch 110, fixed 1 (200 runs
+/// each, seed 1)`. Cut to the header's width, whole on hover and as its
+/// accessibility label.
 fn headline_ui(ui: &mut egui::Ui, m: &Model<'_>, result: &CampaignResult) {
     let s = &result.summary;
-    let head = format!("{} runs, seed {}", s.runs, s.seed);
-    let breaking = s.limits.runs_breaking;
-    if breaking == 0 {
-        ui.label(format!("{head}: no run broke a limit"));
+    let (text, broken) = if result.compared().is_empty() {
+        let head = format!("{} runs, seed {}", s.runs, s.seed);
+        let breaking = s.limits.runs_breaking;
+        if breaking == 0 {
+            (format!("{head}: no run broke a limit"), false)
+        } else {
+            let share = percent(breaking, s.runs);
+            (format!("{head}: {breaking} broke a limit ({share})"), true)
+        }
     } else {
-        ui.colored_label(
-            m.theme.error,
-            format!(
-                "{head}: {breaking} broke a limit ({})",
-                percent(breaking, s.runs)
-            ),
+        let counts: Vec<String> = result
+            .compared()
+            .iter()
+            .map(|x| format!("{} {}", x.policy.name(), x.limits.runs_breaking))
+            .collect();
+        let text = format!(
+            "Broke a limit: {} ({} runs each, seed {})",
+            counts.join(", "),
+            s.runs,
+            s.seed
         );
+        let broken = result.compared().iter().any(|x| x.limits.runs_breaking > 0);
+        (text, broken)
+    };
+    let mut rich = RichText::new(text.clone());
+    if broken {
+        rich = rich.color(m.theme.error);
     }
+    let resp = ui.add(egui::Label::new(rich).truncate());
+    resp.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Label, true, &text));
+    resp.on_hover_text(text);
 }
 
 /// What became of the last campaign that did not finish or no longer
@@ -165,14 +226,22 @@ fn status_ui(ui: &mut egui::Ui, m: &Model<'_>, c: &CampaignModel<'_>) {
     if let Some(s) = c.stopped {
         let why = match s.why {
             StopReason::Cancelled => format!(
-                "Cancelled after {} of {} runs (seed {}); nothing of it is kept.",
-                s.done, s.runs, s.seed
+                "Cancelled after {} of {} runs ({}seed {}); nothing of it is kept.",
+                s.done,
+                total_runs(s.runs, s.compare),
+                if s.compare {
+                    format!("{} per policy, ", s.runs)
+                } else {
+                    String::new()
+                },
+                s.seed
             ),
             StopReason::PlanEdited => format!(
                 "The plan was edited while the campaign ran ({} of {} runs done): it was \
                  stopped, as its summary would have been of the plan before the edit. Run it \
                  again.",
-                s.done, s.runs
+                s.done,
+                total_runs(s.runs, s.compare)
             ),
         };
         ui.colored_label(m.theme.muted, why);
@@ -239,6 +308,178 @@ fn summary_ui(ui: &mut egui::Ui, m: &Model<'_>, result: &CampaignResult) {
             );
         }
     });
+}
+
+/// A comparison of the policies over the same runs: per policy the runs that
+/// broke a limit and the median lowest state of charge; per activity that
+/// some policy lost in some run, its completed / aborted / not-run shares
+/// under each policy (click its name to select it).
+fn compare_ui(ui: &mut egui::Ui, m: &Model<'_>, result: &CampaignResult, cmds: &mut Vec<Command>) {
+    let compared = result.compared();
+    let runs = result.runs();
+    ui.columns(2, |cols| {
+        let ui = &mut cols[0];
+        ui.label(
+            RichText::new(format!(
+                "The same {runs} runs (seed {}) under each policy",
+                result.seed
+            ))
+            .strong(),
+        )
+        .on_hover_text(
+            "Run i draws the same durations under every policy, so the campaigns compare \
+             run by run",
+        );
+        for s in compared {
+            let line = policy_line(s);
+            let label = if s.limits.runs_breaking > 0 {
+                ui.colored_label(m.theme.error, line)
+            } else {
+                ui.label(line)
+            };
+            label.on_hover_text(policy_details(s));
+        }
+        ui.colored_label(
+            m.theme.muted,
+            "The histograms, the activity list's bars and the inspector show the replan \
+             campaign; Compare policies off runs it alone.",
+        );
+        let Some(ui) = cols.get_mut(1) else {
+            return;
+        };
+        compare_activities_ui(ui, m, compared, runs, cmds);
+    });
+}
+
+/// `dispatch: 3 of 20 runs broke a limit (15%) · median lowest state of
+/// charge 812.4 Wh`.
+fn policy_line(s: &Summary) -> String {
+    let lowest = format!(
+        "median lowest state of charge {}",
+        wh_text(s.lowest_soc.p50)
+    );
+    let breaking = s.limits.runs_breaking;
+    if breaking == 0 {
+        format!("{}: no run broke a limit · {lowest}", s.policy.name())
+    } else {
+        format!(
+            "{}: {breaking} of {} runs broke a limit ({}) · {lowest}",
+            s.policy.name(),
+            s.runs,
+            percent(breaking, s.runs)
+        )
+    }
+}
+
+/// The runs breaking each limit and the lowest state of charge's spread.
+fn policy_details(s: &Summary) -> String {
+    let kinds: Vec<String> = s
+        .limits
+        .by_kind
+        .iter()
+        .map(|(k, n)| format!("{k} {n}"))
+        .collect();
+    let d = &s.lowest_soc;
+    let mut text = format!(
+        "Lowest state of charge per run: 5–95% {} – {}, all within {} – {}",
+        wh_text(d.p05),
+        wh_text(d.p95),
+        wh_text(d.min),
+        wh_text(d.max)
+    );
+    if !kinds.is_empty() {
+        text.push_str(&format!("\nRuns breaking each limit: {}", kinds.join(", ")));
+    }
+    text
+}
+
+/// Whether activity `a` was lost in some run under some policy (and run in
+/// some run under some policy: never run under any is listed apart).
+fn differs(compared: &[Summary], a: usize) -> bool {
+    let of = || compared.iter().filter_map(|s| s.activities.get(a));
+    of().any(|x| x.aborted + x.not_run > 0) && of().any(|x| x.completed + x.aborted > 0)
+}
+
+/// Where activity `a` comes in the comparison's list: the largest difference
+/// between the policies' completed runs first, then the most runs lost
+/// under some policy, then plan order.
+fn compare_order(compared: &[Summary], a: usize) -> (Reverse<u64>, Reverse<u64>, usize) {
+    let of = || compared.iter().filter_map(|s| s.activities.get(a));
+    let most = of().map(|x| x.completed).max().unwrap_or(0);
+    let least = of().map(|x| x.completed).min().unwrap_or(0);
+    let lost = of().map(|x| x.aborted + x.not_run).max().unwrap_or(0);
+    (Reverse(most - least), Reverse(lost), a)
+}
+
+/// Per activity that some policy lost in some run: a stacked bar per policy
+/// (in the order of [`COMPARED`]) and its name, to select.
+fn compare_activities_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    compared: &[Summary],
+    runs: u64,
+    cmds: &mut Vec<Command>,
+) {
+    let n = m.doc.plan.activities.len();
+    let mut listed: Vec<usize> = (0..n).filter(|&a| differs(compared, a)).collect();
+    listed.sort_by_key(|&a| compare_order(compared, a));
+    let never = (0..n)
+        .filter(|&a| {
+            compared.iter().all(|s| {
+                s.activities
+                    .get(a)
+                    .is_none_or(|x| x.completed + x.aborted == 0)
+            })
+        })
+        .count();
+    let always = n - listed.len() - never;
+    ui.label(RichText::new("Per activity lost in some run").strong())
+        .on_hover_text(
+            "Completed / aborted / not run under each policy; the activities whose \
+             completed runs differ most between the policies first",
+        );
+    let row_height = ui.spacing().interact_size.y;
+    ui.horizontal(|ui| {
+        for p in COMPARED {
+            ui.add_sized(
+                [COMPARE_BAR_WIDTH, row_height],
+                egui::Label::new(RichText::new(p.name()).color(m.theme.muted)),
+            );
+        }
+    });
+    egui::ScrollArea::vertical()
+        .id_salt("mc_compare")
+        .max_height(COMPARE_LIST_HEIGHT)
+        .auto_shrink([false, true])
+        .show_rows(ui, row_height, listed.len(), |ui, rows| {
+            for &a in &listed[rows] {
+                ui.horizontal(|ui| {
+                    for s in compared {
+                        let Some(x) = s.activities.get(a) else {
+                            continue;
+                        };
+                        let size = egui::vec2(COMPARE_BAR_WIDTH, SHARE_BAR_HEIGHT);
+                        let text = format!("{}, {}", s.policy.name(), shares_text(x, runs));
+                        labelled_share_bar(ui, m, x, runs, size, text);
+                    }
+                    let id = m.doc.plan.activities.get(a).map_or("?", |x| x.id.as_str());
+                    if ui
+                        .selectable_label(m.nav.selected == Some(a), id)
+                        .on_hover_text("Select it (the inspector details the replan campaign)")
+                        .clicked()
+                    {
+                        cmds.push(Command::Select(Some(a)));
+                    }
+                });
+            }
+        });
+    if listed.is_empty() {
+        ui.label("No policy lost an activity in any run.");
+    }
+    ui.colored_label(
+        m.theme.muted,
+        format!("{always} completed in every run under every policy; {never} never ran"),
+    );
 }
 
 /// The activities lost in the most runs (click to select), for the
@@ -415,8 +656,19 @@ pub fn share_bar(
     runs: u64,
     size: egui::Vec2,
 ) -> egui::Response {
+    labelled_share_bar(ui, m, s, runs, size, shares_text(s, runs))
+}
+
+/// [`share_bar`] with `text` on hover and as its accessibility label.
+fn labelled_share_bar(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    s: &ActivitySummary,
+    runs: u64,
+    size: egui::Vec2,
+    text: String,
+) -> egui::Response {
     let (rect, resp) = ui.allocate_exact_size(size, Sense::hover());
-    let text = shares_text(s, runs);
     resp.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, &text));
     if ui.is_rect_visible(rect) {
         let painter = ui.painter_at(rect);
