@@ -190,6 +190,23 @@ fn temporal_rules_hold(
     Ok(())
 }
 
+/// `(start, end)` of every placed activity from the time of each event.
+fn spans(
+    c: &Case,
+    ev: &Events,
+    time: impl Fn(usize) -> i64,
+) -> std::collections::BTreeMap<usize, (i64, i64)> {
+    c.flex
+        .activities
+        .iter()
+        .map(|x| {
+            let s = ev.index(TimePoint::Start(x.activity));
+            let e = ev.index(TimePoint::End(x.activity));
+            (x.activity, (time(s), time(e)))
+        })
+        .collect()
+}
+
 struct Case {
     plan: Plan,
     doc: Value,
@@ -243,18 +260,7 @@ fn check_bounds(c: &Case, rng: &mut TestRng) -> Result<(), String> {
                 c.plan.activities[fa.activity].id, fa.start.lb, fa.start.ub
             ))?;
             // The earliest assignment: every other event at -D(v, origin).
-            let at = c
-                .flex
-                .activities
-                .iter()
-                .map(|x| {
-                    let (i, j) = (
-                        ev.index(TimePoint::Start(x.activity)),
-                        ev.index(TimePoint::End(x.activity)),
-                    );
-                    (x.activity, (h0 - d[i][0], h0 - d[j][0]))
-                })
-                .collect();
+            let at = spans(c, &ev, |i| h0 - d[i][0]);
             temporal_rules_hold(&c.plan, &c.step_of, &at).map_err(|e| {
                 format!(
                     "start of {} at {t}: the network's assignment breaks a plan rule: {e}",
@@ -363,18 +369,7 @@ fn check_dispatchable(c: &Case, rng: &mut TestRng) -> Result<(), String> {
                 ));
             }
         }
-        let at = c
-            .flex
-            .activities
-            .iter()
-            .map(|x| {
-                let (i, j) = (
-                    ev.index(TimePoint::Start(x.activity)),
-                    ev.index(TimePoint::End(x.activity)),
-                );
-                (x.activity, (time[i].unwrap(), time[j].unwrap()))
-            })
-            .collect();
+        let at = spans(c, &ev, |i| time[i].unwrap());
         temporal_rules_hold(&c.plan, &c.step_of, &at)
             .map_err(|e| format!("dispatch broke a plan rule: {e}"))?;
     }
