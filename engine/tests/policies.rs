@@ -205,3 +205,57 @@ fn monte_carlo_under_each_policy_is_the_same_on_any_thread_count() {
         assert_eq!(r[2].durations, one[2].durations);
     }
 }
+
+/// Exploratory (ignored): on controllable networks, dispatch with sampled
+/// durations keeps every temporal edge among the events that happened.
+fn controllable_keeps_edges(plan: &Plan, seed: u64) -> Result<(), String> {
+    let sched = schedule(plan).map_err(|e| e.to_string())?;
+    let flex = flex_with(plan, &sched, FlexOptions { free_slack: false });
+    if !matches!(flex.controllability, Controllability::Controllable { .. }) {
+        return Ok(());
+    }
+    let actuals = sample_run(plan, seed, 0);
+    let ex = run(plan, &actuals, Policy::Dispatch);
+    let time = |e: TimePoint| match e {
+        TimePoint::Origin => Some(plan.horizon.start),
+        TimePoint::Start(b) => ex.activities[b].actual.map(|x| x.0),
+        TimePoint::End(b) => ex.activities[b].actual.map(|x| x.1),
+    };
+    let skipped: Vec<&str> = flex
+        .activities
+        .iter()
+        .filter(|fa| ex.activities[fa.activity].actual.is_none())
+        .map(|fa| plan.activities[fa.activity].id.as_str())
+        .collect();
+    for e in &flex.network {
+        if matches!(e.why, solscope_engine::Constraint::Duration { .. }) {
+            continue;
+        }
+        if let (Some(a), Some(b)) = (time(e.from), time(e.to)) {
+            if b - a > e.max {
+                return Err(format!(
+                    "broke {:?}: {} > {} (skipped {skipped:?})",
+                    e.why,
+                    b - a,
+                    e.max
+                ));
+            }
+        }
+    }
+    if !skipped.is_empty() {
+        return Err(format!("skipped {skipped:?}"));
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, failure_persistence: None, max_shrink_iters: 200, ..ProptestConfig::default() })]
+    #[test]
+    #[ignore = "known gap (issue 12 follow-up): dispatch on a controllable network can still break an order among the events; run with --ignored"]
+    fn controllable_dispatch_keeps_the_network(text in plangen::plan_text(), seed in 0u64..1000) {
+        let plan = with_models(&text);
+        if let Err(e) = controllable_keeps_edges(&plan, seed) {
+            return Err(TestCaseError::fail(e));
+        }
+    }
+}

@@ -199,9 +199,21 @@ fn fixed(problem: &Problem, plan: &Plan, prepared: &Prepared, sim: &mut Sim) -> 
 fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<Event> {
     let mut times: BTreeMap<TimePoint, i64> = BTreeMap::new();
     times.insert(TimePoint::Origin, problem.h0);
-    let waits: Vec<crate::flex::Wait> = match &flex.controllability {
-        crate::flex::Controllability::Controllable { waits, .. } => waits.clone(),
-        _ => Vec::new(),
+    let (waits, tightened): (Vec<crate::flex::Wait>, Vec<(usize, i64, i64)>) =
+        match &flex.controllability {
+            crate::flex::Controllability::Controllable { waits, tightened } => {
+                (waits.clone(), tightened.clone())
+            }
+            _ => (Vec::new(), Vec::new()),
+        };
+    // On a controllable network the start bounds are the tightened ones (they hold
+    // whatever the uncertain durations turn out to be).
+    let bounds = |j: usize| {
+        let fa = &flex.activities[j];
+        tightened
+            .iter()
+            .find(|t| t.0 == fa.activity)
+            .map_or((fa.start.lb, fa.start.ub), |t| (t.1, t.2))
     };
     let mut pending: Vec<usize> = (0..flex.activities.len()).collect();
     // Running activities whose end has not happened: (end, activity).
@@ -218,7 +230,8 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
             let fa = &flex.activities[j];
             let a = fa.activity;
             let c = &fa.condition;
-            let mut t = fa.start.lb;
+            let (lb, ub) = bounds(j);
+            let mut t = lb;
             let mut enabled = true;
             for b in &c.after {
                 match times.get(&b.event) {
@@ -229,7 +242,7 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
                     None => {}
                 }
             }
-            let mut latest = fa.start.ub;
+            let mut latest = ub;
             for b in &c.within {
                 if let Some(&x) = times.get(&b.event) {
                     latest = latest.min(x + b.offset);
@@ -243,7 +256,10 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
                     // Ended: nothing to wait for.
                     (_, Some(_)) => {}
                     (Some(&s), None) => t = t.max(s + w.offset),
-                    (None, None) => enabled = false,
+                    // Not started: a wait at or after its start needs it to
+                    // have started; one before it binds only if it starts first.
+                    (None, None) if w.offset >= 0 => enabled = false,
+                    (None, None) => {}
                 }
             }
             if !enabled {
