@@ -216,18 +216,18 @@ pub fn flex_with(plan: &Plan, sched: &Schedule, opts: FlexOptions) -> Flex {
         );
     }
     // With uncertain durations, dispatch runs on the controllable network.
-    let (controllability, dispatch_edges, potential) = if net.contingent.is_empty() {
-        (Controllability::Certain, None, nominal.clone())
+    let (controllability, dispatch_on) = if net.contingent.is_empty() {
+        (Controllability::Certain, None)
     } else {
         controllability(&net, &plain)
     };
-    let (dlb, dub, graph) = match &dispatch_edges {
-        None => (lb.clone(), ub.clone(), Graph::new(n, &plain, false)),
-        Some(edges) => {
-            let g = Graph::new(n, edges, false);
-            let r = Graph::new(n, edges, true);
+    let (dlb, dub, graph, potential) = match dispatch_on {
+        None => (lb.clone(), ub.clone(), fwd, nominal.clone()),
+        Some((edges, potential)) => {
+            let g = Graph::new(n, &edges, false);
+            let r = Graph::new(n, &edges, true);
             let (l, u) = bounds(h0, &g, &r, &potential);
-            (l, u, g)
+            (l, u, g, potential)
         }
     };
     let tie: Vec<usize> = (0..n)
@@ -290,7 +290,7 @@ pub fn flex_with(plan: &Plan, sched: &Schedule, opts: FlexOptions) -> Flex {
             let keep = |b: &Bound| {
                 b.event != TimePoint::Origin
                     && !is_own(b.event, a)
-                    && index_of(&net, b.event).is_none_or(|x| disp.leader[x].0 != s)
+                    && net.index(b.event).is_none_or(|x| disp.leader[x].0 != s)
             };
             if lead != s && lead != 0 {
                 // Rigid with its leader: it happens exactly `off` after it.
@@ -305,7 +305,7 @@ pub fn flex_with(plan: &Plan, sched: &Schedule, opts: FlexOptions) -> Flex {
                 // after this start never binds: it is that event's upper bound.
                 let later = |b: &Bound| {
                     b.offset < 0
-                        && index_of(&net, b.event).is_some_and(|x| {
+                        && net.index(b.event).is_some_and(|x| {
                             after[x]
                                 .iter()
                                 .any(|c| c.event == TimePoint::Start(a) && c.offset >= 0)
@@ -400,16 +400,6 @@ pub fn flex_with(plan: &Plan, sched: &Schedule, opts: FlexOptions) -> Flex {
     }
 }
 
-/// The index of event `e` in the network.
-fn index_of(net: &network::Network, e: TimePoint) -> Option<usize> {
-    let slot = |a: usize| net.placed.binary_search(&a).ok();
-    match e {
-        TimePoint::Origin => Some(0),
-        TimePoint::Start(a) => slot(a).map(|j| 1 + 2 * j),
-        TimePoint::End(a) => slot(a).map(|j| 2 + 2 * j),
-    }
-}
-
 /// A not-controllable verdict reduced to a minimal conflict (deletion filter):
 /// the input edges and links its paths used, each dropped in turn when the
 /// network of the rest is still not controllable. Controllable verdicts pass
@@ -488,15 +478,50 @@ fn is_own(e: TimePoint, a: usize) -> bool {
 /// Distance-graph edges `(from, to, w)`.
 type Edges = Vec<(usize, usize, i64)>;
 
+/// The verdict "not controllable" naming the plan rules behind `edges` (network
+/// edges `(from, to, w)`, the built edge with that weight), the uncertain
+/// durations `durations`, and the activities of the `events` and of all those.
+fn not_controllable(
+    net: &network::Network,
+    edges: impl Iterator<Item = (usize, usize, i64)>,
+    durations: impl Iterator<Item = usize>,
+    events: &[usize],
+) -> Controllability {
+    let mut constraints: Vec<Constraint> = edges
+        .filter_map(|(u, v, w)| {
+            net.edges
+                .iter()
+                .find(|x| (x.from, x.to, x.w) == (u, v, w))
+                .map(|x| x.why.clone())
+        })
+        .collect();
+    constraints.extend(durations.map(|k| Constraint::Duration {
+        act: net.placed[net.contingent[k].0],
+    }));
+    constraints.sort();
+    constraints.dedup();
+    let mut activities: Vec<usize> = events
+        .iter()
+        .filter(|&&e| e >= 1)
+        .map(|&e| net.placed[(e - 1) / 2])
+        .chain(constraints.iter().flat_map(Constraint::activities))
+        .collect();
+    activities.sort_unstable();
+    activities.dedup();
+    Controllability::NotControllable {
+        activities,
+        constraints,
+    }
+}
+
 /// The dynamic controllability of the network, and when controllable the edges
 /// to dispatch on (the ordinary edges, the uncertain durations as their ranges,
 /// and the derived edges) with a feasible potential for them.
 fn controllability(
     net: &network::Network,
     plain: &[(usize, usize, i64)],
-) -> (Controllability, Option<Edges>, Vec<i64>) {
+) -> (Controllability, Option<(Edges, Vec<i64>)>) {
     let n = net.len();
-    let nominal: Vec<i64> = (0..n).map(|e| net.nominal_time(e)).collect();
     let links: Vec<Link> = net
         .contingent
         .iter()
@@ -545,40 +570,17 @@ fn controllability(
             events,
             edges,
             links: used,
-        } => {
-            let mut activities: Vec<usize> = events
-                .iter()
-                .filter(|&&e| e >= 1)
-                .map(|&e| net.placed[(e - 1) / 2])
-                .collect();
-            let mut constraints: Vec<Constraint> = Vec::new();
-            for &i in &edges {
-                let (u, v, w) = ordinary[i];
-                if let Some(edge) = net.edges.iter().find(|x| (x.from, x.to, x.w) == (u, v, w)) {
-                    constraints.push(edge.why.clone());
-                }
-            }
-            for k in used {
-                constraints.push(Constraint::Duration {
-                    act: net.placed[net.contingent[k].0],
-                });
-            }
-            activities.extend(constraints.iter().flat_map(Constraint::activities));
-            activities.sort_unstable();
-            activities.dedup();
-            constraints.sort();
-            constraints.dedup();
-            (
-                Controllability::NotControllable {
-                    activities,
-                    constraints,
-                },
-                None,
-                nominal,
-            )
-        }
+        } => (
+            not_controllable(
+                net,
+                edges.iter().map(|&i| ordinary[i]),
+                used.into_iter(),
+                &events,
+            ),
+            None,
+        ),
         Dc::Controllable { derived, waits } => {
-            let mut edges = ordinary.clone();
+            let mut edges = ordinary;
             for l in &links {
                 edges.push((l.start, l.end, l.max));
                 edges.push((l.end, l.start, -l.min));
@@ -605,38 +607,18 @@ fn controllability(
                             tightened: Vec::new(),
                             waits,
                         },
-                        Some(edges),
-                        pot,
+                        Some((edges, pot)),
                     )
                 }
-                Err(cycle) => {
-                    let mut constraints: Vec<Constraint> = cycle
-                        .iter()
-                        .filter_map(|&i| {
-                            let (u, v, w) = edges[i];
-                            net.edges
-                                .iter()
-                                .find(|x| (x.from, x.to, x.w) == (u, v, w))
-                                .map(|x| x.why.clone())
-                        })
-                        .collect();
-                    constraints.sort();
-                    constraints.dedup();
-                    let mut activities: Vec<usize> = constraints
-                        .iter()
-                        .flat_map(Constraint::activities)
-                        .collect();
-                    activities.sort_unstable();
-                    activities.dedup();
-                    (
-                        Controllability::NotControllable {
-                            activities,
-                            constraints,
-                        },
-                        None,
-                        nominal,
-                    )
-                }
+                Err(cycle) => (
+                    not_controllable(
+                        net,
+                        cycle.iter().map(|&i| edges[i]),
+                        std::iter::empty(),
+                        &[],
+                    ),
+                    None,
+                ),
             }
         }
     }

@@ -139,6 +139,16 @@ impl Network {
         }
     }
 
+    /// The index of event `e` (`None` for an activity not placed).
+    pub fn index(&self, e: TimePoint) -> Option<usize> {
+        let slot = |a: usize| self.placed.binary_search(&a).ok();
+        match e {
+            TimePoint::Origin => Some(0),
+            TimePoint::Start(a) => slot(a).map(|j| 1 + 2 * j),
+            TimePoint::End(a) => slot(a).map(|j| 2 + 2 * j),
+        }
+    }
+
     /// The scheduled time of event `e`.
     pub fn nominal_time(&self, e: usize) -> i64 {
         if e == 0 {
