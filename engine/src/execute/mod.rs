@@ -207,14 +207,7 @@ pub fn execute_with(
     let problem = Problem::compile(plan)?;
     if !options.policy.is_replan() {
         let prepared = policy::Prepared::new(plan, options.policy)?;
-        return Ok(policy::run(
-            &problem,
-            plan,
-            &prepared,
-            actuals,
-            options.policy,
-            options,
-        ));
+        return Ok(policy::run(&problem, plan, &prepared, actuals, options));
     }
     let mut sim = Sim::new(&problem, plan, actuals);
     while sim.cycle(&problem, plan, options)? {}

@@ -187,7 +187,7 @@ pub fn campaign_runs(
             let ex = match (&prefix, &prepared) {
                 (Some(prefix), _) => prefix.execute(&problem, plan, &actuals, options),
                 (None, Some(prepared)) => Ok(super::policy::run(
-                    &problem, plan, prepared, &actuals, policy, options,
+                    &problem, plan, prepared, &actuals, options,
                 )),
                 (None, None) => execute_with(plan, &actuals, options),
             };

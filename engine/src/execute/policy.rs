@@ -77,19 +77,19 @@ impl Prepared {
     }
 }
 
-/// One execution under `policy` (not [`Policy::Replan`]).
+/// One execution under the policy `prepared` is for (dispatch when it has the
+/// flexible form, fixed otherwise).
 pub(crate) fn run(
     problem: &Problem,
     plan: &Plan,
     prepared: &Prepared,
     actuals: &Actuals,
-    policy: Policy,
     options: ExecuteOptions,
 ) -> Execution {
     let mut sim = Sim::new(problem, plan, actuals);
-    let events = match (&prepared.flex, policy) {
-        (Some(flex), Policy::Dispatch) => dispatch(problem, plan, flex, &mut sim),
-        _ => fixed(problem, plan, prepared, &mut sim),
+    let events = match &prepared.flex {
+        Some(flex) => dispatch(problem, plan, flex, &mut sim),
+        None => fixed(problem, plan, prepared, &mut sim),
     };
     // The generated periods run as scheduled.
     let out = &prepared.outcomes;
