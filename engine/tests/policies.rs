@@ -178,24 +178,18 @@ fn monte_carlo_under_each_policy_is_the_same_on_any_thread_count() {
     let indices: Vec<u64> = (0..40).collect();
     for policy in [Policy::Fixed, Policy::Dispatch] {
         let c = campaign_with(&plan, 5, 40, "plan", policy).unwrap();
-        let one = rayon::ThreadPoolBuilder::new()
-            .num_threads(1)
-            .build()
-            .unwrap()
-            .install(|| {
-                campaign_runs(&plan, &c, &indices, &|| {}, None)
-                    .unwrap()
-                    .unwrap()
-            });
-        let many = rayon::ThreadPoolBuilder::new()
-            .num_threads(4)
-            .build()
-            .unwrap()
-            .install(|| {
-                campaign_runs(&plan, &c, &indices, &|| {}, None)
-                    .unwrap()
-                    .unwrap()
-            });
+        let on_threads = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| {
+                    campaign_runs(&plan, &c, &indices, &|| {}, None)
+                        .unwrap()
+                        .unwrap()
+                })
+        };
+        let (one, many) = (on_threads(1), on_threads(4));
         assert_eq!(one, many, "{policy:?}");
         // The policies draw the same durations run by run.
         let replan = campaign_with(&plan, 5, 40, "plan", Policy::Replan).unwrap();
