@@ -75,6 +75,22 @@ pub struct StateChange {
     pub owner: usize,
 }
 
+/// The distinct times of `effects` (sorted by `(time, step)`) with the value that
+/// wins there (the later step).
+fn effective(effects: &[StateChange]) -> Vec<(i64, usize)> {
+    let mut out: Vec<(i64, usize)> = Vec::with_capacity(effects.len());
+    for &StateChange {
+        time: t, value: v, ..
+    } in effects
+    {
+        match out.last_mut() {
+            Some(last) if last.0 == t => last.1 = v,
+            _ => out.push((t, v)),
+        }
+    }
+    out
+}
+
 /// One named state: its initial value, the placed effects and requirements.
 #[derive(Clone, Debug, Default)]
 pub struct StateTimeline {
@@ -123,17 +139,7 @@ impl StateTimeline {
 
     /// The distinct effect times with the value that wins there (the later step).
     fn effective(&self) -> Vec<(i64, usize)> {
-        let mut out: Vec<(i64, usize)> = Vec::with_capacity(self.effects.len());
-        for &StateChange {
-            time: t, value: v, ..
-        } in &self.effects
-        {
-            match out.last_mut() {
-                Some(last) if last.0 == t => last.1 = v,
-                _ => out.push((t, v)),
-            }
-        }
-        out
+        effective(&self.effects)
     }
 
     /// The value held at time `t`.
@@ -209,14 +215,12 @@ impl StateTimeline {
             }
             all.sort_by_key(|e| (e.time, e.step));
             self.requirements.iter().all(|&(rs, re, value, req_owner)| {
-                // The value each time it changes (the later step wins a tie).
-                let mut effective: Vec<(i64, usize)> = Vec::new();
-                for e in all.iter().filter(|e| e.owner != req_owner) {
-                    match effective.last_mut() {
-                        Some(last) if last.0 == e.time => last.1 = e.value,
-                        _ => effective.push((e.time, e.value)),
-                    }
-                }
+                let seen: Vec<StateChange> = all
+                    .iter()
+                    .filter(|e| e.owner != req_owner)
+                    .copied()
+                    .collect();
+                let effective = effective(&seen);
                 let at_start = effective
                     .iter()
                     .take_while(|e| e.0 <= rs)
