@@ -287,6 +287,18 @@ impl Checker {
                 }
                 continue;
             }
+            if label == Label::Ordinary
+                && u != src
+                && !self.links.iter().any(|l| l.end == u)
+                && self.derived.get(&(u, src)).is_none_or(|&x| d < x)
+            {
+                // Still negative: the propagation goes on through `u`, but the
+                // executive needs the bound itself too (`u` no earlier than
+                // `-d` after `src`, e.g. a start that must wait until a
+                // contingent end that follows it can no longer come too early).
+                // Without it only the bounds derived further back hold.
+                self.derived.insert((u, src), d);
+            }
             if let Label::Upper(k) = label {
                 // A wait: u not before H - d = start + l - d unless the end happened.
                 let uncontrolled = self.links.iter().any(|l| l.end == u);

@@ -5,8 +5,9 @@
 //! potential (the schedule satisfies every edge, so reduced lengths are >= 0).
 //!
 //! Rigid components (events whose distance is fixed: zero-length cycles, whose
-//! edges all have reduced length 0) collapse onto a leader, the earliest member
-//! (ties: the earlier step);
+//! edges all have reduced length 0) collapse onto a leader, the end of an
+//! uncertain duration if one is a member (it is observed, not set), else the
+//! earliest member (ties: the earlier step);
 //! members are linked to it and happen at its time plus their offset. On the
 //! collapsed graph, an edge `A -> C` of the
 //! all-pairs graph is dominated when some `B` on a shortest path from `A` to `C`
@@ -46,9 +47,11 @@ pub(crate) fn bounds(h0: i64, fwd: &Graph, rev: &Graph, nominal: &[i64]) -> (Vec
 
 /// The minimum dispatchable network of the graph `fwd` (event 0 the origin at
 /// `h0`), given its bounds and a feasible assignment `nominal`. A rigid
-/// component's leader is its earliest member, ties going to the lower `tie` (the
-/// step of the event's activity: dispatch then starts simultaneous activities in
-/// the order the schedule placed them).
+/// component's leader is an `observed` member if it has one (the end of an
+/// uncertain duration: the executive cannot set it, only react to it), else its
+/// earliest member, ties going to the lower `tie` (the step of the event's
+/// activity: dispatch then starts simultaneous activities in the order the
+/// schedule placed them).
 pub(crate) fn dispatchable(
     h0: i64,
     fwd: &Graph,
@@ -56,16 +59,18 @@ pub(crate) fn dispatchable(
     lb: &[i64],
     ub: &[i64],
     tie: &[usize],
+    observed: &[bool],
 ) -> Dispatchable {
     let n = fwd.len();
     let comp = components(fwd, |u, v, w| w + nominal[u] - nominal[v] == 0);
     let ncomp = comp.iter().map(|&c| c + 1).max().unwrap_or(0);
-    // Leader: earliest member (ties: lowest index; the origin leads its own).
+    // Leader: an observed member, else the earliest (ties: lowest index; the
+    // origin leads its own).
+    let key = |e: usize| (!observed[e], nominal[e], tie[e], e);
     let mut lead = vec![usize::MAX; ncomp];
-    for e in 0..n {
-        let c = comp[e];
+    for (e, &c) in comp.iter().enumerate() {
         let l = lead[c];
-        if l == usize::MAX || (nominal[e], tie[e], e) < (nominal[l], tie[l], l) {
+        if l == usize::MAX || key(e) < key(l) {
             lead[c] = e;
         }
     }

@@ -221,6 +221,7 @@ pub fn flex_with(plan: &Plan, sched: &Schedule, opts: FlexOptions) -> Flex {
     } else {
         controllability(&net, &plain)
     };
+    let dispatch_on_controllable = dispatch_on.is_some();
     let (dlb, dub, graph, potential) = match dispatch_on {
         None => (lb.clone(), ub.clone(), fwd, nominal.clone()),
         Some((edges, potential)) => {
@@ -239,7 +240,14 @@ pub fn flex_with(plan: &Plan, sched: &Schedule, opts: FlexOptions) -> Flex {
             }
         })
         .collect();
-    let disp = dispatchable(h0, &graph, &potential, &dlb, &dub, &tie);
+    // On a controllable network the uncertain ends are observed: they lead.
+    let mut observed = vec![false; n];
+    if dispatch_on_controllable {
+        for &(j, ..) in &net.contingent {
+            observed[2 + 2 * j] = true;
+        }
+    }
+    let disp = dispatchable(h0, &graph, &potential, &dlb, &dub, &tie, &observed);
     let controllability = match controllability {
         Controllability::Controllable { waits, .. } => Controllability::Controllable {
             tightened: (0..net.placed.len())

@@ -225,8 +225,17 @@ pub(crate) fn build(plan: &Plan, sched: &Schedule) -> Network {
         }
         let (lo, hi) = match plan.activities[a].duration_model {
             Some(m) => {
-                net.contingent.push((j, m.min, m.max));
-                (m.min.min(d), m.max.max(d))
+                // An optional activity is aborted at `start + duration`: its end
+                // comes no later than that, whatever the model says.
+                let (min, max) = if act.mandatory {
+                    (m.min, m.max)
+                } else {
+                    (m.min.min(d), m.max.min(d))
+                };
+                if min < max {
+                    net.contingent.push((j, min, max));
+                }
+                (min.min(d), max.max(d))
             }
             None => (d, d),
         };
