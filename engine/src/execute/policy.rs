@@ -186,16 +186,20 @@ fn fixed(problem: &Problem, plan: &Plan, prepared: &Prepared, sim: &mut Sim) -> 
     events
 }
 
-/// The flexible schedule by its conditions: in time order, the next event is the
-/// earliest actual end of a running activity or the earliest start an enabled
-/// activity's condition allows (ends first at the same time). An activity is
-/// enabled once every event of its `after` list with a non-negative offset has
-/// happened (one with a negative offset binds only if its event happened first)
-/// and every activity it waits for has started; it starts at `max(lb, after..., min(nom, ub,
-/// within...))` (and not before a wait's time unless that activity has ended),
-/// and is skipped when that is later than `min(ub, within...)` or the guard does
-/// not let it start (once the others starting at that instant have started). An activity some event of whose `after` list never happens
-/// does not run.
+/// The flexible schedule by its conditions: in time order (never before the last
+/// event), the next event is the earliest actual end of a running activity or the
+/// earliest start an enabled activity's condition allows (ends first at the same
+/// time). An activity is enabled once every event of its `after` list with a
+/// non-negative offset has happened (one with a negative offset binds only if its
+/// event happened first; a zero offset from an activity the guard held back at
+/// this instant counts as that instant) and every activity it waits for has
+/// started. Its latest start is `min(ub, within...)` lowered by what the pending
+/// activities it holds back need ([`Blocking`]); it starts at `max(lb, after...,
+/// min(nom, latest))` (and not before a wait's time unless that activity has
+/// ended), and is skipped when that is later than its latest start or the guard
+/// does not let it start (once the others starting at that instant have
+/// started). An activity some event of whose `after` list never happens does not
+/// run. `docs/semantics.md` ("Execution policies") is the reading.
 fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<Event> {
     let mut times: BTreeMap<TimePoint, i64> = BTreeMap::new();
     times.insert(TimePoint::Origin, problem.h0);
@@ -215,6 +219,7 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
             .find(|t| t.0 == fa.activity)
             .map_or((fa.start.lb, fa.start.ub), |t| (t.1, t.2))
     };
+    let blocking = Blocking::new(flex, &waits);
     let mut pending: Vec<usize> = (0..flex.activities.len()).collect();
     // Running activities whose end has not happened: (end, activity).
     let mut running: Vec<(i64, usize)> = Vec::new();
@@ -222,7 +227,23 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
     // Held back by the guard at an instant when others may still start: (index,
     // activity, time, guard).
     let mut deferred: Vec<(usize, usize, i64, super::Guard)> = Vec::new();
+    let mut latest = vec![i64::MAX; flex.activities.len()];
+    // The time of the last event: nothing starts before it.
+    let mut clock = problem.h0;
     loop {
+        // The latest start of each pending activity: its own bound and `within`
+        // conditions, then (latest first) what an activity it must start before
+        // needs of it.
+        for &j in &pending {
+            let (_, ub) = bounds(j);
+            latest[j] = flex.activities[j]
+                .condition
+                .within
+                .iter()
+                .filter_map(|b| times.get(&b.event).map(|&x| x + b.offset))
+                .fold(ub, i64::min);
+        }
+        blocking.propagate(&pending, &mut latest);
         // The earliest allowed start of each enabled pending activity.
         let mut next: Option<(i64, usize, usize)> = None; // (time, step, index)
         let mut skipped = Vec::new();
@@ -230,22 +251,33 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
             let fa = &flex.activities[j];
             let a = fa.activity;
             let c = &fa.condition;
-            let (lb, ub) = bounds(j);
-            let mut t = lb;
+            let (lb, _) = bounds(j);
+            let latest = latest[j];
+            let mut t = lb.max(clock);
             let mut enabled = true;
+            // Set when it may start only at the instant of an activity the guard
+            // held back there (it may be what that one waits for).
+            let mut only_at = None;
             for b in &c.after {
                 match times.get(&b.event) {
                     Some(&x) => t = t.max(x + b.offset),
                     // A bound at or after the event needs it to have happened; one
                     // before it binds only if it happened first.
-                    None if b.offset >= 0 => enabled = false,
+                    None if b.offset >= 0 => match b.event {
+                        // Exactly at the start of one held back at this instant,
+                        // as if it had started (it is tried again after).
+                        TimePoint::Start(x) if b.offset == 0 => {
+                            match deferred.iter().find(|d| d.1 == x) {
+                                Some(&(_, _, at, _)) => {
+                                    t = t.max(at);
+                                    only_at = Some(at);
+                                }
+                                None => enabled = false,
+                            }
+                        }
+                        _ => enabled = false,
+                    },
                     None => {}
-                }
-            }
-            let mut latest = ub;
-            for b in &c.within {
-                if let Some(&x) = times.get(&b.event) {
-                    latest = latest.min(x + b.offset);
                 }
             }
             for w in waits.iter().filter(|w| w.activity == a) {
@@ -266,6 +298,9 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
                 continue;
             }
             let t = t.max(fa.start.nom.min(latest));
+            if only_at.is_some_and(|at| t != at) {
+                continue;
+            }
             if t > latest {
                 skipped.push((i, a, latest));
                 continue;
@@ -308,10 +343,12 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
         });
         match (end, next) {
             (Some((e, a)), n) if n.is_none_or(|n| e <= n.0) => {
+                clock = e;
                 times.insert(TimePoint::End(a), e);
                 running.retain(|&(_, b)| b != a);
             }
             (_, Some((t, _, i))) => {
+                clock = t;
                 let j = pending.remove(i);
                 let fa = &flex.activities[j];
                 let a = fa.activity;
@@ -346,4 +383,105 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
         });
     }
     events
+}
+
+/// Which pending activities hold back which: `b` cannot start before `a` has
+/// started when `b`'s condition has a non-negative offset from `a`'s start (or
+/// from `a`'s end, or waits for `a`). When `b` must start by `t`, `a` must then
+/// start by `t` minus the offset (minus `a`'s planned duration for its end), or
+/// `b` would miss its deadline waiting for it. The dispatcher moves deadlines
+/// back along these edges, latest first, before it picks the next start.
+struct Blocking {
+    /// Flex indices, each after every index it holds back (a reverse
+    /// topological order; activities on a cycle, which can never be enabled,
+    /// are left out).
+    order: Vec<usize>,
+    /// Per flex index: `(held, gap)`: the activity it holds back, and how long
+    /// before that one's deadline it must start.
+    held: Vec<Vec<(usize, i64)>>,
+}
+
+impl Blocking {
+    fn new(flex: &Flex, waits: &[crate::flex::Wait]) -> Self {
+        let n = flex.activities.len();
+        let index: BTreeMap<usize, usize> = flex
+            .activities
+            .iter()
+            .enumerate()
+            .map(|(j, fa)| (fa.activity, j))
+            .collect();
+        // How long each activity is planned to run (a controllable network's
+        // bounds already allow for the longest).
+        let planned = |j: usize| {
+            let fa: &crate::flex::FlexActivity = &flex.activities[j];
+            fa.end.nom - fa.start.nom
+        };
+        let mut held: Vec<Vec<(usize, i64)>> = vec![Vec::new(); n];
+        for (k, fa) in flex.activities.iter().enumerate() {
+            for b in fa.condition.after.iter().filter(|b| b.offset >= 0) {
+                let (a, gap) = match b.event {
+                    TimePoint::Start(a) => (a, b.offset),
+                    TimePoint::End(a) => match index.get(&a) {
+                        Some(&j) => (a, b.offset.saturating_add(planned(j))),
+                        None => continue,
+                    },
+                    TimePoint::Origin => continue,
+                };
+                if let Some(&j) = index.get(&a) {
+                    if j != k {
+                        held[j].push((k, gap));
+                    }
+                }
+            }
+            for w in waits
+                .iter()
+                .filter(|w| w.activity == fa.activity && w.offset >= 0)
+            {
+                if let Some(&j) = index.get(&w.on) {
+                    held[j].push((k, w.offset));
+                }
+            }
+        }
+        // Kahn's algorithm on the reversed edges: an activity once every one it
+        // holds back is placed.
+        let mut out = vec![0usize; n];
+        let mut holders: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for (j, hs) in held.iter().enumerate() {
+            out[j] = hs.len();
+            for &(k, _) in hs {
+                holders[k].push(j);
+            }
+        }
+        let mut order: Vec<usize> = (0..n).filter(|&j| out[j] == 0).collect();
+        let mut i = 0;
+        while i < order.len() {
+            for &j in &holders[order[i]] {
+                out[j] -= 1;
+                if out[j] == 0 {
+                    order.push(j);
+                }
+            }
+            i += 1;
+        }
+        Self { order, held }
+    }
+
+    /// Lowers `latest` of the pending activities by the deadlines of the pending
+    /// ones they hold back.
+    fn propagate(&self, pending: &[usize], latest: &mut [i64]) {
+        let mut is_pending = vec![false; latest.len()];
+        for &j in pending {
+            is_pending[j] = true;
+        }
+        for &j in &self.order {
+            if !is_pending[j] {
+                continue;
+            }
+            for &(k, gap) in &self.held[j] {
+                if is_pending[k] {
+                    latest[j] = latest[j].min(latest[k].saturating_sub(gap));
+                }
+            }
+        }
+    }
 }
