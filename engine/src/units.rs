@@ -13,15 +13,95 @@ pub const MJ_PER_WH: f64 = 3_600_000.0;
 /// bit per Mbit (and bit/s per Mbit/s).
 pub const BIT_PER_MBIT: f64 = 1_000_000.0;
 
-/// Rounds `x * scale` to the nearest integer (half away from zero): a plan figure
-/// in planner units to fixed point.
-pub(crate) fn to_fixed(x: f64, scale: f64) -> i64 {
-    let v = (x * scale).round();
-    if v.is_finite() {
-        // Validation bounds every quantity far inside the i64 range.
-        v.clamp(i64::MIN as f64, i64::MAX as f64) as i64
+/// A fixed-point unit: `10^decimals * factor` of it make one planner unit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Fixed {
+    /// mW per W (and mW·s = mJ per W·s).
+    MilliWatt,
+    /// mJ per Wh: `10^5 * 36`.
+    MilliJoule,
+    /// bit per Mbit (and bit/s per Mbit/s).
+    Bit,
+}
+
+impl Fixed {
+    /// `(decimals, factor)`: one planner unit is `10^decimals * factor` of this.
+    fn parts(self) -> (i32, i128) {
+        match self {
+            Fixed::MilliWatt => (3, 1),
+            Fixed::MilliJoule => (5, 36),
+            Fixed::Bit => (6, 1),
+        }
+    }
+}
+
+/// Which way a plan figure is rounded to fixed point: the safe side for what it
+/// is (docs/semantics.md, "Numbers"): loads up, supplies down, a lower limit up,
+/// an upper limit down, so that the scheduler never accepts what exact
+/// arithmetic on the plan's decimals would refuse.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Toward {
+    /// The least integer not below the exact value.
+    Up,
+    /// The greatest integer not above the exact value.
+    Down,
+}
+
+/// A plan figure in planner units to fixed point, rounded `toward` the given side
+/// from its exact decimal value (the shortest decimal that reads back as `x`,
+/// i.e. the number as the planner wrote it). Exact figures are not rounded at all.
+pub(crate) fn to_fixed(x: f64, unit: Fixed, toward: Toward) -> i64 {
+    if !x.is_finite() {
+        return 0;
+    }
+    let (decimals, factor) = unit.parts();
+    let pow = 10f64.powi(decimals);
+    // Fast path: `x` reads back as a decimal of at most `decimals` places, `q`
+    // of them (unique: within 2^50 an ulp of `x * pow` is below 1/4, and two such
+    // decimals are a whole unit apart), so the value is exactly `q * factor`.
+    let q = (x * pow).round();
+    let v = if q.abs() < (1u64 << 50) as f64 && q / pow == x {
+        i128::from(q as i64) * factor
     } else {
-        0
+        exact_scaled(x, decimals, factor, toward)
+    };
+    // Validation bounds every quantity far inside the i64 range.
+    v.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
+}
+
+/// `x * 10^decimals * factor` rounded `toward`, from `x`'s shortest decimal form
+/// (`m * 10^e` with `m` an integer of at most 17 digits).
+fn exact_scaled(x: f64, decimals: i32, factor: i128, toward: Toward) -> i128 {
+    let text = format!("{x:e}");
+    let (mantissa, exp) = text.split_once('e').unwrap_or((text.as_str(), "0"));
+    let exp: i32 = exp.parse().unwrap_or(0);
+    let (int, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    let digits = format!("{int}{frac}");
+    let m: i128 = digits.parse().unwrap_or(0);
+    let frac_len = i32::try_from(frac.len()).unwrap_or(0);
+    // x = m * 10^(exp - frac_len); scaled: m * factor * 10^(exp - frac_len + decimals).
+    let num = m * factor;
+    let e = exp - frac_len + decimals;
+    if e >= 0 {
+        return 10i128
+            .checked_pow(e.unsigned_abs())
+            .and_then(|p| num.checked_mul(p))
+            .unwrap_or(if num < 0 { i128::MIN } else { i128::MAX });
+    }
+    let Some(den) = 10i128.checked_pow(e.unsigned_abs()) else {
+        // |num| < 10^24 (17 digits times at most 36): the value is strictly
+        // between -1 and 1.
+        return match (toward, num.cmp(&0)) {
+            (Toward::Up, std::cmp::Ordering::Greater) => 1,
+            (Toward::Down, std::cmp::Ordering::Less) => -1,
+            _ => 0,
+        };
+    };
+    let (quot, rem) = (num.div_euclid(den), num.rem_euclid(den));
+    match toward {
+        Toward::Down => quot,
+        Toward::Up if rem == 0 => quot,
+        Toward::Up => quot + 1,
     }
 }
 
@@ -111,8 +191,74 @@ mod tests {
         assert_eq!(format_wh(3_600_000 * 1034 + 720_000), "1034.2 Wh");
         assert_eq!(format_watts(750_000), "750.0 W");
         assert_eq!(mbit(-2_500_000), -2.5);
-        assert_eq!(to_fixed(1.5, 1.0), 2);
-        assert_eq!(to_fixed(-1.5, 1.0), -2);
-        assert_eq!(to_fixed(f64::NAN, MW_PER_W), 0);
+        assert_eq!(to_fixed(f64::NAN, Fixed::MilliWatt, Toward::Up), 0);
+    }
+
+    #[test]
+    fn exact_figures_are_not_rounded() {
+        for t in [Toward::Up, Toward::Down] {
+            assert_eq!(to_fixed(0.1, Fixed::MilliWatt, t), 100);
+            assert_eq!(to_fixed(-2.5, Fixed::MilliWatt, t), -2500);
+            assert_eq!(to_fixed(1000.5, Fixed::MilliJoule, t), 3_601_800_000);
+            assert_eq!(to_fixed(0.00001, Fixed::MilliJoule, t), 36);
+            assert_eq!(to_fixed(1.000001, Fixed::Bit, t), 1_000_001);
+            assert_eq!(to_fixed(123_456.789, Fixed::MilliWatt, t), 123_456_789);
+        }
+    }
+
+    #[test]
+    fn finer_figures_round_toward_the_side_asked() {
+        assert_eq!(to_fixed(0.1234, Fixed::MilliWatt, Toward::Up), 124);
+        assert_eq!(to_fixed(0.1234, Fixed::MilliWatt, Toward::Down), 123);
+        assert_eq!(to_fixed(-0.1234, Fixed::MilliWatt, Toward::Up), -123);
+        assert_eq!(to_fixed(-0.1234, Fixed::MilliWatt, Toward::Down), -124);
+        // 1 mJ is 1/3600000 Wh: 0.000001 Wh is 3.6 mJ.
+        assert_eq!(to_fixed(0.000001, Fixed::MilliJoule, Toward::Up), 4);
+        assert_eq!(to_fixed(0.000001, Fixed::MilliJoule, Toward::Down), 3);
+        assert_eq!(
+            to_fixed(999.9999999, Fixed::MilliJoule, Toward::Up),
+            3_600_000_000
+        );
+        assert_eq!(
+            to_fixed(999.9999999, Fixed::MilliJoule, Toward::Down),
+            3_599_999_999
+        );
+        // Far below the resolution, and denormal.
+        assert_eq!(to_fixed(1e-300, Fixed::MilliWatt, Toward::Up), 1);
+        assert_eq!(to_fixed(1e-300, Fixed::MilliWatt, Toward::Down), 0);
+        assert_eq!(to_fixed(-5e-324, Fixed::Bit, Toward::Down), -1);
+        assert_eq!(to_fixed(-5e-324, Fixed::Bit, Toward::Up), 0);
+        // Large figures with a fraction below the resolution.
+        assert_eq!(
+            to_fixed(1e9 + 0.0005, Fixed::MilliWatt, Toward::Up),
+            1_000_000_000_001
+        );
+        assert_eq!(
+            to_fixed(1e9 + 0.0005, Fixed::MilliWatt, Toward::Down),
+            1_000_000_000_000
+        );
+    }
+
+    #[test]
+    fn the_fast_path_agrees_with_the_exact_one() {
+        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+        for _ in 0..20_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let m = (x % 2_000_000_000) as i64 - 1_000_000_000;
+            let k = (x >> 40) % 9;
+            let v = m as f64 / 10f64.powi(k as i32);
+            for unit in [Fixed::MilliWatt, Fixed::MilliJoule, Fixed::Bit] {
+                let (d, f) = unit.parts();
+                for t in [Toward::Up, Toward::Down] {
+                    assert_eq!(
+                        i128::from(to_fixed(v, unit, t)),
+                        exact_scaled(v, d, f, t),
+                        "{v} {unit:?} {t:?}"
+                    );
+                }
+            }
+        }
     }
 }

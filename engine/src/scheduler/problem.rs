@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 
 use crate::error::Error;
 use crate::model::{AwakeMode, Duration, EffectAt, LocalTime, Plan};
-use crate::units::{BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, to_fixed};
+use crate::units::{Fixed, Toward, to_fixed};
 
 /// A window in compiled form.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -401,9 +401,9 @@ impl Problem {
                 windows,
                 resources: res,
                 engines: i64::from(a.sequence_engines),
-                energy: to_fixed(a.energy_rate, MW_PER_W),
-                peak: to_fixed(a.peak_power, MW_PER_W),
-                data: to_fixed(a.data_rate, BIT_PER_MBIT),
+                energy: to_fixed(a.energy_rate, Fixed::MilliWatt, Toward::Up),
+                peak: to_fixed(a.peak_power, Fixed::MilliWatt, Toward::Up),
+                data: to_fixed(a.data_rate, Fixed::Bit, Toward::Up),
                 awake: a.awake,
                 zones,
                 after,
@@ -427,8 +427,8 @@ impl Problem {
                 table.sort_unstable();
                 Zone {
                     table,
-                    preheat: to_fixed(z.preheat_power, MW_PER_W),
-                    maintenance: to_fixed(z.maintenance_power, MW_PER_W),
+                    preheat: to_fixed(z.preheat_power, Fixed::MilliWatt, Toward::Up),
+                    maintenance: to_fixed(z.maintenance_power, Fixed::MilliWatt, Toward::Up),
                     operable: z
                         .operable
                         .as_ref()
@@ -441,8 +441,12 @@ impl Problem {
             .iter()
             .map(|(name, s)| value_index(&format!("states.{name}.initial"), name, &s.initial))
             .collect::<Result<_, _>>()?;
-        let wh = |x: f64| i128::from(to_fixed(x, MJ_PER_WH));
-        let mbit = |x: f64| i128::from(to_fixed(x, BIT_PER_MBIT));
+        // Rounded to the safe side (docs/semantics.md, "Numbers"): what the
+        // battery and the data store hold, and the limits, as the exact decimals
+        // would allow at most.
+        let wh = |x: f64, t: Toward| i128::from(to_fixed(x, Fixed::MilliJoule, t));
+        let mbit = |x: f64, t: Toward| i128::from(to_fixed(x, Fixed::Bit, t));
+        let mw = |x: f64, t: Toward| to_fixed(x, Fixed::MilliWatt, t);
         let cycle = plan.cycle.clone().unwrap_or_default();
         let mut heaters = Vec::new();
         for h in &cycle.heaters {
@@ -463,31 +467,37 @@ impl Problem {
             h0: horizon.start,
             h1: horizon.end,
             clock: plan.local_time,
-            capacity: wh(plan.battery.capacity),
+            capacity: wh(plan.battery.capacity, Toward::Down),
             soc0: if plan.cycle.is_some() {
                 cycle.soc_mj
             } else {
-                wh(plan.battery.initial)
+                wh(plan.battery.initial, Toward::Down)
             },
-            min_soc: wh(plan.battery.min_soc),
-            rtg: to_fixed(plan.power.rtg, MW_PER_W),
-            asleep: to_fixed(plan.power.asleep, MW_PER_W),
-            awake: to_fixed(plan.power.awake, MW_PER_W),
-            max_peak: plan.power.max_peak.map(|x| to_fixed(x, MW_PER_W)),
+            min_soc: wh(plan.battery.min_soc, Toward::Up),
+            rtg: mw(plan.power.rtg, Toward::Down),
+            asleep: mw(plan.power.asleep, Toward::Up),
+            awake: mw(plan.power.awake, Toward::Up),
+            max_peak: plan.power.max_peak.map(|x| mw(x, Toward::Down)),
             wake: plan.sleep.wakeup_duration,
             shut: plan.sleep.shutdown_duration,
             min_awake: plan.sleep.min_awake,
             min_sleep: plan.sleep.min_sleep,
             engines: plan.sequence_engines.map(i64::from),
-            data_cap: plan.data.capacity.map(mbit),
+            data_cap: plan.data.capacity.map(|x| mbit(x, Toward::Down)),
             data0: if plan.cycle.is_some() {
                 cycle.data_bit
             } else {
-                mbit(plan.data.initial)
+                mbit(plan.data.initial, Toward::Up)
             },
             handover_time: plan.handover.map(|h| h.time),
-            handover_soc: plan.handover.and_then(|h| h.min_soc).map(wh),
-            handover_data: plan.handover.and_then(|h| h.max_data_volume).map(mbit),
+            handover_soc: plan
+                .handover
+                .and_then(|h| h.min_soc)
+                .map(|x| wh(x, Toward::Up)),
+            handover_data: plan
+                .handover
+                .and_then(|h| h.max_data_volume)
+                .map(|x| mbit(x, Toward::Down)),
             state_initial,
             zones,
             zone_names,

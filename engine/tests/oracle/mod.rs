@@ -349,7 +349,13 @@ pub fn replay_with(plan: &Plan, doc: &Value, opts: Options) -> Result<(), String
 /// (given the placements of the earlier steps), independent of the choice rule
 /// and of completeness; also that skipped/dependency statuses are possible.
 pub fn check_valid(plan: &Plan, doc: &Value) -> Result<(), String> {
-    let p = Prob::compile(plan)?;
+    check_valid_with(plan, doc, problem::Units::Scheduler)
+}
+
+/// [`check_valid`] with the plan's figures read in `units` (`Units::Exact`: the
+/// exact decimals, so that a placement the rounding let through shows).
+pub fn check_valid_with(plan: &Plan, doc: &Value, units: problem::Units) -> Result<(), String> {
+    let p = Prob::compile_with(plan, units)?;
     let entries = parse_entries(&p, doc)?;
     let mut w = World::new(&p);
     for (k, &ai) in p.order.iter().enumerate() {

@@ -4,19 +4,83 @@
 
 use solscope_engine::{AwakeMode, EffectAt, Plan};
 
-/// `round(x * 1000)`: W -> mW (round half away from zero, as `f64::round`).
+/// `x * 10^decimals * factor` rounded up (`up`) or down, from `x` as the
+/// planner wrote it (its shortest decimal, as `Display` prints it), in exact
+/// integer arithmetic. `None` when that has more digits than the oracle handles.
+fn scaled(x: f64, decimals: u32, factor: i128, up: bool) -> Option<i128> {
+    let text = format!("{x}");
+    let (neg, body) = match text.strip_prefix('-') {
+        Some(b) => (true, b),
+        None => (false, text.as_str()),
+    };
+    let (int, frac) = body.split_once('.').unwrap_or((body, ""));
+    let frac = frac.trim_end_matches('0');
+    let int = int.trim_start_matches('0');
+    if int.len() + frac.len() > 30 {
+        return None;
+    }
+    let digits: i128 = format!("0{int}{frac}").parse().ok()?;
+    let num = digits
+        .checked_mul(factor)?
+        .checked_mul(10i128.checked_pow(decimals)?)?;
+    let num = if neg { -num } else { num };
+    let den = 10i128.checked_pow(u32::try_from(frac.len()).ok()?)?;
+    let floor = num.div_euclid(den);
+    Some(if up && num.rem_euclid(den) != 0 {
+        floor + 1
+    } else {
+        floor
+    })
+}
+
+/// How the oracle turns plan figures into integers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Units {
+    /// As docs/semantics.md says the scheduler does: mW, mJ, bit, each figure
+    /// rounded to its safe side.
+    Scheduler,
+    /// Exactly, in nW, nJ and millibit (an error if a figure is finer than that):
+    /// the plan's own decimals, for checking that the rounding is safe.
+    Exact,
+}
+
+impl Units {
+    /// (decimals, factor) per W, Wh and Mbit.
+    fn parts(self) -> [(u32, i128); 3] {
+        match self {
+            Units::Scheduler => [(3, 1), (5, 36), (6, 1)],
+            Units::Exact => [(9, 1), (11, 36), (9, 1)],
+        }
+    }
+
+    fn convert(self, x: f64, kind: usize, up: bool) -> Result<i64, String> {
+        let (d, f) = self.parts()[kind];
+        let v = scaled(x, d, f, up).ok_or_else(|| format!("oracle: {x} has too many digits"))?;
+        if self == Units::Exact && scaled(x, d, f, !up) != Some(v) {
+            return Err(format!("oracle: {x} is finer than the exact units"));
+        }
+        i64::try_from(v).map_err(|_| format!("oracle: {x} out of range"))
+    }
+
+    /// A power (W): a load `up`, a supply or upper limit down.
+    pub fn power(self, x: f64, up: bool) -> Result<i64, String> {
+        self.convert(x, 0, up)
+    }
+
+    /// An energy (Wh).
+    pub fn energy(self, x: f64, up: bool) -> Result<i64, String> {
+        self.convert(x, 1, up)
+    }
+
+    /// A data volume (Mbit) or rate (Mbit/s).
+    pub fn data(self, x: f64, up: bool) -> Result<i64, String> {
+        self.convert(x, 2, up)
+    }
+}
+
+/// A power figure in mW, as the scheduler reads a load (rounded up).
 pub fn mw(x: f64) -> i64 {
-    (x * 1000.0).round() as i64
-}
-
-/// `round(x * 3_600_000)`: Wh -> mJ.
-pub fn mj(x: f64) -> i64 {
-    (x * 3_600_000.0).round() as i64
-}
-
-/// `round(x * 1_000_000)`: Mbit -> bit, Mbit/s -> bit/s.
-pub fn bits(x: f64) -> i64 {
-    (x * 1_000_000.0).round() as i64
+    Units::Scheduler.power(x, true).unwrap_or(i64::MAX)
 }
 
 /// A start window, with the defaults filled in.
@@ -104,6 +168,14 @@ pub struct Prob {
 
 impl Prob {
     pub fn compile(plan: &Plan) -> Result<Prob, String> {
+        Self::compile_with(plan, Units::Scheduler)
+    }
+
+    /// Compiled with the given units (`Units::Exact`: every figure exactly; the
+    /// names' `mw`/`mj`/`bits` then mean nW, nJ and millibit).
+    pub fn compile_with(plan: &Plan, units: Units) -> Result<Prob, String> {
+        const UP: bool = true;
+        const DOWN: bool = false;
         let hs = plan.horizon.start;
         let he = plan.horizon.end;
         if he <= hs {
@@ -123,17 +195,19 @@ impl Prob {
         let zones: Vec<Zone> = plan
             .thermal_zones
             .iter()
-            .map(|(name, z)| Zone {
-                name: name.clone(),
-                table: z.preheat.iter().map(|e| (e.from, e.duration)).collect(),
-                preheat_mw: mw(z.preheat_power),
-                maint_mw: mw(z.maintenance_power),
-                operable: z
-                    .operable
-                    .as_ref()
-                    .map(|v| v.iter().map(|p| (p.from, p.to)).collect()),
+            .map(|(name, z)| {
+                Ok(Zone {
+                    name: name.clone(),
+                    table: z.preheat.iter().map(|e| (e.from, e.duration)).collect(),
+                    preheat_mw: units.power(z.preheat_power, UP)?,
+                    maint_mw: units.power(z.maintenance_power, UP)?,
+                    operable: z
+                        .operable
+                        .as_ref()
+                        .map(|v| v.iter().map(|p| (p.from, p.to)).collect()),
+                })
             })
-            .collect();
+            .collect::<Result<_, String>>()?;
         let zone_idx = |name: &str| -> Result<usize, String> {
             zones
                 .iter()
@@ -198,9 +272,9 @@ impl Prob {
                 windows,
                 resources: a.resources.clone(),
                 engines: i64::from(a.sequence_engines),
-                energy_mw: mw(a.energy_rate),
-                peak_mw: mw(a.peak_power),
-                data_bps: bits(a.data_rate),
+                energy_mw: units.power(a.energy_rate, UP)?,
+                peak_mw: units.power(a.peak_power, UP)?,
+                data_bps: units.data(a.data_rate, UP)?,
                 awake: a.awake,
                 zones: zs,
                 after,
@@ -219,23 +293,37 @@ impl Prob {
             he,
             sol_len: plan.local_time.sol_length,
             offset: plan.local_time.offset,
-            cap_mj: mj(plan.battery.capacity),
-            init_mj: mj(plan.battery.initial),
-            min_mj: mj(plan.battery.min_soc),
-            rtg_mw: mw(plan.power.rtg),
-            asleep_mw: mw(plan.power.asleep),
-            awake_mw: mw(plan.power.awake),
-            max_peak_mw: plan.power.max_peak.map(mw),
+            cap_mj: units.energy(plan.battery.capacity, DOWN)?,
+            init_mj: units.energy(plan.battery.initial, DOWN)?,
+            min_mj: units.energy(plan.battery.min_soc, UP)?,
+            rtg_mw: units.power(plan.power.rtg, DOWN)?,
+            asleep_mw: units.power(plan.power.asleep, UP)?,
+            awake_mw: units.power(plan.power.awake, UP)?,
+            max_peak_mw: plan
+                .power
+                .max_peak
+                .map(|x| units.power(x, DOWN))
+                .transpose()?,
             wake: plan.sleep.wakeup_duration,
             shut: plan.sleep.shutdown_duration,
             min_awake: plan.sleep.min_awake,
             min_sleep: plan.sleep.min_sleep,
             engines: plan.sequence_engines.map(i64::from),
-            data_cap: plan.data.capacity.map(bits),
-            data_init: bits(plan.data.initial),
+            data_cap: plan
+                .data
+                .capacity
+                .map(|x| units.data(x, DOWN))
+                .transpose()?,
+            data_init: units.data(plan.data.initial, UP)?,
             ho_time: ho.map(|h| h.time),
-            ho_min_mj: ho.and_then(|h| h.min_soc).map(mj),
-            ho_max_bits: ho.and_then(|h| h.max_data_volume).map(bits),
+            ho_min_mj: ho
+                .and_then(|h| h.min_soc)
+                .map(|x| units.energy(x, UP))
+                .transpose()?,
+            ho_max_bits: ho
+                .and_then(|h| h.max_data_volume)
+                .map(|x| units.data(x, DOWN))
+                .transpose()?,
             states,
             zones,
             acts,
