@@ -60,6 +60,7 @@ use crate::model::{
     Activity, Dependency, Duration, DurationModel, EffectAt, PLAN_FORMAT, Plan, StateDef,
     ThermalZone, Window,
 };
+use crate::units::{Fixed, Toward, to_fixed};
 
 /// Most periodic scheduling cycles an `execution.replan_period` may give.
 pub const MAX_CYCLES: i64 = 100_000;
@@ -209,6 +210,24 @@ impl Quantity {
         }
     }
 
+    fn internal_unit(self) -> &'static str {
+        match self {
+            Quantity::Power => "mW",
+            Quantity::Energy => "mJ",
+            Quantity::DataVolume => "bit",
+            Quantity::DataRate => "bit/s",
+        }
+    }
+
+    /// The fixed-point unit it is stored in.
+    fn fixed(self) -> Fixed {
+        match self {
+            Quantity::Power => Fixed::MilliWatt,
+            Quantity::Energy => Fixed::MilliJoule,
+            Quantity::DataVolume | Quantity::DataRate => Fixed::Bit,
+        }
+    }
+
     /// Internal units per JSON unit.
     fn scale(self) -> f64 {
         match self {
@@ -291,8 +310,16 @@ impl<'p> Validator<'p> {
     // ----- primitive checks -------------------------------------------------
 
     /// A finite number of kind `q` with the given sign, within the magnitude limit;
-    /// warns when it is rounded to the fixed-point resolution.
-    fn number(&mut self, path: impl Display, x: f64, q: Quantity, sign: Sign) -> Result<(), Error> {
+    /// warns when it is finer than the fixed-point resolution, saying the value
+    /// the scheduler uses: rounded `toward` its safe side.
+    fn number(
+        &mut self,
+        path: impl Display,
+        x: f64,
+        q: Quantity,
+        sign: Sign,
+        toward: Toward,
+    ) -> Result<(), Error> {
         if !x.is_finite() {
             return Err(invalid(
                 path,
@@ -319,17 +346,31 @@ impl<'p> Validator<'p> {
                 ),
             ));
         }
-        let scaled = (x * q.scale()).round();
-        let back = scaled / q.scale();
-        if (back - x).abs() > x.abs() * 4.0 * f64::EPSILON {
+        // Exact when both sides agree; otherwise the scheduler takes `toward`
+        // (docs/semantics.md, "Numbers"), and the warning says what it takes.
+        let fixed = to_fixed(x, q.fixed(), toward);
+        let other = match toward {
+            Toward::Up => Toward::Down,
+            Toward::Down => Toward::Up,
+        };
+        if fixed != to_fixed(x, q.fixed(), other) {
+            // 7 mJ has no exact decimal in Wh: its shortest form may read as the
+            // figure written; the internal unit then says what changed.
+            let mut used = format!("{} {}", short(fixed as f64 / q.scale()), q.unit());
+            if short(fixed as f64 / q.scale()) == short(x) {
+                used = format!("{fixed} {}", q.internal_unit());
+            }
             self.warn(
                 path,
                 format!(
-                    "{} {unit} is more precise than {res} and is rounded to {} {unit}",
+                    "{} {unit} is more precise than {res} and is rounded {way} to {used} (the safe side)",
                     short(x),
-                    short(back),
                     unit = q.unit(),
-                    res = q.resolution()
+                    res = q.resolution(),
+                    way = match toward {
+                        Toward::Up => "up",
+                        Toward::Down => "down",
+                    },
                 ),
             );
         }
@@ -443,17 +484,23 @@ impl<'p> Validator<'p> {
             b.capacity,
             Quantity::Energy,
             Sign::Positive,
+            Toward::Down,
         )?;
         self.number(
             "battery.initial",
             b.initial,
             Quantity::Energy,
             Sign::NonNegative,
+            Toward::Down,
         )?;
         if b.initial > b.capacity {
             return Err(invalid(
                 "battery.initial",
-                format!("must be <= capacity (got {} > {})", b.initial, b.capacity),
+                format!(
+                    "must be <= capacity (got {} > {})",
+                    short(b.initial),
+                    short(b.capacity)
+                ),
             ));
         }
         self.number(
@@ -461,20 +508,40 @@ impl<'p> Validator<'p> {
             b.min_soc,
             Quantity::Energy,
             Sign::NonNegative,
+            Toward::Up,
         )
     }
 
     fn power(&mut self) -> Result<(), Error> {
         let p = self.plan.power;
-        self.number("power.rtg", p.rtg, Quantity::Power, Sign::NonNegative)?;
-        self.number("power.asleep", p.asleep, Quantity::Power, Sign::NonNegative)?;
-        self.number("power.awake", p.awake, Quantity::Power, Sign::NonNegative)?;
+        self.number(
+            "power.rtg",
+            p.rtg,
+            Quantity::Power,
+            Sign::NonNegative,
+            Toward::Down,
+        )?;
+        self.number(
+            "power.asleep",
+            p.asleep,
+            Quantity::Power,
+            Sign::NonNegative,
+            Toward::Up,
+        )?;
+        self.number(
+            "power.awake",
+            p.awake,
+            Quantity::Power,
+            Sign::NonNegative,
+            Toward::Up,
+        )?;
         if let Some(max_peak) = p.max_peak {
             self.number(
                 "power.max_peak",
                 max_peak,
                 Quantity::Power,
                 Sign::NonNegative,
+                Toward::Down,
             )?;
         }
         Ok(())
@@ -496,6 +563,7 @@ impl<'p> Validator<'p> {
                 capacity,
                 Quantity::DataVolume,
                 Sign::NonNegative,
+                Toward::Down,
             )?;
         }
         self.number(
@@ -503,13 +571,18 @@ impl<'p> Validator<'p> {
             d.initial,
             Quantity::DataVolume,
             Sign::NonNegative,
+            Toward::Up,
         )?;
         if let Some(capacity) = d.capacity
             && d.initial > capacity
         {
             return Err(invalid(
                 "data.initial",
-                format!("must be <= capacity (got {} > {capacity})", d.initial),
+                format!(
+                    "must be <= capacity (got {} > {})",
+                    short(d.initial),
+                    short(capacity)
+                ),
             ));
         }
         Ok(())
@@ -535,6 +608,7 @@ impl<'p> Validator<'p> {
                 min_soc,
                 Quantity::Energy,
                 Sign::NonNegative,
+                Toward::Up,
             )?;
         }
         if let Some(max) = h.max_data_volume {
@@ -543,6 +617,7 @@ impl<'p> Validator<'p> {
                 max,
                 Quantity::DataVolume,
                 Sign::NonNegative,
+                Toward::Down,
             )?;
         }
         Ok(())
@@ -612,12 +687,14 @@ impl<'p> Validator<'p> {
             zone.preheat_power,
             Quantity::Power,
             Sign::NonNegative,
+            Toward::Up,
         )?;
         self.number(
             format_args!("{base}.maintenance_power"),
             zone.maintenance_power,
             Quantity::Power,
             Sign::NonNegative,
+            Toward::Up,
         )?;
         for (i, period) in zone.operable.iter().flatten().enumerate() {
             let path = format!("{base}.operable[{i}]");
@@ -723,18 +800,21 @@ impl<'p> Validator<'p> {
             a.energy_rate,
             Quantity::Power,
             Sign::NonNegative,
+            Toward::Up,
         )?;
         self.number(
             format_args!("{base}.peak_power"),
             a.peak_power,
             Quantity::Power,
             Sign::NonNegative,
+            Toward::Up,
         )?;
         self.number(
             format_args!("{base}.data_rate"),
             a.data_rate,
             Quantity::DataRate,
             Sign::Any,
+            Toward::Up,
         )?;
 
         // thermal zones
@@ -1827,6 +1907,99 @@ mod tests {
     }
 
     #[test]
+    fn the_warning_names_the_value_the_scheduler_uses() {
+        // Every figure finer than its resolution, in both directions from it.
+        for fine in [0.0004, 0.0006] {
+            let plan = with(|v| {
+                for (section, field) in [
+                    ("battery", "capacity"),
+                    ("battery", "initial"),
+                    ("battery", "min_soc"),
+                    ("power", "rtg"),
+                    ("power", "asleep"),
+                    ("power", "awake"),
+                    ("power", "max_peak"),
+                    ("data", "capacity"),
+                    ("data", "initial"),
+                    ("handover", "min_soc"),
+                    ("handover", "max_data_volume"),
+                ] {
+                    let x = v[section][field].as_f64().expect("a number");
+                    v[section][field] = json!(x + fine / 1e3);
+                }
+                let zone = &mut v["thermal_zones"]["arm"];
+                zone["preheat_power"] = json!(45.0 + fine);
+                zone["maintenance_power"] = json!(15.0 + fine);
+                let act = &mut v["activities"][1];
+                act["energy_rate"] = json!(fine);
+                act["peak_power"] = json!(220.0 + fine);
+                act["data_rate"] = json!(-0.5 - fine / 1e3);
+            });
+            let warnings = validate(&plan).expect("valid");
+            let p = crate::scheduler::Problem::compile(&plan).expect("compiles");
+            let (act, zone) = (&p.acts[1], &p.zones[0]);
+            let used: [(&str, i128, f64); 16] = [
+                ("battery.capacity", p.capacity, 3.6e6),
+                ("battery.initial", p.soc0, 3.6e6),
+                ("battery.min_soc", p.min_soc, 3.6e6),
+                ("power.rtg", p.rtg.into(), 1e3),
+                ("power.asleep", p.asleep.into(), 1e3),
+                ("power.awake", p.awake.into(), 1e3),
+                ("power.max_peak", p.max_peak.unwrap_or(0).into(), 1e3),
+                ("data.capacity", p.data_cap.unwrap_or(0), 1e6),
+                ("data.initial", p.data0, 1e6),
+                ("handover.min_soc", p.handover_soc.unwrap_or(0), 3.6e6),
+                (
+                    "handover.max_data_volume",
+                    p.handover_data.unwrap_or(0),
+                    1e6,
+                ),
+                ("thermal_zones.arm.preheat_power", zone.preheat.into(), 1e3),
+                (
+                    "thermal_zones.arm.maintenance_power",
+                    zone.maintenance.into(),
+                    1e3,
+                ),
+                ("activities[1].energy_rate", act.energy.into(), 1e3),
+                ("activities[1].peak_power", act.peak.into(), 1e3),
+                ("activities[1].data_rate", act.data.into(), 1e6),
+            ];
+            for (path, fixed, scale) in used {
+                let w = warnings
+                    .iter()
+                    .find(|w| w.path == path)
+                    .unwrap_or_else(|| panic!("no warning at {path}: {warnings:?}"));
+                let mut said = w.message.split(" to ").nth(1).unwrap_or("").split(' ');
+                let value = said.next().and_then(|x| x.parse::<f64>().ok());
+                let value = value.unwrap_or_else(|| panic!("no value in {w}"));
+                let internal = ["mW", "mJ", "bit", "bit/s"].contains(&said.next().unwrap_or(""));
+                let value = if internal { value } else { value * scale };
+                assert_eq!(value.round() as i128, fixed, "{w}");
+            }
+        }
+    }
+
+    #[test]
+    fn comparisons_print_short_numbers() {
+        assert_err(
+            |v| {
+                v["battery"]["capacity"] = json!(5e-324);
+                v["battery"]["initial"] = json!(1e-323);
+            },
+            "battery.initial",
+            "must be <= capacity (got 1e-323 > 5e-324)",
+        );
+        assert_err(
+            |v| {
+                v["data"]["capacity"] = json!(5e-324);
+                v["data"]["initial"] = json!(1e-323);
+            },
+            "data.initial",
+            "must be <= capacity (got 1e-323 > 5e-324)",
+        );
+    }
+
+    #[test]
     fn denormal_values_print_short() {
         let w = warnings(|v| v["activities"][0]["energy_rate"] = json!(5e-324));
         assert_eq!(w.len(), 1, "{w:?}");
@@ -1860,17 +2033,17 @@ mod tests {
         );
         assert!(
             w[1].message
-                .contains("110.0004 W is more precise than 1 mW and is rounded to 110 W"),
+                .contains("110.0004 W is more precise than 1 mW and is rounded down to 110 W"),
             "{}",
             w[1].message
         );
         assert!(
-            w[2].message.contains("rounded to 1.234568 Mbit"),
+            w[2].message.contains("rounded up to 1.234568 Mbit"),
             "{}",
             w[2].message
         );
         assert!(
-            w[3].message.contains("rounded to 40.002 W"),
+            w[3].message.contains("rounded up to 40.002 W"),
             "{}",
             w[3].message
         );
@@ -1879,12 +2052,21 @@ mod tests {
         let w = warnings(|v| {
             v["power"]["rtg"] = json!(110.001);
             v["battery"]["initial"] = json!(0.1);
-            v["battery"]["min_soc"] = json!(1.0 / 3.6e6 * 7.0);
             v["activities"][1]["data_rate"] = json!(0.000001);
             v["data"]["initial"] = json!(1234.567891);
             v["activities"][0]["peak_power"] = json!(999999.999);
         });
         assert!(w.is_empty(), "{w:?}");
+        // 7 mJ has no exact decimal in Wh: its shortest decimal is a little less,
+        // rounded up to 7 mJ, said in mJ since it prints the same in Wh.
+        let w = warnings(|v| v["battery"]["min_soc"] = json!(1.0 / 3.6e6 * 7.0));
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(
+            w[0].message
+                .ends_with("is rounded up to 7 mJ (the safe side)"),
+            "{}",
+            w[0].message
+        );
     }
 
     #[test]
