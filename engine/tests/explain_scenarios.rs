@@ -428,3 +428,239 @@ fn min_awake_without_room_suggests_a_shorter_one() {
         .unwrap_or_else(|| panic!("{:?}", ex.suggestions));
     assert_eq!(fix.set["sleep"]["min_awake"], json!(2600));
 }
+
+/// The suggestion of `ex` whose description starts with `prefix`.
+fn fix<'a>(ex: &'a Explanation, prefix: &str) -> &'a solscope_engine::Suggestion {
+    ex.suggestions
+        .iter()
+        .find(|s| s.description.starts_with(prefix))
+        .unwrap_or_else(|| panic!("no {prefix:?} in {:#?}", ex.suggestions))
+}
+
+/// `forced_sleep` against an awake period: `a` keeps the rover awake over
+/// [1000, 4000) and `b` must run asleep inside it, so every start of `b` fails;
+/// letting `b` run awake fixes it.
+#[test]
+fn forced_sleep_suggests_running_awake_or_asleep() {
+    let p = plan(
+        json!({}),
+        json!([
+            { "id": "a", "priority": 1, "duration": 3000, "awake": "required",
+              "windows": [ { "start": 1000, "end": 1000 } ] },
+            { "id": "b", "priority": 2, "duration": 500, "awake": "forbidden",
+              "windows": [ { "start": 1500, "end": 2000 } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "b");
+    assert_eq!(ex.phase, Some(Phase::Placement));
+    assert!(
+        ex.reasons
+            .iter()
+            .all(|r| matches!(r.reason, Phase2Reason::ForcedSleep { sleep: None }))
+    );
+    let f = fix(&ex, "Let b run awake or asleep");
+    assert_eq!(f.set["awake"], json!("any"));
+    assert!(f.side_effects.is_empty());
+}
+
+/// `forced_sleep` against a manual sleep: `s` must run asleep over [1000, 4000)
+/// and `b` needs the rover awake inside it; letting either run awake or asleep
+/// fixes it.
+#[test]
+fn forced_sleep_by_a_manual_sleep_suggests_either_activity_runs_awake() {
+    let p = plan(
+        json!({}),
+        json!([
+            { "id": "s", "priority": 1, "duration": 3000, "awake": "forbidden",
+              "windows": [ { "start": 1000, "end": 1000 } ] },
+            { "id": "b", "priority": 2, "duration": 500, "awake": "required",
+              "windows": [ { "start": 1500, "end": 2000 } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "b");
+    assert!(
+        ex.reasons
+            .iter()
+            .all(|r| matches!(r.reason, Phase2Reason::ForcedSleep { sleep: Some(0) }))
+    );
+    fix(&ex, "Let b run awake or asleep");
+    fix(&ex, "Let s run awake or asleep");
+}
+
+/// `min_sleep`: `q` is awake over [2000, 2500), `s` sleeps over [3000, 4000), and
+/// `x` needs to be awake over [4100, 4300). With `min_sleep` 2000 the gap of 1600 s
+/// after `q` must be merged, through `s`; with `min_sleep` 1600 it need not (a gap
+/// of exactly `min_sleep` is allowed): the least shortening.
+#[test]
+fn min_sleep_suggests_the_least_shorter_one() {
+    let p = plan(
+        json!({ "sleep": { "min_sleep": 2000 } }),
+        json!([
+            { "id": "q", "priority": 1, "duration": 500, "awake": "required",
+              "windows": [ { "start": 2000, "end": 2000 } ] },
+            { "id": "s", "priority": 2, "duration": 1000, "awake": "forbidden",
+              "windows": [ { "start": 3000, "end": 3000 } ] },
+            { "id": "x", "priority": 3, "duration": 200, "awake": "required",
+              "windows": [ { "start": 4100, "end": 4100 } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "x");
+    assert!(
+        ex.reasons
+            .iter()
+            .all(|r| matches!(r.reason, Phase2Reason::MinSleep { sleep: 1 })),
+        "{:?}",
+        ex.reasons
+    );
+    let f = fix(
+        &ex,
+        "Shorten the minimum sleep between awake periods to 1600 s",
+    );
+    assert_eq!(f.set["sleep"]["min_sleep"], json!(1600));
+}
+
+/// `min_awake` against a manual sleep: `x` wakes at 2500 and an awake period of
+/// 2000 s would run into `s` at 3000; one of 500 s ends as `s` begins.
+#[test]
+fn min_awake_against_a_sleep_suggests_the_least_shorter_one() {
+    let p = plan(
+        json!({ "sleep": { "min_awake": 2000 } }),
+        json!([
+            { "id": "s", "priority": 1, "duration": 1000, "awake": "forbidden",
+              "windows": [ { "start": 3000, "end": 3000 } ] },
+            { "id": "x", "priority": 2, "duration": 200, "awake": "required",
+              "windows": [ { "start": 2500, "end": 2500 } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "x");
+    assert!(
+        ex.reasons
+            .iter()
+            .all(|r| matches!(r.reason, Phase2Reason::MinAwake { sleep: Some(0) })),
+        "{:?}",
+        ex.reasons
+    );
+    let f = fix(&ex, "Shorten the minimum awake period to 500 s");
+    assert_eq!(f.set["sleep"]["min_awake"], json!(500));
+}
+
+/// `unit_resource` alone: `a` holds `r` over [1000, 2000) and `b` must start in
+/// [1200, 1500); releasing `r` from `b` fixes it.
+#[test]
+fn unit_resource_alone_suggests_releasing_the_resource() {
+    let p = plan(
+        json!({}),
+        json!([
+            { "id": "a", "priority": 1, "duration": 1000, "resources": ["r"],
+              "windows": [ { "start": 1000, "end": 1000 } ] },
+            { "id": "b", "priority": 2, "duration": 100, "resources": ["r", "cam"],
+              "windows": [ { "start": 1200, "end": 1500 } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "b");
+    assert_eq!(
+        ex.conflicts,
+        vec![vec![Category::Execution, Category::UnitResource]]
+    );
+    let f = fix(&ex, "Let b run without holding r");
+    assert_eq!(f.set["resources"], json!(["cam"]));
+}
+
+/// `state_effect` alone: `a` requires `mode = idle` over [1000, 2000) and `b`
+/// would set it to `busy` inside; dropping that effect fixes it.
+#[test]
+fn state_effect_alone_suggests_dropping_the_effect() {
+    let p = plan(
+        json!({ "states": { "mode": { "initial": "idle", "values": ["idle", "busy"] } } }),
+        json!([
+            { "id": "a", "priority": 1, "duration": 1000,
+              "requires": [ { "state": "mode", "value": "idle" } ],
+              "windows": [ { "start": 1000, "end": 1000 } ] },
+            { "id": "b", "priority": 2, "duration": 100,
+              "effects": [ { "state": "mode", "value": "busy", "at": "start" } ],
+              "windows": [ { "start": 1200, "end": 1500 } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "b");
+    assert_eq!(
+        ex.conflicts,
+        vec![vec![Category::Execution, Category::StateEffect]]
+    );
+    let f = fix(&ex, "Drop the effect of b that sets mode to busy");
+    assert_eq!(f.set["effects"], json!([]));
+}
+
+/// `uhf` alone: the UHF pass `c` runs over [1000, 2000) and `b` interacts with no
+/// comm kind; letting it overlap every kind fixes it.
+#[test]
+fn uhf_alone_suggests_allowing_the_interaction() {
+    let p = plan(
+        json!({}),
+        json!([
+            { "id": "c", "priority": 1, "duration": 1000, "comm_kind": "uhf",
+              "windows": [ { "start": 1000, "end": 1000 } ] },
+            { "id": "b", "priority": 2, "duration": 100, "uhf_interactions": [],
+              "windows": [ { "start": 1200, "end": 1500 } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "b");
+    assert_eq!(ex.conflicts, vec![vec![Category::Execution, Category::Uhf]]);
+    let f = fix(&ex, "Let b overlap comm activities of every kind");
+    assert_eq!(f.set["uhf_interactions"], Value::Null);
+}
+
+/// No single edit works: `b` must follow `a` (ending at 5100) but its window ends
+/// at 2000, and `c` holds `r` over the whole plan. It first fails after step 1
+/// (`c` alone: the dependency on the later `a` does not count yet), where its
+/// window and the resource conflict: relaxing the window alone reaches only 10000,
+/// where `r` is free but the plan has ended, and releasing `r` alone leaves the
+/// order after `a`. Both together place it at 5100, and the notes say so.
+#[test]
+fn no_single_fix_names_a_pair_that_works() {
+    let p = plan(
+        json!({}),
+        json!([
+            { "id": "c", "priority": 1, "duration": 10000, "resources": ["r"],
+              "windows": [ { "start": 0, "end": 0 } ] },
+            { "id": "a", "priority": 1, "duration": 100,
+              "windows": [ { "start": 5000, "end": 5000 } ] },
+            { "id": "b", "priority": 3, "duration": 100, "resources": ["r"],
+              "after": [ { "activity": "a" } ],
+              "windows": [ { "start": 1000, "end": 2000 } ] }
+        ]),
+    );
+    let (s, ex) = explain_one(&p, "b");
+    assert_eq!(ex.phase, Some(Phase::ValidIntervals));
+    assert!(ex.suggestions.is_empty(), "{:#?}", ex.suggestions);
+    // Verified: with both edits `b` is placed, after `a`.
+    let both = ex.together.as_deref().expect("pairs were tried");
+    let mut edited = serde_json::to_value(&p).unwrap();
+    for e in both {
+        let b = edited["activities"]
+            .as_array_mut()
+            .unwrap()
+            .iter_mut()
+            .find(|x| x["id"] == "b")
+            .unwrap();
+        for (k, v) in &e.set {
+            b[k] = v.clone();
+        }
+    }
+    let edited = load_plan(&edited.to_string()).unwrap().plan;
+    assert_eq!(schedule(&edited).unwrap().placement(2), Some((5100, 5200)));
+    let pair = ex.together.as_deref().expect("pairs were tried");
+    let names: Vec<&str> = pair.iter().map(|x| x.description.as_str()).collect();
+    assert_eq!(
+        names,
+        vec![
+            "Widen window 1 of b to end at 10000",
+            "Let b run without holding r"
+        ]
+    );
+    let notes = solscope_engine::explanation_notes(&p, &s.problem, &ex);
+    assert!(
+        notes.iter().any(|n| n
+            == "No single change fixes this; these two together do: Widen window 1 of b to end at 10000; and Let b run without holding r."),
+        "{notes:#?}"
+    );
+}

@@ -126,6 +126,10 @@ pub struct Explanation {
     pub culprits: Vec<Culprit>,
     /// Verified suggestions, least disruptive first.
     pub suggestions: Vec<Suggestion>,
+    /// When suggestions were verified and no single edit makes the activity
+    /// schedule: `Some`, with two edits that together do (verified by
+    /// rescheduling with both), or empty when no pair tried does.
+    pub together: Option<Vec<Suggestion>>,
 }
 
 /// Options for [`explain`].
@@ -188,8 +192,9 @@ pub fn explain(
         // In parallel, collected in order, so the output does not depend on the
         // number of threads.
         let lists = suggest::suggestions(plan, sched, &out);
-        for (ex, list) in out.iter_mut().zip(lists) {
-            ex.suggestions = list;
+        for (ex, fixes) in out.iter_mut().zip(lists) {
+            ex.suggestions = fixes.single;
+            ex.together = fixes.together;
         }
     }
     Ok(out)
@@ -206,6 +211,7 @@ pub fn verified_suggestions(plan: &Plan, sched: &Schedule, ex: &Explanation) -> 
     suggest::suggestions(plan, sched, std::slice::from_ref(ex))
         .pop()
         .unwrap_or_default()
+        .single
 }
 
 /// The explanation skeleton of a scheduled activity (its own step's record).
@@ -225,6 +231,7 @@ fn from_step(a: usize, step: &Step) -> Explanation {
         reasons: Vec::new(),
         culprits: Vec::new(),
         suggestions: Vec::new(),
+        together: None,
     }
 }
 
@@ -277,5 +284,6 @@ fn from_probe(sched: &Schedule, a: usize, step: &Step, k: usize, record: Step) -
         reasons,
         culprits: Vec::new(),
         suggestions: Vec::new(),
+        together: None,
     }
 }

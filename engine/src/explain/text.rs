@@ -249,6 +249,16 @@ pub fn explanation_notes(plan: &Plan, problem: &Problem, ex: &Explanation) -> Ve
             }
         }
     }
+    match ex.together.as_deref() {
+        Some([x, y]) => notes.push(format!(
+            "No single change fixes this; these two together do: {}; and {}.",
+            x.description, y.description
+        )),
+        Some(_) => notes.push(
+            "No single change fixes this, and no pair of the changes tried does.".to_string(),
+        ),
+        None => {}
+    }
     if !ex.culprits.is_empty() {
         let names: Vec<String> = involved(ex)
             .iter()

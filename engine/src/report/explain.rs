@@ -48,6 +48,10 @@ pub struct ExplanationEntry {
     pub intersection: Vec<[i64; 2]>,
     /// Minimal relaxations with a witness start.
     pub relaxations: Vec<RelaxationEntry>,
+    /// When no single suggestion works: two edits that together make the
+    /// activity schedule (verified), if a pair tried does. Absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub together: Option<Vec<SuggestionEntry>>,
 }
 
 /// A culprit in the document.
@@ -128,6 +132,14 @@ pub fn explain_document(
 ) -> ExplainDoc {
     let problem = &schedule.problem;
     let id = |a: usize| plan.activities[a].id.clone();
+    let entry = |s: &crate::explain::Suggestion| SuggestionEntry {
+        description: s.description.clone(),
+        edit: EditEntry {
+            target: s.target.clone(),
+            set: s.set.clone(),
+        },
+        side_effects: s.side_effects.iter().map(|&a| id(a)).collect(),
+    };
     let entries = explanations
         .iter()
         .map(|ex| ExplanationEntry {
@@ -156,18 +168,12 @@ pub fn explain_document(
                 })
                 .collect(),
             notes: explanation_notes(plan, problem, ex),
-            suggestions: ex
-                .suggestions
-                .iter()
-                .map(|s| SuggestionEntry {
-                    description: s.description.clone(),
-                    edit: EditEntry {
-                        target: s.target.clone(),
-                        set: s.set.clone(),
-                    },
-                    side_effects: s.side_effects.iter().map(|&a| id(a)).collect(),
-                })
-                .collect(),
+            suggestions: ex.suggestions.iter().map(entry).collect(),
+            together: ex
+                .together
+                .as_ref()
+                .filter(|pair| !pair.is_empty())
+                .map(|pair| pair.iter().map(entry).collect()),
             duration: ex.duration,
             valid_intervals: ex
                 .categories

@@ -4,35 +4,120 @@
 use serde_json::{Value, json};
 
 use super::verify::{Runs, tune_limit};
-use super::{Candidate, round3};
+use super::{Candidate, Pairing, round3};
 use crate::explain::Explanation;
 use crate::model::{Activity, Dependency, Plan, Window};
 use crate::scheduler::{Category, Schedule};
 use crate::timeline::IntervalSet;
 
-/// The candidates of every single-category relaxation, in relaxation order.
-pub(super) fn candidates(runs: &Runs<'_>, ex: &Explanation) -> Vec<Candidate> {
-    let (plan, sched) = (runs.plan, runs.sched);
-    let activity = &plan.activities[ex.activity];
+/// The candidates of every single-category relaxation, in relaxation order; and
+/// for each relaxation of two categories, the candidates of each (whose pairs
+/// may fix together what no single edit does).
+pub(super) fn candidates(runs: &Runs<'_>, ex: &Explanation) -> (Vec<Candidate>, Vec<Pairing>) {
     let mut out = Vec::new();
+    let mut pairings = Vec::new();
     for relaxation in &ex.relaxations {
         match relaxation.categories.as_slice() {
-            [Category::Execution] => {
-                let problem = &sched.problem;
-                out.extend(widen_window(
-                    activity,
-                    problem.h0,
-                    problem.h1,
-                    relaxation.witness,
-                    ex.duration,
-                ));
-            }
-            [Category::Dependency] => out.extend(dependencies(plan, sched, ex)),
-            [Category::SequenceEngines] => out.push(more_engines(plan)),
-            [Category::StateRequirement] => out.extend(initial_states(plan, activity)),
-            [Category::DataVolume] => out.extend(data_limits(runs, ex)),
+            [one] => out.extend(for_category(runs, ex, *one, relaxation.witness)),
+            [x, y] => pairings.push((
+                for_category(runs, ex, *x, relaxation.witness),
+                for_category(runs, ex, *y, relaxation.witness),
+            )),
             _ => {}
         }
+    }
+    (out, pairings)
+}
+
+/// The edits that relax category `category` (towards the start `witness`).
+fn for_category(
+    runs: &Runs<'_>,
+    ex: &Explanation,
+    category: Category,
+    witness: i64,
+) -> Vec<Candidate> {
+    let (plan, sched) = (runs.plan, runs.sched);
+    let activity = &plan.activities[ex.activity];
+    let problem = &sched.problem;
+    match category {
+        Category::Execution => widen_window(activity, problem.h0, problem.h1, witness, ex.duration)
+            .into_iter()
+            .collect(),
+        Category::Dependency => dependencies(plan, sched, ex),
+        Category::SequenceEngines => vec![more_engines(plan)],
+        Category::StateRequirement => initial_states(plan, activity),
+        Category::DataVolume => data_limits(runs, ex),
+        Category::UnitResource => release_resources(activity),
+        Category::StateEffect => drop_effects(activity),
+        Category::Uhf => uhf(activity),
+    }
+}
+
+/// `unit_resource`: release each resource the activity holds.
+fn release_resources(activity: &Activity) -> Vec<Candidate> {
+    activity
+        .resources
+        .iter()
+        .map(|r| {
+            let rest: Vec<&String> = activity.resources.iter().filter(|x| *x != r).collect();
+            Candidate::activity(
+                activity,
+                format!("Let {} run without holding {r}", activity.id),
+                "resources",
+                json!(rest),
+            )
+        })
+        .collect()
+}
+
+/// `state_effect`: drop each effect of the activity (a placed activity requires
+/// the value it would change).
+fn drop_effects(activity: &Activity) -> Vec<Candidate> {
+    (0..activity.effects.len())
+        .map(|j| {
+            let e = &activity.effects[j];
+            let rest: Vec<Value> = activity
+                .effects
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != j)
+                .filter_map(|(_, x)| serde_json::to_value(x).ok())
+                .collect();
+            Candidate::activity(
+                activity,
+                format!(
+                    "Drop the effect of {} that sets {} to {}",
+                    activity.id, e.state, e.value
+                ),
+                "effects",
+                Value::Array(rest),
+            )
+        })
+        .collect()
+}
+
+/// `uhf`: let the activity overlap every comm activity (no `uhf_interactions`
+/// list), or, for a comm activity, drop its kind.
+fn uhf(activity: &Activity) -> Vec<Candidate> {
+    let mut out = Vec::new();
+    if activity.uhf_interactions.is_some() {
+        out.push(Candidate::activity(
+            activity,
+            format!("Let {} overlap comm activities of every kind", activity.id),
+            "uhf_interactions",
+            Value::Null,
+        ));
+    }
+    if let Some(kind) = &activity.comm_kind {
+        out.push(Candidate::activity(
+            activity,
+            format!(
+                "Make {} no {kind} comm activity (drop its comm_kind)",
+                activity.id
+            ),
+            "comm_kind",
+            Value::Null,
+        ));
     }
     out
 }

@@ -18,7 +18,19 @@ use super::{Explanation, Phase, Suggestion};
 use crate::model::{Activity, Plan};
 use crate::scheduler::Schedule;
 
+/// Two groups of candidates, each relaxing one of two constraint categories that
+/// only together block the activity: a pair of one from each may fix it.
+type Pairing = (Vec<Candidate>, Vec<Candidate>);
+
+/// At most this many pairs of edits are tried per failure without a single fix.
+const PAIRS_PER_FAILURE: usize = 12;
+
+/// At most this many pairs of edits are tried in one explanation run (in failure
+/// order), so that explaining a large plan stays bounded.
+const PAIRS_PER_RUN: usize = 240;
+
 /// A candidate edit before verification.
+#[derive(Clone)]
 struct Candidate {
     description: String,
     target: String,
@@ -65,36 +77,103 @@ fn set1(key: &str, value: Value) -> Map<String, Value> {
     m
 }
 
+/// What verification found for one failure.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Fixes {
+    /// Verified single edits, least disruptive first.
+    pub single: Vec<Suggestion>,
+    /// When no single edit works and pairs were tried: `Some`, with two edits
+    /// that together make it schedule (empty when no pair tried does).
+    pub together: Option<Vec<Suggestion>>,
+}
+
 /// Verified suggestions for each explanation, in order (none for an activity
 /// that did not fail).
 ///
 /// The candidates of each failure are built in parallel (the least-relaxation
 /// searches run then), and every distinct edit among them is verified once for
-/// all the failures that propose it.
-pub fn suggestions(plan: &Plan, sched: &Schedule, exs: &[Explanation]) -> Vec<Vec<Suggestion>> {
+/// all the failures that propose it. A failure that no single edit fixes then
+/// tries pairs: of two categories that only together block it, one edit each;
+/// else two of its own candidates (bounded per failure and per run).
+pub(crate) fn suggestions(plan: &Plan, sched: &Schedule, exs: &[Explanation]) -> Vec<Fixes> {
     let runs = verify::Runs::new(plan, sched);
-    let failures: Vec<(usize, Vec<Candidate>)> = exs
+    let built: Vec<(usize, Vec<Candidate>, Vec<Pairing>)> = exs
         .par_iter()
         .map(|ex| {
-            let candidates = if ex.failure_step.is_some() {
+            let (candidates, pairings) = if ex.failure_step.is_some() {
                 candidates(&runs, ex)
             } else {
-                Vec::new()
+                (Vec::new(), Vec::new())
             };
-            (ex.activity, candidates)
+            (ex.activity, candidates, pairings)
         })
         .collect();
-    verify::verified(&runs, &failures)
+    let failures: Vec<(usize, Vec<Candidate>)> =
+        built.iter().map(|(a, c, _)| (*a, c.clone())).collect();
+    let singles = verify::verified(&runs, &failures);
+    // The pairs each failure without a single fix may try, within the budgets.
+    let mut budget = PAIRS_PER_RUN;
+    let asked: Vec<Option<Vec<(Candidate, Candidate)>>> = built
+        .iter()
+        .zip(&singles)
+        .zip(exs)
+        .map(|(((_, candidates, pairings), single), ex)| {
+            if !single.is_empty() || ex.failure_step.is_none() {
+                return None;
+            }
+            let mut pairs = Vec::new();
+            for (xs, ys) in pairings {
+                for x in xs {
+                    for y in ys {
+                        pairs.push((x.clone(), y.clone()));
+                    }
+                }
+            }
+            let first: Vec<&Candidate> = candidates.iter().take(5).collect();
+            for (i, x) in first.iter().enumerate() {
+                for y in &first[i + 1..] {
+                    pairs.push(((*x).clone(), (*y).clone()));
+                }
+            }
+            // Two edits of the same field are one edit.
+            pairs.retain(|(x, y)| {
+                x.target != y.target || x.set.keys().all(|k| !y.set.contains_key(k))
+            });
+            pairs.truncate(PAIRS_PER_FAILURE.min(budget));
+            budget -= pairs.len();
+            Some(pairs)
+        })
+        .collect();
+    let together: Vec<Option<Vec<Suggestion>>> = built
+        .par_iter()
+        .zip(asked.par_iter())
+        .map(|((a, ..), pairs)| {
+            let pairs = pairs.as_ref()?;
+            let found = pairs.iter().find_map(|(x, y)| runs.verify_pair(x, y, *a));
+            Some(found.unwrap_or_default())
+        })
+        .collect();
+    singles
+        .into_iter()
+        .zip(together)
+        .map(|(single, together)| Fixes { single, together })
+        .collect()
 }
 
-/// The candidates for one failure, each edit once (the first keeps its place).
-fn candidates(runs: &verify::Runs<'_>, ex: &Explanation) -> Vec<Candidate> {
+/// The candidates for one failure, each edit once (the first keeps its place),
+/// and the pairings of two categories that only together block it.
+fn candidates(runs: &verify::Runs<'_>, ex: &Explanation) -> (Vec<Candidate>, Vec<Pairing>) {
     let plan = runs.plan;
     let activity = &plan.activities[ex.activity];
+    let mut pairings = Vec::new();
     let mut candidates = match ex.phase {
         Some(Phase::Group) => vec![leave_group(activity)],
         Some(Phase::Dependency) => drop_failed_dependency(plan, ex).into_iter().collect(),
-        Some(Phase::ValidIntervals) => intervals::candidates(runs, ex),
+        Some(Phase::ValidIntervals) => {
+            let (c, p) = intervals::candidates(runs, ex);
+            pairings = p;
+            c
+        }
         Some(Phase::Placement) => placement::candidates(runs, ex),
         None => Vec::new(),
     };
@@ -108,7 +187,7 @@ fn candidates(runs: &verify::Runs<'_>, ex: &Explanation) -> Vec<Candidate> {
             unique.push(c);
         }
     }
-    unique
+    (unique, pairings)
 }
 
 /// Phase `group`: leave the group.

@@ -4,10 +4,10 @@
 
 use serde_json::{Value, json};
 
-use super::verify::{Runs, tune_limit};
+use super::verify::{Runs, tune_limit, tune_seconds};
 use super::{Candidate, floor3};
 use crate::explain::Explanation;
-use crate::model::Plan;
+use crate::model::{AwakeMode, Plan};
 use crate::scheduler::{Phase2Reason, Schedule};
 use crate::units::{format_local, watts, wh};
 
@@ -27,6 +27,17 @@ struct Closest {
     /// The earliest start that found no room for an awake period of `min_awake`
     /// in the plan.
     no_room_awake: Option<i64>,
+    /// A wake/sleep conflict with the activity's own awake mode (an awake period
+    /// over an activity that must run asleep, or a manual sleep over one that
+    /// must run awake).
+    forced_sleep: bool,
+    /// The manual sleeps (activities that must run asleep) in the way of the
+    /// awake period the activity needs, sorted.
+    sleeps: Vec<usize>,
+    /// Merging for `min_sleep` runs through a manual sleep.
+    min_sleep: bool,
+    /// Extending to `min_awake` runs into a manual sleep.
+    min_awake_sleep: bool,
 }
 
 impl Closest {
@@ -54,9 +65,22 @@ impl Closest {
                 Phase2Reason::MinAwake { sleep: None } => {
                     c.no_room_awake = Some(c.no_room_awake.map_or(r.first, |f| f.min(r.first)));
                 }
-                _ => {}
+                Phase2Reason::ForcedSleep { sleep } => {
+                    c.forced_sleep = true;
+                    c.sleeps.extend(sleep);
+                }
+                Phase2Reason::MinSleep { sleep } => {
+                    c.min_sleep = true;
+                    c.sleeps.push(sleep);
+                }
+                Phase2Reason::MinAwake { sleep: Some(f) } => {
+                    c.min_awake_sleep = true;
+                    c.sleeps.push(f);
+                }
             }
         }
+        c.sleeps.sort_unstable();
+        c.sleeps.dedup();
         c
     }
 }
@@ -85,7 +109,53 @@ pub(super) fn candidates(runs: &Runs<'_>, ex: &Explanation) -> Vec<Candidate> {
     if let Some(first) = closest.no_room_awake {
         out.extend(shorten_min_awake(plan, first));
     }
+    if closest.min_sleep {
+        out.extend(tune_sleep(runs, ex.activity, "min_sleep"));
+    }
+    if closest.min_awake_sleep {
+        out.extend(tune_sleep(runs, ex.activity, "min_awake"));
+    }
+    if closest.forced_sleep || closest.min_sleep || closest.min_awake_sleep {
+        out.extend(any_awake(&plan.activities[ex.activity]));
+        // A manual sleep in the way may run awake instead.
+        for &f in closest.sleeps.iter().take(3) {
+            out.extend(any_awake(&plan.activities[f]));
+        }
+    }
     out
+}
+
+/// `forced_sleep` and the manual sleeps in the way: let the activity run awake or
+/// asleep (`awake: "any"`).
+fn any_awake(activity: &crate::model::Activity) -> Option<Candidate> {
+    (activity.awake != AwakeMode::Any).then(|| {
+        Candidate::activity(
+            activity,
+            format!("Let {} run awake or asleep (awake: any)", activity.id),
+            "awake",
+            json!("any"),
+        )
+    })
+}
+
+/// `min_sleep` or `min_awake` against a manual sleep: the least shortening of
+/// `sleep.<field>` (whole seconds) that makes activity `a` schedule.
+fn tune_sleep(runs: &Runs<'_>, a: usize, field: &str) -> Option<Candidate> {
+    let plan = runs.plan;
+    let current = match field {
+        "min_sleep" => plan.sleep.min_sleep,
+        _ => plan.sleep.min_awake,
+    };
+    let make = |v: i64| {
+        let mut sleep = serde_json::to_value(plan.sleep).unwrap_or(Value::Null);
+        sleep[field] = json!(v);
+        let what = match field {
+            "min_sleep" => "minimum sleep between awake periods",
+            _ => "minimum awake period",
+        };
+        Candidate::plan(format!("Shorten the {what} to {v} s"), "sleep", sleep)
+    };
+    tune_seconds(runs, a, &make, current)
 }
 
 /// `preheat_outside_plan`: let the activity start only once a preheat of `length`

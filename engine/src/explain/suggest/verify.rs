@@ -145,6 +145,32 @@ impl<'a> Runs<'a> {
     }
 }
 
+impl Runs<'_> {
+    /// If the plan edited by `x` and then by `y` places activity `a`: the two as
+    /// suggestions, with the activities the pair makes fail.
+    pub(super) fn verify_pair(
+        &self,
+        x: &Candidate,
+        y: &Candidate,
+        a: usize,
+    ) -> Option<Vec<Suggestion>> {
+        let once = edited(self.plan, &x.target, &x.set)?;
+        let twice = edited(&once, &y.target, &y.set)?;
+        let side_effects = side_effects(&twice, a, self.sched)?;
+        Some(
+            [x, y]
+                .into_iter()
+                .map(|c| Suggestion {
+                    description: c.description.clone(),
+                    target: c.target.clone(),
+                    set: c.set.clone(),
+                    side_effects: side_effects.clone(),
+                })
+                .collect(),
+        )
+    }
+}
+
 fn placed_in(placements: Option<&Placements>, a: usize) -> bool {
     placements.is_some_and(|p| p.get(a).is_some_and(Option::is_some))
 }
@@ -242,6 +268,40 @@ fn side_effects(plan: &Plan, a: usize, before: &Schedule) -> Option<Vec<usize>> 
             .map(|s| s.activity)
             .collect(),
     )
+}
+
+/// The least shortening of a length in whole seconds (from `current`, which
+/// fails, down to 0) that makes activity `a` schedule: the largest value below
+/// `current` that works, binary-searched (a shorter one relaxes more).
+pub(super) fn tune_seconds(
+    runs: &Runs<'_>,
+    a: usize,
+    make: &dyn Fn(i64) -> Candidate,
+    current: i64,
+) -> Option<Candidate> {
+    if current <= 0 {
+        return None;
+    }
+    let loose = make(0);
+    let works = |v: i64| {
+        let c = make(v);
+        let shared = c.target == loose.target && c.set == loose.set;
+        runs.places(&c, a, shared)
+    };
+    if !works(0) {
+        return None;
+    }
+    // works(good), !works(bad)
+    let (mut good, mut bad) = (0, current);
+    while bad - good > 1 {
+        let mid = good + (bad - good) / 2;
+        if works(mid) {
+            good = mid;
+        } else {
+            bad = mid;
+        }
+    }
+    Some(make(good))
 }
 
 /// The least relaxation of a numeric plan limit (from `current`, which fails) that
