@@ -247,12 +247,32 @@ const EXPECTED: &[(&str, &str, &str)] = &[
     (
         "deeply-nested.json",
         "activities[0].resources[0]",
-        "nested more than 128 levels deep",
+        "nested too deeply",
     ),
+    ("top-level-deeply-nested.json", "$", "nested too deeply"),
     (
-        "top-level-deeply-nested.json",
+        "deeply-nested-horizon-start.json",
+        "horizon.start",
+        "nested too deeply",
+    ),
+    // encodings: a UTF-8 byte-order mark is skipped (the error is the plan's
+    // own), anything but UTF-8 is named
+    (
+        "bom-unknown-activity-field.json",
+        "activities[2].prio",
+        "unknown field `prio`",
+    ),
+    ("utf16.json", "$", "utf16.json is UTF-16 text"),
+    (
+        "not-utf8.json",
         "$",
-        "nested more than 128 levels deep",
+        "not-utf8.json is not UTF-8 text (invalid byte at offset 66)",
+    ),
+    // numbers are printed short, a denormal too
+    (
+        "battery-initial-denormal-over-capacity.json",
+        "battery.initial",
+        "must be <= capacity (got 1e-323 > 5e-324)",
     ),
     (
         "trailing-garbage.json",
@@ -344,6 +364,39 @@ fn every_corpus_file_is_rejected_with_its_path() {
 }
 
 #[test]
+fn a_hundred_thousand_nested_brackets_are_nested_too_deeply() {
+    // The shape a hostile or broken generator writes: no plan at all, only depth.
+    let dir = std::env::temp_dir().join(format!("solscope-nested-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cases = [
+        ("top.json", "[".repeat(100_000), "$"),
+        (
+            "in-activities.json",
+            format!(
+                r#"{{"format":"solscope.plan/1","activities":[{{"id":"a","windows":{}"#,
+                "[".repeat(100_000)
+            ),
+            "activities[0].windows[0]",
+        ),
+    ];
+    for (name, text, path) in cases {
+        let file = dir.join(name);
+        std::fs::write(&file, text).unwrap();
+        for sub in ["check", "schedule"] {
+            let out = run(sub, &file);
+            assert_eq!(out.status.code(), Some(2), "{sub} {name}");
+            assert!(out.stdout.is_empty(), "{sub} {name}");
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert!(
+                err.starts_with(&format!("error: {path}: nested too deeply: ")),
+                "{sub} {name}: {err}"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
 fn a_million_activities_are_refused_cleanly() {
     // About 60 MB of activities: refused by size before parsing, so loading stays
     // bounded in time and memory.
@@ -369,7 +422,10 @@ fn a_million_activities_are_refused_cleanly() {
         assert!(out.stdout.is_empty());
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(err.starts_with("error: $: "), "{err}");
-        assert!(err.contains("plans are limited to"), "{err}");
+        assert!(
+            err.contains("is larger than 32 MiB, the input size limit"),
+            "{err}"
+        );
     }
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -13,9 +13,21 @@ pub struct LoadedPlan {
     pub warnings: Vec<Warning>,
 }
 
-/// Largest plan accepted (bytes): far above any real plan (a generated
+/// Largest input file read (bytes), 32 MiB: far above any real plan (a generated
 /// 10,000-activity plan is about 4 MB), and a bound on the memory loading takes.
+/// The command line's `--max-input-mib` raises it.
 pub const MAX_PLAN_BYTES: usize = 32 * 1024 * 1024;
+
+/// A size limit as a planner reads it: `32 MiB` when it is a whole number of MiB,
+/// else in bytes.
+fn limit_text(limit: usize) -> String {
+    const MIB: usize = 1024 * 1024;
+    if limit >= MIB && limit % MIB == 0 {
+        format!("{} MiB", limit / MIB)
+    } else {
+        format!("{limit} bytes")
+    }
+}
 
 /// Parses and validates a plan from JSON text (a leading UTF-8 byte-order mark is
 /// ignored). Errors name the JSON path.
@@ -24,7 +36,7 @@ pub fn load_plan(text: &str) -> Result<LoadedPlan, Error> {
 }
 
 /// [`load_plan`] with another size limit than [`MAX_PLAN_BYTES`] (the command
-/// line's `--max-plan-bytes`).
+/// line's `--max-input-mib`).
 pub fn load_plan_limited(text: &str, limit: usize) -> Result<LoadedPlan, Error> {
     // A UTF-8 byte-order mark (Windows editors write one) is not part of the JSON.
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
@@ -32,8 +44,10 @@ pub fn load_plan_limited(text: &str, limit: usize) -> Result<LoadedPlan, Error> 
         return Err(Error::invalid(
             "$",
             format!(
-                "the plan is {} bytes; plans are limited to {limit} bytes",
-                text.len()
+                "the plan is {} bytes, larger than {}; plans are limited to {}",
+                text.len(),
+                limit_text(limit),
+                limit_text(limit)
             ),
         ));
     }
@@ -70,10 +84,11 @@ pub fn load_plan_limited(text: &str, limit: usize) -> Result<LoadedPlan, Error> 
         if too_deep {
             // A plan is an object: a path into a top-level array names nothing.
             let path = if path.starts_with('[') { "$" } else { path };
-            return Error::invalid(
-                path,
-                "the JSON is nested more than 128 levels deep (the most a plan may nest)",
-            );
+            // No value of a plan is an array of arrays: the path ends at the
+            // value that should not have been one (`activities[0]`, not the
+            // `activities[0][0]` the typed parse reached).
+            let path = path.find("][").map_or(path, |i| &path[..=i]);
+            return Error::invalid(path, NESTED_TOO_DEEPLY);
         }
         Error::invalid(path, e.into_inner().to_string())
     })?;
@@ -81,14 +96,20 @@ pub fn load_plan_limited(text: &str, limit: usize) -> Result<LoadedPlan, Error> 
     Ok(LoadedPlan { plan, warnings })
 }
 
+/// The reason given for JSON nested past serde_json's recursion limit.
+const NESTED_TOO_DEEPLY: &str =
+    "nested too deeply: the JSON nests more than 128 levels here (a plan nests at most 5)";
+
 /// Reads and loads a plan file (at most [`MAX_PLAN_BYTES`]; see [`read_plan_text`]).
 pub fn load_plan_file(path: &std::path::Path) -> Result<LoadedPlan, Error> {
     load_plan(&read_plan_text(path, MAX_PLAN_BYTES)?)
 }
 
-/// Reads a plan file's text: at most `limit` bytes are read whatever the file is
-/// (a device such as `/dev/zero` or a pipe reports no size, so the limit is
-/// enforced on the bytes read, not on the metadata).
+/// Reads an input file's text (a plan, actuals, Monte Carlo parts): at most
+/// `limit` bytes are read whatever the file is (a device such as `/dev/zero` or a
+/// pipe reports no size, so the limit is enforced on the bytes read, not on the
+/// metadata). A leading UTF-8 byte-order mark is dropped. Text that is not UTF-8
+/// is invalid input at `$`; a file that cannot be read is an I/O error.
 pub fn read_plan_text(path: &std::path::Path, limit: usize) -> Result<String, Error> {
     use std::io::Read;
     let io = |source| Error::Io {
@@ -104,16 +125,36 @@ pub fn read_plan_text(path: &std::path::Path, limit: usize) -> Result<String, Er
         return Err(Error::invalid(
             "$",
             format!(
-                "{} is larger than {limit} bytes; plans are limited to {limit} bytes",
+                "{} is larger than {}, the input size limit (--max-input-mib raises it)",
+                path.display(),
+                limit_text(limit)
+            ),
+        ));
+    }
+    if bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]) {
+        return Err(Error::invalid(
+            "$",
+            format!(
+                "{} is UTF-16 text (it starts with a UTF-16 byte-order mark); save it as UTF-8",
                 path.display()
             ),
         ));
     }
+    let bom = if bytes.starts_with(b"\xEF\xBB\xBF") {
+        3
+    } else {
+        0
+    };
+    bytes.drain(..bom);
     String::from_utf8(bytes).map_err(|e| {
-        io(std::io::Error::new(
-            std::io::ErrorKind::InvalidData,
-            format!("stream did not contain valid UTF-8 ({e})"),
-        ))
+        Error::invalid(
+            "$",
+            format!(
+                "{} is not UTF-8 text (invalid byte at offset {})",
+                path.display(),
+                bom + e.utf8_error().valid_up_to()
+            ),
+        )
     })
 }
 
@@ -134,15 +175,63 @@ mod tests {
         let zero = std::path::Path::new("/dev/zero");
         if zero.exists() {
             let err = read_plan_text(zero, 1 << 20).expect_err("must stop");
-            assert!(
-                err.to_string().contains("larger than 1048576 bytes"),
-                "{err}"
+            assert_eq!(
+                err.to_string(),
+                "$: /dev/zero is larger than 1 MiB, the input size limit (--max-input-mib raises it)"
             );
         }
         let path = temp("big", &[b' '; 101]);
-        assert!(read_plan_text(&path, 100).is_err());
+        let err = read_plan_text(&path, 100).expect_err("one byte too many");
+        assert!(err.to_string().contains("larger than 100 bytes"), "{err}");
         assert_eq!(read_plan_text(&path, 101).expect("fits").len(), 101);
         std::fs::remove_file(&path).expect("remove");
+    }
+
+    #[test]
+    fn the_reader_drops_a_byte_order_mark_and_names_other_encodings() {
+        let path = temp("bom", b"\xEF\xBB\xBF{}");
+        assert_eq!(read_plan_text(&path, 100).expect("reads"), "{}");
+        std::fs::remove_file(&path).expect("remove");
+        let path = temp("utf16", b"\xFF\xFE{\0}\0");
+        let err = read_plan_text(&path, 100).expect_err("UTF-16");
+        assert!(err.to_string().starts_with("$: "), "{err}");
+        assert!(err.to_string().contains("is UTF-16 text"), "{err}");
+        std::fs::remove_file(&path).expect("remove");
+        let path = temp("latin1", b"\xEF\xBB\xBF{\"a\":\"\xE9\"}");
+        let err = read_plan_text(&path, 100).expect_err("Latin-1");
+        assert!(
+            err.to_string()
+                .contains("is not UTF-8 text (invalid byte at offset 9)"),
+            "{err}"
+        );
+        std::fs::remove_file(&path).expect("remove");
+    }
+
+    #[test]
+    fn deep_nesting_is_named_with_its_path() {
+        let deep = "[".repeat(100_000);
+        let err = load_plan(&deep).expect_err("too deep");
+        assert!(err.to_string().starts_with("$: nested too deeply"), "{err}");
+        let inside = format!(r#"{{"format":"solscope.plan/1","activities":[{{"id":{deep}"#);
+        let err = load_plan(&inside).expect_err("too deep");
+        assert!(
+            err.to_string()
+                .starts_with("activities[0].id: nested too deeply"),
+            "{err}"
+        );
+        let in_list = format!(r#"{{"format":"solscope.plan/1","activities":{deep}"#);
+        let err = load_plan(&in_list).expect_err("too deep");
+        assert!(
+            err.to_string()
+                .starts_with("activities[0]: nested too deeply"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn the_text_limit_is_said_in_mib() {
+        let err = load_plan_limited(&" ".repeat(2 << 20), 1 << 20).expect_err("too big");
+        assert!(err.to_string().contains("larger than 1 MiB"), "{err}");
     }
 
     #[test]
