@@ -24,10 +24,15 @@ struct Cli {
     command: Option<Command>,
     /// Plan to open in the app (default: the bundled plan).
     plan: Option<PathBuf>,
-    /// Largest plan file `schedule`, `explain` and `check` read, in bytes
-    /// (default: 33554432, i.e. 32 MiB).
-    #[arg(long, global = true, value_name = "BYTES")]
-    max_plan_bytes: Option<usize>,
+}
+
+/// The input size limit of the commands that read files.
+#[derive(clap::Args, Debug, Clone, Copy)]
+struct InputLimit {
+    /// Largest input file read (plan, actuals, Monte Carlo parts), in MiB
+    /// (default: 32). The app and `screenshot` read up to 32 MiB.
+    #[arg(long, value_name = "MIB", value_parser = clap::value_parser!(u64).range(1..=MAX_INPUT_MIB))]
+    max_input_mib: Option<u64>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -36,12 +41,16 @@ enum Command {
     Schedule {
         /// The plan file (solscope.plan/1 JSON).
         plan: PathBuf,
+        #[command(flatten)]
+        input: InputLimit,
     },
     /// Explain why activities failed (all failed or skipped ones, or the one named)
     /// and print the explanation JSON (solscope.explain/1).
     Explain {
         /// The plan file (solscope.plan/1 JSON).
         plan: PathBuf,
+        #[command(flatten)]
+        input: InputLimit,
         /// Explain this activity (by id), whatever its outcome.
         #[arg(long)]
         activity: Option<String>,
@@ -59,6 +68,8 @@ enum Command {
     Execute {
         /// The plan file (solscope.plan/1 JSON).
         plan: PathBuf,
+        #[command(flatten)]
+        input: InputLimit,
         /// Actual durations (solscope.actuals/1 JSON); without it and without
         /// --sample every activity runs exactly its duration.
         #[arg(long, conflicts_with = "sample")]
@@ -90,6 +101,8 @@ enum Command {
         merge: Option<MonteCarloCommand>,
         /// The plan file (solscope.plan/1 JSON).
         plan: Option<PathBuf>,
+        #[command(flatten)]
+        input: InputLimit,
         /// Number of runs in the campaign (one process runs at most 100000 of them;
         /// --shard splits more).
         #[arg(long, default_value_t = 1000)]
@@ -116,6 +129,8 @@ enum Command {
     Flex {
         /// The plan file (solscope.plan/1 JSON).
         plan: PathBuf,
+        #[command(flatten)]
+        input: InputLimit,
         /// Print planner-facing text instead of JSON.
         #[arg(long)]
         text: bool,
@@ -128,6 +143,8 @@ enum Command {
     Check {
         /// The plan file (solscope.plan/1 JSON).
         plan: PathBuf,
+        #[command(flatten)]
+        input: InputLimit,
     },
     /// Write a random plan (every feature) to standard output.
     Generate {
@@ -166,6 +183,40 @@ enum Command {
     },
 }
 
+impl Command {
+    /// The size limit on the files this command reads, in bytes (the app and
+    /// `screenshot` read up to [`solscope_engine::MAX_PLAN_BYTES`], and so does
+    /// File > Open in the app).
+    fn input_limit(&self) -> Result<usize, solscope_engine::Error> {
+        let input = match self {
+            Command::Schedule { input, .. }
+            | Command::Explain { input, .. }
+            | Command::Execute { input, .. }
+            | Command::Flex { input, .. }
+            | Command::Check { input, .. }
+            | Command::Montecarlo {
+                merge: Some(MonteCarloCommand::Merge { input, .. }),
+                ..
+            }
+            | Command::Montecarlo {
+                merge: None, input, ..
+            } => *input,
+            Command::Generate { .. } | Command::Screenshot { .. } => {
+                return Ok(solscope_engine::MAX_PLAN_BYTES);
+            }
+        };
+        match input.max_input_mib {
+            None => Ok(solscope_engine::MAX_PLAN_BYTES),
+            Some(mib) => usize::try_from(mib << 20).map_err(|_| {
+                solscope_engine::Error::invalid(
+                    "--max-input-mib",
+                    format!("{mib} MiB is more than this machine can address"),
+                )
+            }),
+        }
+    }
+}
+
 /// `solscope montecarlo merge`.
 #[derive(Subcommand, Debug)]
 enum MonteCarloCommand {
@@ -174,6 +225,8 @@ enum MonteCarloCommand {
         /// The parts, in any order.
         #[arg(required = true)]
         parts: Vec<PathBuf>,
+        #[command(flatten)]
+        input: InputLimit,
         /// Print one CSV row per run instead of the summary.
         #[arg(long)]
         csv: bool,
@@ -224,6 +277,9 @@ impl From<Policy> for solscope_engine::Policy {
 /// Exit status for invalid input.
 const EXIT_INVALID: u8 = 2;
 
+/// Largest `--max-input-mib` (1 TiB).
+const MAX_INPUT_MIB: u64 = 1 << 20;
+
 /// Most Monte Carlo runs one `montecarlo` process runs (their records are kept
 /// until it prints; a few kB each).
 const MAX_RECORDS_PER_PROCESS: u64 = 100_000;
@@ -247,9 +303,13 @@ fn main() -> ExitCode {
     {
         return screenshot(&plan, &out, step, select, probe, &size);
     }
-    let limit = cli
-        .max_plan_bytes
-        .unwrap_or(solscope_engine::MAX_PLAN_BYTES);
+    let limit = match command.input_limit() {
+        Ok(limit) => limit,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(EXIT_INVALID);
+        }
+    };
     match run(command, limit) {
         Ok(text) => {
             let mut out = std::io::stdout().lock();
@@ -258,7 +318,7 @@ fn main() -> ExitCode {
                 // A reader that stopped early (`| head`) wants no more: not news.
                 Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::FAILURE,
                 Err(e) => {
-                    eprintln!("error: could not write the output: {e}");
+                    eprintln!("error: could not write the output to standard output: {e}");
                     ExitCode::FAILURE
                 }
             }
@@ -360,7 +420,7 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
         solscope_engine::load_plan_limited(&text, limit)
     };
     match command {
-        Command::Schedule { plan } => {
+        Command::Schedule { plan, .. } => {
             let loaded = load(&plan)?;
             let schedule = solscope_engine::schedule(&loaded.plan)?;
             let doc = solscope_engine::schedule_document(&loaded, &schedule, &default_name(&plan));
@@ -371,6 +431,7 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
             activity,
             text,
             no_suggestions,
+            ..
         } => {
             let loaded = load(&plan)?;
             let schedule = solscope_engine::schedule(&loaded.plan)?;
@@ -397,6 +458,7 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
             write_actuals,
             run,
             policy,
+            ..
         } => {
             let loaded = load(&plan)?;
             let actuals = match (actuals, sample) {
@@ -438,12 +500,12 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
             Ok(out)
         }
         Command::Montecarlo {
-            merge: Some(MonteCarloCommand::Merge { parts, csv }),
+            merge: Some(MonteCarloCommand::Merge { parts, csv, .. }),
             ..
         } => {
             let mut docs = Vec::with_capacity(parts.len());
             for path in &parts {
-                let text = solscope_engine::read_plan_text(path, usize::MAX)?;
+                let text = solscope_engine::read_plan_text(path, limit)?;
                 let doc: solscope_engine::RunsDoc = serde_json::from_str(&text).map_err(|e| {
                     solscope_engine::Error::invalid(
                         format!("{}", path.display()),
@@ -476,6 +538,7 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
             csv,
             shard,
             policy,
+            ..
         } => {
             let Some(plan) = plan else {
                 return Err(Failure::Input(solscope_engine::Error::invalid(
@@ -556,6 +619,7 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
             plan,
             text,
             free_slack,
+            ..
         } => {
             let loaded = load(&plan)?;
             let sched = solscope_engine::schedule(&loaded.plan)?;
@@ -571,7 +635,7 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
                 ))
             }
         }
-        Command::Check { plan } => {
+        Command::Check { plan, .. } => {
             let loaded = load(&plan)?;
             let mut out = String::new();
             for w in &loaded.warnings {

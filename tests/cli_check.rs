@@ -1,10 +1,12 @@
 //! `solscope check` through the real binary: the shared examples are valid, each
-//! loader warning is printed with its path, a missing file is an error, a file
-//! without end (`/dev/zero`) is refused at the size limit, and a byte-order mark is
-//! accepted. The execution extension's plan additions (`execution`,
-//! `duration_model`) check, and their invalid values are refused at their path.
-//! Also `solscope generate`: its realistic plans check, and it refuses
-//! zero sols.
+//! loader warning is printed with its path (a denormal in short form), a missing
+//! file is an error. Every command that reads a file reads it through the size
+//! limit (`/dev/zero` is refused at 32 MiB, or at `--max-input-mib`), a byte-order
+//! mark is accepted on plans, actuals and Monte Carlo parts, and output that cannot
+//! be written (`> /dev/full`) is reported. The execution extension's plan
+//! additions (`execution`, `duration_model`) check, and their invalid values are
+//! refused at their path. Also `solscope generate`: its realistic plans check, and
+//! it refuses zero sols.
 
 // Test helpers outside `#[test]` functions are not covered by clippy.toml's
 // allow-*-in-tests; a failed expectation here is a test failure.
@@ -210,11 +212,11 @@ fn warns_values_rounded_to_fixed_point() {
         check_warnings("precision.json", &plan),
         [
             "battery.initial: 900.00000001 Wh is more precise than 1 mJ (1/3600000 Wh) and is \
-             rounded to 900 Wh",
-            "activities[0].energy_rate: 12.3456 W is more precise than 1 mW and is rounded to \
-             12.346 W",
+             rounded down to 900 Wh (the safe side)",
+            "activities[0].energy_rate: 12.3456 W is more precise than 1 mW and is rounded up \
+             to 12.346 W (the safe side)",
             "activities[0].data_rate: 0.0000004 Mbit/s is more precise than 1 bit/s (1e-6 \
-             Mbit/s) and is rounded to 0 Mbit/s",
+             Mbit/s) and is rounded up to 0.000001 Mbit/s (the safe side)",
         ]
     );
 }
@@ -287,20 +289,146 @@ fn generated_realistic_plan_checks() {
     assert_ne!(standard.stdout, out.stdout);
 }
 
+/// Runs solscope with `args`, standard output going to `stdout`, and fails the
+/// test if it has not finished within a minute (an unbounded read of
+/// `/dev/zero` grows for much longer than that, or until memory runs out).
+fn solscope_within_a_minute(args: &[&str], stdout: std::process::Stdio) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_solscope"))
+        .args(args)
+        .stdout(stdout)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("solscope runs");
+    let started = std::time::Instant::now();
+    while child.try_wait().expect("wait").is_none() {
+        if started.elapsed() > std::time::Duration::from_secs(60) {
+            child.kill().ok();
+            panic!("solscope {args:?} still runs after a minute");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.wait_with_output().expect("output")
+}
+
 #[test]
-fn a_device_without_end_is_refused_at_the_size_limit() {
-    let zero = Path::new("/dev/zero");
-    if !zero.exists() {
+fn every_input_is_read_through_the_size_limit() {
+    let zero = "/dev/zero";
+    if !Path::new(zero).exists() {
         return;
     }
-    let out = solscope_check(zero);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(stdout(&out).is_empty());
-    assert!(
-        stderr(&out).contains("larger than 33554432 bytes"),
-        "{}",
-        stderr(&out)
+    let plan = write_plan(
+        "bounded.json",
+        &plan_with(json!([{ "id": "a", "priority": 1, "duration": 60 }])),
     );
+    let plan = plan.to_str().expect("UTF-8 path");
+    let commands: [&[&str]; 10] = [
+        &["check", zero],
+        &["schedule", zero],
+        &["explain", zero],
+        &["explain", "--text", zero],
+        &["flex", zero],
+        &["execute", zero],
+        &["execute", plan, "--actuals", zero],
+        &["montecarlo", zero, "--runs", "2"],
+        &["montecarlo", "merge", zero],
+        &["check", "--max-input-mib", "1", zero],
+    ];
+    for args in commands {
+        let out = solscope_within_a_minute(args, std::process::Stdio::piped());
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+        let limit = if args.contains(&"--max-input-mib") {
+            1
+        } else {
+            32
+        };
+        assert_eq!(
+            stderr(&out),
+            format!(
+                "error: $: /dev/zero is larger than {limit} MiB, the input size limit \
+                 (--max-input-mib raises it)\n"
+            ),
+            "{args:?}"
+        );
+    }
+}
+
+#[test]
+fn the_size_limit_is_set_in_mib_on_the_commands_that_read_files() {
+    // A valid plan of just over 1 MiB (padded with spaces).
+    let plan = plan_with(json!([{ "id": "a", "priority": 1, "duration": 60 }]));
+    let mut text = serde_json::to_string(&plan).expect("json");
+    text.push_str(&" ".repeat(1 << 20));
+    let path = write_scratch("over-one-mib.json", text.as_bytes());
+    let path = path.to_str().expect("UTF-8 path");
+    let refused = solscope(&["check", "--max-input-mib", "1", path]);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(stdout(&refused).is_empty());
+    assert!(
+        stderr(&refused).contains("is larger than 1 MiB, the input size limit"),
+        "{}",
+        stderr(&refused)
+    );
+    for args in [
+        &["check", "--max-input-mib", "2", path][..],
+        &["check", path],
+        &["schedule", "--max-input-mib", "2", path],
+    ] {
+        let out = solscope(args);
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {}", stderr(&out));
+    }
+    // Refused where it would change nothing (the app and screenshot read up to
+    // 32 MiB, generate reads no file) and out of range: clap's usage error.
+    for args in [
+        &["--max-input-mib", "64", path][..],
+        &["generate", "--max-input-mib", "64"],
+        &[
+            "screenshot",
+            path,
+            "--out",
+            "x.png",
+            "--max-input-mib",
+            "64",
+        ],
+        &["check", "--max-input-mib", "0", path],
+    ] {
+        let out = solscope(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+        assert!(stderr(&out).starts_with("error: "), "{args:?}");
+    }
+}
+
+#[test]
+fn a_full_disk_is_reported() {
+    let full = Path::new("/dev/full");
+    if !full.exists() {
+        return;
+    }
+    let plan = write_plan(
+        "to-full-disk.json",
+        &plan_with(json!([{ "id": "a", "priority": 1, "duration": 60 }])),
+    );
+    let plan = plan.to_str().expect("UTF-8 path");
+    for args in [
+        &["schedule", plan][..],
+        &["check", plan],
+        &["explain", plan],
+        &["generate", "--activities", "5"],
+    ] {
+        let sink = std::fs::OpenOptions::new()
+            .write(true)
+            .open(full)
+            .expect("open /dev/full");
+        let out = solscope_within_a_minute(args, sink.into());
+        assert_eq!(out.status.code(), Some(1), "{args:?}");
+        assert_eq!(
+            stderr(&out),
+            "error: could not write the output to standard output: No space left on device \
+             (os error 28)\n",
+            "{args:?}"
+        );
+    }
 }
 
 #[test]
@@ -313,6 +441,55 @@ fn a_byte_order_mark_is_accepted() {
 }
 
 #[test]
+fn a_byte_order_mark_is_accepted_on_actuals_and_monte_carlo_parts() {
+    let plan = plan_with(json!([
+        { "id": "a", "priority": 1, "duration": 60,
+          "duration_model": { "min": 30, "max": 90 } }
+    ]));
+    let plan = write_plan("bom-plan.json", &plan);
+    let plan = plan.to_str().expect("UTF-8 path");
+    let with_bom = |name: &str, text: &[u8]| {
+        let mut bytes = b"\xEF\xBB\xBF".to_vec();
+        bytes.extend_from_slice(text);
+        write_scratch(name, &bytes)
+    };
+    let actuals = with_bom(
+        "bom-actuals.json",
+        br#"{"format":"solscope.actuals/1","durations":{"a":75}}"#,
+    );
+    let out = solscope(&[
+        "execute",
+        plan,
+        "--actuals",
+        actuals.to_str().expect("UTF-8"),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let doc: Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert!(doc.to_string().contains("75"), "{doc}");
+    let part = solscope(&["montecarlo", plan, "--runs", "4", "--shard", "0/1"]);
+    assert_eq!(part.status.code(), Some(0), "{}", stderr(&part));
+    let part = with_bom("bom-part.json", &part.stdout);
+    let merged = solscope(&["montecarlo", "merge", part.to_str().expect("UTF-8")]);
+    assert_eq!(merged.status.code(), Some(0), "{}", stderr(&merged));
+    let direct = solscope(&["montecarlo", plan, "--runs", "4"]);
+    assert_eq!(merged.stdout, direct.stdout);
+}
+
+#[test]
+fn a_denormal_figure_is_printed_short() {
+    let plan = plan_with(json!([
+        { "id": "a", "priority": 1, "duration": 60, "energy_rate": 5e-324 }
+    ]));
+    assert_eq!(
+        check_warnings("denormal.json", &plan),
+        [
+            "activities[0].energy_rate: 5e-324 W is more precise than 1 mW and is rounded up to \
+          0.001 W (the safe side)"
+        ]
+    );
+}
+
+#[test]
 fn empty_windows_are_warned_about() {
     let plan = plan_with(json!([{ "id": "a", "priority": 1, "duration": 60, "windows": [] }]));
     let warnings = check_warnings("empty-windows.json", &plan);
@@ -321,25 +498,6 @@ fn empty_windows_are_warned_about() {
         warnings[0].starts_with("activities[0].windows: \"a\" has an empty list of windows"),
         "{warnings:?}"
     );
-}
-
-#[test]
-fn the_size_limit_can_be_set() {
-    let plan = plan_with(json!([{ "id": "a", "priority": 1, "duration": 60 }]));
-    let path = write_plan("limit.json", &plan);
-    let size = std::fs::metadata(&path).expect("size").len();
-    let path_text = path.to_str().expect("UTF-8 path");
-    let with_limit =
-        |limit: u64| solscope(&["check", "--max-plan-bytes", &limit.to_string(), path_text]);
-    let refused = with_limit(size - 1);
-    assert_eq!(refused.status.code(), Some(2));
-    assert!(stdout(&refused).is_empty());
-    assert!(
-        stderr(&refused).contains(&format!("larger than {} bytes", size - 1)),
-        "{}",
-        stderr(&refused)
-    );
-    assert_eq!(with_limit(size).status.code(), Some(0));
 }
 
 #[test]

@@ -42,7 +42,10 @@
 //! - an optional activity comes before a mandatory one in step order (path
 //!   `activities[i]`);
 //! - a value is more precise than the fixed-point resolution (1 mW, 1 mJ, 1 bit,
-//!   1 bit/s) and is rounded (path of the value);
+//!   1 bit/s) and is rounded to its safe side, as the scheduler does (path of the
+//!   value);
+//! - `"windows": []`: the activity can never be scheduled (path
+//!   `activities[i].windows`);
 //! - an `after` entry names an activity that comes later in step order, so the
 //!   activity can never be scheduled (path `activities[i].after[j]`);
 //! - a requirement that neither the state's initial value nor an effect of any
