@@ -3,7 +3,7 @@
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
 use egui_kittest::kittest::{NodeT, Queryable};
-use solscope::gui::{Command, Mode, SolscopeApp, UiCommand};
+use solscope::gui::{Command, Dialog, Mode, SolscopeApp, UiCommand};
 use solscope::screenshot::{SNAPSHOT_SIZE, View, harness};
 
 fn tutorial() -> SolscopeApp {
@@ -1286,4 +1286,505 @@ fn a_controllable_plan_shows_the_waits_of_the_selected_activity() {
     ] {
         assert!(h.query_by_label(line).is_some(), "missing: {line}");
     }
+}
+
+// ---- Keyboard, editing, files (issue 13) and one culprit list (issue 14) ----
+
+type Hs = egui_kittest::Harness<'static, SolscopeApp>;
+
+/// The label of the step row for step `k` of the tutorial plan, up to the
+/// activity's id (`step 5: id`).
+fn step_text(h: &Hs, k: usize) -> String {
+    let a = h.state().analysis.schedule.steps[k - 1].activity;
+    format!("step {k}: {}", h.state().doc.plan.activities[a].id)
+}
+
+#[test]
+fn every_key_press_counts_also_several_in_one_frame() {
+    let mut h = harness(
+        tutorial(),
+        SNAPSHOT_SIZE.into(),
+        &View {
+            step: Some(0),
+            ..View::default()
+        },
+    )
+    .unwrap();
+    // Five presses arrive before the next frame (30 ms apart at 60 fps).
+    for _ in 0..5 {
+        h.key_press(eframe::egui::Key::ArrowRight);
+    }
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.step, 5);
+    assert!(h.query_by_label_contains(&step_text(&h, 5)).is_some());
+    for _ in 0..2 {
+        h.key_press(eframe::egui::Key::ArrowLeft);
+    }
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.step, 3);
+}
+
+#[test]
+fn the_step_label_follows_the_slider_in_the_same_frame() {
+    let mut h = harness(
+        tutorial(),
+        SNAPSHOT_SIZE.into(),
+        &View {
+            step: Some(0),
+            ..View::default()
+        },
+    )
+    .unwrap();
+    // One pass per frame, as most frames are: a second pass (egui's discard of
+    // a frame whose layout changed) would hide a label one frame behind.
+    h.ctx
+        .options_mut(|o| o.max_passes = std::num::NonZeroUsize::MIN);
+    let n = h.state().analysis.steps();
+    let rail = h
+        .query_all_by_label("Step")
+        .find(|n| n.accesskit_node().role() == eframe::egui::accesskit::Role::Slider)
+        .expect("the step slider")
+        .rect();
+    // The far right end of the rail: the last step.
+    let end = eframe::egui::pos2(rail.left() + 318.0, rail.center().y);
+    h.hover_at(end);
+    h.step();
+    // One frame (kittest runs one per event): the press moves the slider, and
+    // the label drawn in that frame shows the step it moved to.
+    h.drag_at(end);
+    h.step();
+    assert_eq!(
+        h.state().ui.nav.step,
+        n,
+        "the slider moved to the last step"
+    );
+    assert!(
+        h.query_by_label_contains(&step_text(&h, n)).is_some(),
+        "the label shows the step of the slider in the frame it moved"
+    );
+    h.drop_at(end);
+    h.step();
+}
+
+#[test]
+fn up_and_down_move_the_selection_through_the_list() {
+    let mut h = tutorial_with_selected("sky_flats_mast_busy");
+    let steps: Vec<usize> = h
+        .state()
+        .analysis
+        .schedule
+        .steps
+        .iter()
+        .map(|s| s.activity)
+        .collect();
+    let a = index(h.state(), "sky_flats_mast_busy");
+    let i = steps.iter().position(|&b| b == a).unwrap();
+    h.key_press(eframe::egui::Key::ArrowDown);
+    h.key_press(eframe::egui::Key::ArrowDown);
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.selected, Some(steps[i + 2]));
+    h.key_press(eframe::egui::Key::ArrowUp);
+    h.run_steps(3);
+    let b = steps[i + 1];
+    assert_eq!(h.state().ui.nav.selected, Some(b));
+    // The inspector shows the activity selected by key.
+    let id = h.state().doc.plan.activities[b].id.clone();
+    let label = match &h.state().doc.plan.activities[b].name {
+        Some(name) => format!("{id} — {name}"),
+        None => id.clone(),
+    };
+    assert!(h.query_by_label(&label).is_some(), "{label}");
+    // The list filtered: Up and Down stay inside what it shows.
+    h.state_mut().push(Command::SetFilter("sky_flats".into()));
+    h.state_mut().push(Command::Select(None));
+    h.run_steps(2);
+    h.key_press(eframe::egui::Key::ArrowDown);
+    h.run_steps(3);
+    let sel = h.state().ui.nav.selected.expect("selected");
+    assert!(h.state().doc.plan.activities[sel].id.contains("sky_flats"));
+}
+
+#[test]
+fn next_and_previous_failure_by_button_and_key() {
+    let mut h = harness(
+        tutorial(),
+        SNAPSHOT_SIZE.into(),
+        &View {
+            step: Some(0),
+            ..View::default()
+        },
+    )
+    .unwrap();
+    let failed: Vec<(usize, usize)> = h
+        .state()
+        .analysis
+        .schedule
+        .steps
+        .iter()
+        .filter(|s| s.outcome.placement().is_none() && s.outcome.status() == "failed")
+        .map(|s| (s.step, s.activity))
+        .collect();
+    assert!(failed.len() >= 2, "the tutorial plan has failures");
+    assert!(
+        h.get_by_label("<< Previous failure")
+            .accesskit_node()
+            .is_disabled(),
+        "no failure before step 0"
+    );
+    h.get_by_label("Next failure >>").click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.step, failed[0].0);
+    assert_eq!(h.state().ui.nav.selected, Some(failed[0].1));
+    assert!(h.query_by_label("Why it did not schedule").is_some());
+    h.key_press_modifiers(
+        eframe::egui::Modifiers::SHIFT,
+        eframe::egui::Key::ArrowRight,
+    );
+    h.run_steps(3);
+    assert_eq!(
+        h.state().ui.nav.step,
+        failed[1].0,
+        "Shift+Right: next failure"
+    );
+    assert_eq!(h.state().ui.nav.selected, Some(failed[1].1));
+    h.key_press_modifiers(eframe::egui::Modifiers::SHIFT, eframe::egui::Key::ArrowLeft);
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.step, failed[0].0, "Shift+Left: previous");
+    h.get_by_label("<< Previous failure").click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.step, failed[0].0, "none before the first");
+}
+
+/// The default plan with drill_core_413 selected, its windows field holding
+/// `text` and Enter pressed.
+fn drill_core_windows(text: &str) -> Hs {
+    let view = View {
+        select: Some("drill_core_413".into()),
+        ..View::default()
+    };
+    let mut h = harness(
+        SolscopeApp::with_default_plan().unwrap(),
+        SNAPSHOT_SIZE.into(),
+        &view,
+    )
+    .unwrap();
+    h.get_by_label("windows").scroll_to_me();
+    h.run_steps(2);
+    type_into(&mut h, "windows", text);
+    h.key_press(eframe::egui::Key::Enter);
+    h.run_steps(3);
+    h
+}
+
+#[test]
+fn a_long_error_wraps_inside_the_inspector() {
+    let mut h = drill_core_windows(r#"[{"start":150000,"end":140000}]"#);
+    h.get_by_label_contains("must be >= start").scroll_to_me();
+    h.run_steps(2);
+    let err = h.get_by_label_contains("must be >= start").rect();
+    let field = h.get_by_label("windows").rect();
+    assert!(
+        err.right() <= SNAPSHOT_SIZE[0],
+        "the message ends inside the window: {err:?}"
+    );
+    assert!(
+        err.right() <= field.right() + 1.0,
+        "wrapped at the field's width: {err:?} vs {field:?}"
+    );
+    assert!(err.height() > 2.0 * 14.0, "on several lines: {err:?}");
+}
+
+#[test]
+fn an_edit_that_changes_nothing_is_not_recorded() {
+    let app = SolscopeApp::with_default_plan().unwrap();
+    let a = index(&app, "drill_core_413");
+    let w = &app.doc.plan.activities[a].windows;
+    let same = serde_json::to_value(w).unwrap().to_string();
+    // The same windows, written differently: another text, the same plan.
+    let h = drill_core_windows(&same.replace(',', ", "));
+    assert!(!h.state().doc.dirty);
+    assert!(h.query_by_label_contains("(unsaved)").is_none());
+    assert!(h.get_by_label("Undo").accesskit_node().is_disabled());
+    assert!(h.query_by_label_contains("the plan is unchanged").is_some());
+}
+
+#[test]
+fn undoing_back_to_the_saved_plan_clears_unsaved() {
+    let mut h = tutorial_with_selected("sky_flats_mast_busy");
+    h.get_by_label_contains("Apply: Widen window 1").click();
+    h.run_steps(3);
+    assert!(h.query_by_label_contains("(unsaved)").is_some());
+    h.get_by_label("Undo").click();
+    h.run_steps(3);
+    assert!(h.query_by_label_contains("(unsaved)").is_none());
+    h.get_by_label("Redo").click();
+    h.run_steps(3);
+    assert!(h.query_by_label_contains("(unsaved)").is_some());
+    // Saved there: undo is unsaved again, redo back is saved.
+    let path = scratch_file("undo-saved", "plan.json", "");
+    h.state_mut().push(Command::SaveTo(path));
+    h.run_steps(3);
+    assert!(h.query_by_label_contains("(unsaved)").is_none());
+    h.get_by_label("Undo").click();
+    h.run_steps(3);
+    assert!(h.query_by_label_contains("(unsaved)").is_some());
+    h.get_by_label("Redo").click();
+    h.run_steps(3);
+    assert!(h.query_by_label_contains("(unsaved)").is_none());
+}
+
+#[test]
+fn the_banner_s_arrows_are_glyphs_the_font_has() {
+    let mut app = SolscopeApp::with_default_plan().unwrap();
+    let a = index(&app, "drill_core_413");
+    let start = app.analysis.placement(a).expect("placed").0;
+    app.apply(Command::Pin {
+        activity: a,
+        start: start + 600,
+    });
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    h.run_steps(2);
+    let banner = h
+        .state()
+        .ui
+        .messages
+        .banner
+        .clone()
+        .expect("banner")
+        .summary();
+    assert!(h.query_by_label(&banner).is_some(), "shown: {banner}");
+    assert!(banner.contains('→'), "{banner}");
+    let font = eframe::egui::FontId::proportional(14.0);
+    let missing: Vec<char> = banner
+        .chars()
+        .filter(|&c| !h.ctx.fonts_mut(|f| f.has_glyph(&font, c)))
+        .collect();
+    assert!(missing.is_empty(), "no glyph for {missing:?} in {banner}");
+}
+
+#[test]
+fn with_no_file_dialog_open_asks_for_a_typed_path() {
+    let mut h = harness(tutorial(), SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    // What the host sends when no file dialog service answers.
+    h.state_mut().push(Command::AskPath {
+        dialog: Dialog::Open,
+        why: "No file dialog is available here".into(),
+    });
+    h.run_steps(3);
+    assert!(h.query_by_label("Open a plan").is_some());
+    assert!(
+        h.query_by_label("No file dialog is available here")
+            .is_some()
+    );
+    let pitfall = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/examples/pitfall.json");
+    type_into(&mut h, "Path", pitfall);
+    h.get_by_label("Open").click();
+    h.run_steps(3);
+    assert_eq!(
+        h.state().doc.plan.activities.len(),
+        2,
+        "pitfall.json opened"
+    );
+    assert!(
+        h.query_by_label("Open a plan").is_none(),
+        "the prompt is gone"
+    );
+    assert_eq!(
+        h.state().persisted.recent.first().map(|p| p.as_path()),
+        Some(std::path::Path::new(pitfall))
+    );
+}
+
+#[test]
+fn the_save_prompt_suggests_a_file_name_and_saves_there() {
+    let mut h = tutorial_with_selected("sky_flats_mast_busy");
+    h.get_by_label_contains("Apply: Widen window 1").click();
+    h.run_steps(3);
+    h.state_mut().push(Command::AskPath {
+        dialog: Dialog::SaveAs,
+        why: "No file dialog is available here".into(),
+    });
+    h.run_steps(3);
+    assert!(h.query_by_label("Save the plan as").is_some());
+    // Named after the plan (it has no file yet), in the working directory.
+    let suggested = h.state().suggested_path(Dialog::SaveAs);
+    let name = suggested
+        .file_name()
+        .unwrap()
+        .to_string_lossy()
+        .into_owned();
+    assert!(
+        name.ends_with(".json") && name.len() > ".json".len(),
+        "{name}"
+    );
+    assert_eq!(h.state().ui.text.path_text, suggested.display().to_string());
+    let path = scratch_file("save-prompt", "x.json", "").with_file_name("typed");
+    type_into(&mut h, "Path", &path.display().to_string());
+    h.get_by_label("Save").click();
+    h.run_steps(3);
+    let saved = path.with_extension("json");
+    assert!(saved.exists(), "the extension is added");
+    assert!(!h.state().doc.dirty);
+    // Exports are suggested beside the plan, named after it.
+    let csv = h.state().suggested_path(Dialog::ExportScheduleCsv);
+    assert_eq!(csv, saved.with_file_name("typed-schedule.csv"));
+}
+
+#[test]
+fn the_guard_saves_and_opens() {
+    let path = scratch_file(
+        "save-and-open",
+        "tutorial.json",
+        &std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/assets/tutorial-plan.json"
+        ))
+        .unwrap(),
+    );
+    let text = std::fs::read_to_string(&path).unwrap();
+    let app = SolscopeApp::from_text(&text, Some(path.clone())).unwrap();
+    let view = View {
+        select: Some("sky_flats_mast_busy".into()),
+        ..View::default()
+    };
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &view).unwrap();
+    h.get_by_label_contains("Apply: Widen window 1").click();
+    h.run_steps(3);
+    let edited = h.state().doc.plan.clone();
+    let other = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/examples/pitfall.json");
+    h.state_mut().push(Command::Open(other.into()));
+    h.run_steps(3);
+    h.get_by_label("Save and open").click();
+    h.run_steps(3);
+    assert_eq!(
+        h.state().doc.plan.activities.len(),
+        2,
+        "pitfall.json opened"
+    );
+    let saved = solscope_engine::load_plan(&std::fs::read_to_string(&path).unwrap())
+        .unwrap()
+        .plan;
+    assert_eq!(saved, edited, "the edits were saved first");
+}
+
+#[test]
+fn the_guard_saves_a_plan_without_a_file_and_quits() {
+    let mut h = tutorial_with_selected("sky_flats_mast_busy");
+    h.get_by_label_contains("Apply: Widen window 1").click();
+    h.run_steps(3);
+    h.state_mut().push(UiCommand::Quit.into());
+    h.run_steps(3);
+    h.get_by_label("Save and quit").click();
+    h.run_steps(3);
+    assert_eq!(
+        h.state_mut().take_dialog(),
+        Some(Dialog::SaveAs),
+        "asks where"
+    );
+    assert!(!h.state().quit_confirmed(), "not before it is saved");
+    let path = scratch_file("save-and-quit", "x.json", "").with_file_name("saved.json");
+    h.state_mut().push(Command::Chosen {
+        dialog: Dialog::SaveAs,
+        path: path.clone(),
+    });
+    h.run_steps(3);
+    assert!(path.exists());
+    assert!(h.state().quit_confirmed());
+}
+
+#[test]
+fn a_plan_opened_from_the_command_line_is_in_recent() {
+    let pitfall = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/examples/pitfall.json");
+    let mut app = SolscopeApp::open_or_default(Some(std::path::Path::new(pitfall))).unwrap();
+    // What the host does at start-up with the settings it restored.
+    let older = solscope::gui::Persisted {
+        recent: vec!["/elsewhere/older.json".into()],
+        ..Default::default()
+    };
+    app.restore_persisted(older);
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    h.get_by_label("File").click();
+    h.run_steps(3);
+    assert!(h.query_by_label(pitfall).is_some(), "listed under Recent");
+    assert!(h.query_by_label("/elsewhere/older.json").is_some());
+    assert_eq!(h.state().persisted.recent[0], std::path::Path::new(pitfall));
+}
+
+#[test]
+fn the_schedule_exports_as_csv_from_the_file_menu() {
+    let mut h = harness(tutorial(), SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    h.get_by_label("File").click();
+    h.run_steps(3);
+    h.get_by_label("Export schedule CSV…").click();
+    h.run_steps(3);
+    assert_eq!(h.state_mut().take_dialog(), Some(Dialog::ExportScheduleCsv));
+    let path = scratch_file("csv", "x.json", "").with_file_name("schedule");
+    h.state_mut().push(Command::Chosen {
+        dialog: Dialog::ExportScheduleCsv,
+        path: path.clone(),
+    });
+    h.run_steps(3);
+    let csv = std::fs::read_to_string(path.with_extension("csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert!(lines[0].starts_with("step,id,name,status,start,end"));
+    assert_eq!(lines.len(), h.state().analysis.steps() + 1);
+    let failed = h.state().analysis.failed();
+    assert_eq!(
+        lines.iter().filter(|l| l.contains(",failed,")).count(),
+        failed
+    );
+}
+
+#[test]
+fn the_inspector_s_involved_list_is_the_explanation_s_culprits() {
+    let view = View {
+        select: Some("moxie_run_413".into()),
+        ..View::default()
+    };
+    let mut h = harness(
+        SolscopeApp::with_default_plan().unwrap(),
+        SNAPSHOT_SIZE.into(),
+        &view,
+    )
+    .unwrap();
+    let a = index(h.state(), "moxie_run_413");
+    let ex = h.state_mut().explanation_for(a).cloned().expect("failed");
+    let named = solscope_engine::involved(&ex);
+    assert!(
+        named.len() < ex.culprits.len(),
+        "some culprits are not named"
+    );
+    let plan = h.state().doc.plan.clone();
+    let link = |c: &solscope_engine::Culprit| {
+        format!(
+            "{} (step {}, {})",
+            plan.activities[c.activity].id,
+            c.step,
+            c.blame.name()
+        )
+    };
+    for c in named {
+        assert!(h.query_by_label(&link(c)).is_some(), "{}", link(c));
+    }
+    for c in &ex.culprits[named.len()..] {
+        assert!(
+            h.query_by_label(&link(c)).is_none(),
+            "not named: {}",
+            link(c)
+        );
+    }
+    // The inspector's own sentence names the same ones (by name).
+    let sentence = |c: &solscope_engine::Culprit| {
+        format!(
+            "{} (step {}, {})",
+            plan.activities[c.activity].display_name(),
+            c.step,
+            c.blame.name()
+        )
+    };
+    let text = format!(
+        "Involved: {}.",
+        named.iter().map(sentence).collect::<Vec<_>>().join(", ")
+    );
+    assert!(h.query_by_label(&text).is_some(), "{text}");
 }

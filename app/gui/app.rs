@@ -14,29 +14,16 @@ use super::derived::{
 use super::document::{Analysis, Document, OutcomeDiff, pin_window};
 use super::execution::{ActualsSource, CycleRun, ExecutionRun};
 use super::montecarlo::{CampaignResult, MAX_RUNS, Progress, Stopped};
-use super::state::{LAST_STEP, Mode, Navigation, Pending, Persisted, PinOffer, StepView, UiState};
+pub use super::state::Dialog;
+use super::state::{
+    LAST_STEP, Mode, Navigation, PathPrompt, Pending, Persisted, PinOffer, StepView, UiState,
+};
 use super::theme::Theme;
 use super::time_axis::TimeAxis;
 use super::views::{self, CampaignModel, ExecModel, Model, ViewCache, Widgets};
 
 /// The plan the app opens without arguments.
 pub const DEFAULT_PLAN: &str = include_str!("../../assets/default-plan.json");
-
-/// A file dialog the host is asked to show after the frame: the app never blocks
-/// on one (headless, nobody shows it).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Dialog {
-    /// Choose a plan to open.
-    Open,
-    /// Choose where to save the plan.
-    SaveAs,
-    /// Choose where to write the schedule JSON.
-    ExportSchedule,
-    /// Choose where to write the view as PNG.
-    ExportPng,
-    /// Choose an actuals file to execute the plan with.
-    OpenActuals,
-}
 
 /// The app: document, derived analysis, UI state, and the command queue.
 pub struct SolscopeApp {
@@ -77,6 +64,8 @@ pub struct SolscopeApp {
     dialog: Option<Dialog>,
     /// Quit was confirmed.
     quit_now: bool,
+    /// A PNG export asked for, for the host to render.
+    png_to: Option<PathBuf>,
     commands: Vec<Command>,
 }
 
@@ -116,6 +105,7 @@ impl SolscopeApp {
             last_tick: 0.0,
             dialog: None,
             quit_now: false,
+            png_to: None,
             commands: Vec::new(),
         })
     }
@@ -147,6 +137,15 @@ impl SolscopeApp {
         // Plan files may hold any text: draw a box for a missing glyph, never panic.
         ui.ctx()
             .set_missing_glyph_policy(egui::epaint::text::MissingGlyphPolicy::Tofu);
+        let fonts_set = egui::Id::unique("solscope_fonts_set");
+        if !ui
+            .ctx()
+            .data(|d| d.get_temp::<bool>(fonts_set).unwrap_or(false))
+        {
+            // Once per context (comparing font definitions each frame is costly).
+            ui.ctx().set_fonts(super::theme::fonts());
+            ui.ctx().data_mut(|d| d.insert_temp(fonts_set, true));
+        }
         ui.ctx().set_theme(if self.persisted.light {
             egui::Theme::Light
         } else {
@@ -358,6 +357,24 @@ impl SolscopeApp {
         }
     }
 
+    /// The steps (1-based) at which an activity failed in the run the step
+    /// slider moves through, each with the plan activity that failed.
+    fn failed_steps(&self) -> Vec<(usize, Option<usize>)> {
+        match self.ui.nav.mode {
+            Mode::Schedule => views::failed_steps(&self.analysis.schedule.steps)
+                .map(|(k, a)| (k, Some(a)))
+                .collect(),
+            Mode::Execution => match self.cycle_run() {
+                Some(CycleRun {
+                    schedule: Ok(s), ..
+                }) => views::failed_steps(&s.steps)
+                    .filter_map(|(k, i)| self.cycle_run().map(|c| (k, c.plan_activity(i))))
+                    .collect(),
+                _ => Vec::new(),
+            },
+        }
+    }
+
     /// The command that shows step `k` of the run the step slider moves through.
     fn set_step_command(&self, k: usize) -> Command {
         match self.ui.nav.mode {
@@ -469,6 +486,30 @@ impl SolscopeApp {
                 }
             }
             Command::SaveTo(path) => self.save_to(&path),
+            Command::Chosen { dialog, path } => self.chosen(dialog, path),
+            Command::DialogCancelled => {
+                self.ui.messages.path_prompt = None;
+                self.ui.messages.after_save = None;
+            }
+            Command::AskPath { dialog, why } => {
+                self.ui.text.path_text = self.suggested_path(dialog).display().to_string();
+                self.ui.messages.path_prompt = Some(PathPrompt { dialog, why });
+            }
+            Command::SaveAndContinue => {
+                let pending = self.ui.messages.confirm.take();
+                match self.doc.path.clone() {
+                    Some(p) => {
+                        self.save_to(&p);
+                        if !self.doc.dirty {
+                            self.go_on(pending);
+                        }
+                    }
+                    None => {
+                        self.ui.messages.after_save = pending;
+                        self.dialog = Some(Dialog::SaveAs);
+                    }
+                }
+            }
             Command::ExportScheduleTo(path) => self.export_schedule_to(&path),
             Command::SetDark(dark) => self.persisted.light = !dark,
             Command::GroupByResource(on) => self.persisted.by_resource = on,
@@ -484,13 +525,80 @@ impl SolscopeApp {
             Command::ConfirmDiscard(yes) => {
                 let pending = self.ui.messages.confirm.take();
                 if yes {
-                    match pending {
-                        Some(Pending::Open(p)) => self.open_now(&p),
-                        Some(Pending::Quit) => self.quit_now = true,
-                        None => {}
-                    }
+                    self.go_on(pending);
                 }
             }
+        }
+    }
+
+    /// Carries out what waited for the unsaved-changes question.
+    fn go_on(&mut self, pending: Option<Pending>) {
+        match pending {
+            Some(Pending::Open(p)) => self.open_now(&p),
+            Some(Pending::Quit) => self.quit_now = true,
+            None => {}
+        }
+    }
+
+    /// Opens, saves or exports at `path`, chosen for `dialog`.
+    fn chosen(&mut self, dialog: Dialog, path: PathBuf) {
+        self.ui.messages.path_prompt = None;
+        let path = if dialog.saves() && path.extension().is_none() {
+            path.with_extension(dialog.extension())
+        } else {
+            path
+        };
+        match dialog {
+            Dialog::Open => self.apply(Command::Open(path)),
+            Dialog::OpenActuals => self.apply(Command::OpenActuals(path)),
+            Dialog::SaveAs => {
+                self.save_to(&path);
+                let after = self.ui.messages.after_save.take();
+                if !self.doc.dirty {
+                    self.go_on(after);
+                }
+            }
+            Dialog::ExportSchedule => self.export_schedule_to(&path),
+            Dialog::ExportScheduleCsv => self.export_csv_to(&path),
+            Dialog::ExportPng => self.png_to = Some(path),
+        }
+    }
+
+    /// Where a file chosen for `dialog` is proposed: beside the plan (or in the
+    /// working directory), named after it (`plan.json`, `plan-schedule.csv`,
+    /// `plan.png`); a directory for the dialogs that open a file.
+    pub fn suggested_path(&self, dialog: Dialog) -> PathBuf {
+        let dir = self
+            .doc
+            .path
+            .as_deref()
+            .and_then(Path::parent)
+            .map(Path::to_path_buf)
+            .or_else(|| std::env::current_dir().ok())
+            .unwrap_or_default();
+        let stem = self.doc.file_stem();
+        let name = match dialog {
+            Dialog::Open | Dialog::OpenActuals => return dir.join(""),
+            Dialog::SaveAs => format!("{stem}.json"),
+            Dialog::ExportSchedule => format!("{stem}-schedule.json"),
+            Dialog::ExportScheduleCsv => format!("{stem}-schedule.csv"),
+            Dialog::ExportPng => format!("{stem}.png"),
+        };
+        dir.join(name)
+    }
+
+    /// The file a PNG export was asked for since the last call, for the host to
+    /// render the view into.
+    pub fn take_png_request(&mut self) -> Option<PathBuf> {
+        self.png_to.take()
+    }
+
+    /// Takes persisted settings restored by the host; the plan open (from the
+    /// command line) goes first in the recent files.
+    pub fn restore_persisted(&mut self, persisted: Persisted) {
+        self.persisted = persisted;
+        if let Some(p) = self.doc.path.clone() {
+            self.persisted.remember(&p);
         }
     }
 
@@ -505,6 +613,7 @@ impl SolscopeApp {
             },
             UiCommand::SaveAs => self.dialog = Some(Dialog::SaveAs),
             UiCommand::ExportSchedule => self.dialog = Some(Dialog::ExportSchedule),
+            UiCommand::ExportScheduleCsv => self.dialog = Some(Dialog::ExportScheduleCsv),
             UiCommand::ExportPng => self.dialog = Some(Dialog::ExportPng),
             UiCommand::Quit => {
                 if self.doc.dirty {
@@ -537,6 +646,42 @@ impl SolscopeApp {
                 }
             }
             UiCommand::LastStep => self.apply(self.set_step_command(steps)),
+            UiCommand::NextFailure | UiCommand::PreviousFailure => {
+                let failed = self.failed_steps();
+                let next = if cmd == UiCommand::NextFailure {
+                    failed.iter().find(|f| f.0 > k)
+                } else {
+                    failed.iter().rev().find(|f| f.0 < k)
+                };
+                if let Some(&(j, a)) = next {
+                    self.apply(self.set_step_command(j));
+                    if a.is_some() {
+                        self.ui.nav.selected = a;
+                    }
+                }
+            }
+            UiCommand::SelectPrevious | UiCommand::SelectNext => {
+                let listed = views::listed_activities(
+                    &self.doc.plan,
+                    &self.analysis.schedule.steps,
+                    &self.ui.nav.filter,
+                );
+                let at = self
+                    .ui
+                    .nav
+                    .selected
+                    .and_then(|a| listed.iter().position(|&b| b == a));
+                let next = match (at, cmd == UiCommand::SelectNext) {
+                    (Some(i), true) => listed.get(i + 1).or(listed.get(i)),
+                    (Some(i), false) => listed.get(i.saturating_sub(1)),
+                    // Nothing selected (or filtered out): from the top or the end.
+                    (None, true) => listed.first(),
+                    (None, false) => listed.last(),
+                };
+                if let Some(&a) = next {
+                    self.ui.nav.selected = Some(a);
+                }
+            }
             UiCommand::ShowSchedule => self.ui.nav.mode = Mode::Schedule,
             UiCommand::ShowExecution => self.ui.nav.mode = Mode::Execution,
             UiCommand::OpenActuals => self.dialog = Some(Dialog::OpenActuals),
@@ -663,8 +808,14 @@ impl SolscopeApp {
 
     fn accept_plan(&mut self, plan: Plan, description: &str) {
         let before = self.doc.plan.clone();
-        self.doc.replace(plan);
-        self.reanalyse(before, description);
+        if self.doc.replace(plan) {
+            self.reanalyse(before, description);
+        } else {
+            // Nothing to reschedule or undo; the editor shows the plan again.
+            self.ui.messages.banner = Some(OutcomeDiff::unchanged(description));
+            self.ui.messages.error = None;
+            self.ui.text.editor.clear();
+        }
     }
 
     /// Reschedules the current plan and shows the outcome diff against `before`.
@@ -718,8 +869,7 @@ impl SolscopeApp {
     fn save_to(&mut self, path: &Path) {
         match write_json(&self.doc.plan, path) {
             Ok(()) => {
-                self.doc.path = Some(path.to_path_buf());
-                self.doc.dirty = false;
+                self.doc.mark_saved(path.to_path_buf());
                 self.persisted.remember(path);
             }
             Err(e) => {
@@ -736,6 +886,15 @@ impl SolscopeApp {
         let doc =
             solscope_engine::schedule_document(&loaded, &self.analysis.schedule, &self.doc.title());
         if let Err(e) = write_json(&doc, path) {
+            self.ui.messages.error = Some(format!("Could not write {}: {e}", path.display()));
+        }
+    }
+}
+
+impl SolscopeApp {
+    fn export_csv_to(&mut self, path: &Path) {
+        let csv = super::export::schedule_csv(&self.doc.plan, &self.analysis.schedule);
+        if let Err(e) = std::fs::write(path, csv) {
             self.ui.messages.error = Some(format!("Could not write {}: {e}", path.display()));
         }
     }

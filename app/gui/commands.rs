@@ -12,6 +12,7 @@ use std::path::PathBuf;
 use eframe::egui::{Key, KeyboardShortcut, Modifiers};
 use serde_json::{Map, Value};
 
+use super::state::Dialog;
 use super::time_axis::TimeAxis;
 
 /// A command the user gives by name: its label is the button's text (and
@@ -26,6 +27,8 @@ pub enum UiCommand {
     SaveAs,
     /// Write the schedule JSON (asks where).
     ExportSchedule,
+    /// Write the schedule as CSV, one row per activity (asks where).
+    ExportScheduleCsv,
     /// Write the current view as PNG (asks where; the host renders it).
     ExportPng,
     /// Quit (guarded when there are unsaved changes).
@@ -42,6 +45,14 @@ pub enum UiCommand {
     NextStep,
     /// Show the last step.
     LastStep,
+    /// Show the next step at which an activity failed, and select it.
+    NextFailure,
+    /// Show the previous step at which an activity failed, and select it.
+    PreviousFailure,
+    /// Select the activity above the selected one in the activity list.
+    SelectPrevious,
+    /// Select the activity below the selected one in the activity list.
+    SelectNext,
     /// Schedule mode: the scheduler's run over the plan.
     ShowSchedule,
     /// Execution mode: the plan executed cycle by cycle.
@@ -77,10 +88,15 @@ impl UiCommand {
         Self::ShowExecution,
     ];
 
-    /// Commands on plain keys (stepping), taken only when no text field has focus.
-    pub const PLAIN_KEYS: [Self; 7] = [
+    /// Commands on keys without Ctrl/Cmd (stepping, the list), taken only when no
+    /// text field has focus; each press counts, also several in one frame.
+    pub const PLAIN_KEYS: [Self; 11] = [
         Self::PreviousStep,
         Self::NextStep,
+        Self::PreviousFailure,
+        Self::NextFailure,
+        Self::SelectPrevious,
+        Self::SelectNext,
         Self::FirstStep,
         Self::LastStep,
         Self::PreviousCycle,
@@ -95,6 +111,7 @@ impl UiCommand {
             Self::Save => "Save",
             Self::SaveAs => "Save as…",
             Self::ExportSchedule => "Export schedule JSON…",
+            Self::ExportScheduleCsv => "Export schedule CSV…",
             Self::ExportPng => "Export view as PNG…",
             Self::Quit => "Quit",
             Self::Undo => "Undo",
@@ -103,6 +120,10 @@ impl UiCommand {
             Self::PreviousStep => "< Previous",
             Self::NextStep => "Next >",
             Self::LastStep => "Last >|",
+            Self::NextFailure => "Next failure >>",
+            Self::PreviousFailure => "<< Previous failure",
+            Self::SelectPrevious => "Previous activity",
+            Self::SelectNext => "Next activity",
             Self::ShowSchedule => "Schedule",
             Self::ShowExecution => "Execution",
             Self::OpenActuals => "Open actuals…",
@@ -134,6 +155,10 @@ impl UiCommand {
             Self::PreviousStep => plain(Key::ArrowLeft),
             Self::NextStep => plain(Key::ArrowRight),
             Self::LastStep => plain(Key::End),
+            Self::NextFailure => Some(KeyboardShortcut::new(Modifiers::SHIFT, Key::ArrowRight)),
+            Self::PreviousFailure => Some(KeyboardShortcut::new(Modifiers::SHIFT, Key::ArrowLeft)),
+            Self::SelectPrevious => plain(Key::ArrowUp),
+            Self::SelectNext => plain(Key::ArrowDown),
             Self::ShowSchedule => cmd(Key::Num1),
             Self::ShowExecution => cmd(Key::Num2),
             Self::PreviousCycle => plain(Key::PageUp),
@@ -141,6 +166,7 @@ impl UiCommand {
             Self::ToggleFlex => plain(Key::F),
             Self::SaveAs
             | Self::ExportSchedule
+            | Self::ExportScheduleCsv
             | Self::ExportPng
             | Self::Quit
             | Self::OpenActuals
@@ -186,6 +212,26 @@ pub enum Command {
     /// Write the schedule JSON to this file (the host sends it once a file is
     /// chosen).
     ExportScheduleTo(PathBuf),
+    /// A file was chosen (in the host's dialog, or typed when there is none)
+    /// for `dialog`: open, save, or export there.
+    Chosen {
+        /// What it was chosen for.
+        dialog: Dialog,
+        /// The file (an extension is added when it has none).
+        path: PathBuf,
+    },
+    /// The file dialog was closed without a choice.
+    DialogCancelled,
+    /// No file dialog could be shown for `dialog`: ask for a typed path.
+    AskPath {
+        /// What the path is for.
+        dialog: Dialog,
+        /// Why there is no dialog (shown to the user).
+        why: String,
+    },
+    /// Answer the unsaved-changes question with "Save and open" / "Save and
+    /// quit": save (asking where when the plan has no file), then go on.
+    SaveAndContinue,
     /// Dark (true) or light theme.
     SetDark(bool),
     /// Gantt rows per unit resource (true) or packed lanes.

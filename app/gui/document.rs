@@ -21,8 +21,15 @@ pub struct Document {
     pub dirty: bool,
     /// Loader warnings of the current plan.
     pub warnings: Vec<Warning>,
-    undo: Vec<Plan>,
-    redo: Vec<Plan>,
+    /// Undo and redo history, each plan with its version number.
+    undo: Vec<(Plan, u64)>,
+    redo: Vec<(Plan, u64)>,
+    /// The version of the plan shown (every accepted edit is a new one).
+    version: u64,
+    /// The last version number given out.
+    versions: u64,
+    /// The version last loaded or saved: back at it, nothing is unsaved.
+    saved: Option<u64>,
 }
 
 impl Document {
@@ -36,6 +43,9 @@ impl Document {
             warnings: loaded.warnings,
             undo: Vec::new(),
             redo: Vec::new(),
+            version: 0,
+            versions: 0,
+            saved: Some(0),
         })
     }
 
@@ -50,22 +60,58 @@ impl Document {
         })
     }
 
+    /// A file name stem for what is saved or exported from this plan: its
+    /// file's, else its name made file-safe, else `plan`.
+    pub fn file_stem(&self) -> String {
+        if let Some(stem) = self.path.as_deref().and_then(|p| p.file_stem()) {
+            return stem.to_string_lossy().into_owned();
+        }
+        let safe: String = self
+            .plan
+            .name
+            .as_deref()
+            .unwrap_or("")
+            .chars()
+            .map(|c| {
+                if c.is_alphanumeric() {
+                    c.to_ascii_lowercase()
+                } else {
+                    '-'
+                }
+            })
+            .collect();
+        let safe = safe
+            .split('-')
+            .filter(|s| !s.is_empty())
+            .collect::<Vec<_>>()
+            .join("-");
+        if safe.is_empty() { "plan".into() } else { safe }
+    }
+
     /// Replaces the plan with an edited one (already validated), recording undo.
-    pub fn replace(&mut self, plan: Plan) {
+    /// An edit that changes nothing is not recorded: false.
+    pub fn replace(&mut self, plan: Plan) -> bool {
+        if plan == self.plan {
+            return false;
+        }
+        self.versions += 1;
         let old = std::mem::replace(&mut self.plan, plan);
-        self.undo.push(old);
+        self.undo.push((old, self.version));
+        self.version = self.versions;
         self.redo.clear();
-        self.dirty = true;
+        self.refresh_dirty();
         self.refresh_warnings();
+        true
     }
 
     /// Steps back one edit; false when there is none.
     pub fn undo(&mut self) -> bool {
         match self.undo.pop() {
-            Some(prev) => {
+            Some((prev, version)) => {
                 let cur = std::mem::replace(&mut self.plan, prev);
-                self.redo.push(cur);
-                self.dirty = true;
+                self.redo.push((cur, self.version));
+                self.version = version;
+                self.refresh_dirty();
                 self.refresh_warnings();
                 true
             }
@@ -76,15 +122,29 @@ impl Document {
     /// Re-applies an undone edit; false when there is none.
     pub fn redo(&mut self) -> bool {
         match self.redo.pop() {
-            Some(next) => {
+            Some((next, version)) => {
                 let cur = std::mem::replace(&mut self.plan, next);
-                self.undo.push(cur);
-                self.dirty = true;
+                self.undo.push((cur, self.version));
+                self.version = version;
+                self.refresh_dirty();
                 self.refresh_warnings();
                 true
             }
             None => false,
         }
+    }
+
+    /// The plan as it is was written to `path`: nothing is unsaved, also after
+    /// undoing and redoing back to it.
+    pub fn mark_saved(&mut self, path: PathBuf) {
+        self.path = Some(path);
+        self.saved = Some(self.version);
+        self.dirty = false;
+    }
+
+    /// Unsaved unless the plan is the version last loaded or saved.
+    fn refresh_dirty(&mut self) {
+        self.dirty = self.saved != Some(self.version);
     }
 
     /// Whether undo / redo are possible.
@@ -217,6 +277,8 @@ pub struct OutcomeDiff {
     pub newly_failed: Vec<String>,
     /// Scheduled both times at different starts: `(id, old start, new start)`.
     pub moved: Vec<(String, i64, i64)>,
+    /// The edit left the plan as it was (nothing rescheduled or recorded).
+    pub unchanged: bool,
 }
 
 impl OutcomeDiff {
@@ -249,8 +311,23 @@ impl OutcomeDiff {
         diff
     }
 
+    /// The banner of an edit that changed nothing.
+    pub fn unchanged(description: &str) -> Self {
+        Self {
+            description: description.to_string(),
+            unchanged: true,
+            ..Self::default()
+        }
+    }
+
     /// One line for the banner.
     pub fn summary(&self) -> String {
+        if self.unchanged {
+            return format!(
+                "{}: the plan is unchanged (nothing rescheduled, nothing to undo)",
+                self.description
+            );
+        }
         let list = |v: &[String]| {
             if v.is_empty() {
                 "none".to_string()

@@ -1,6 +1,7 @@
 //! The eframe host around [`SolscopeApp`]: persistence, the window close guard,
 //! the file dialogs the app asks for, PNG export, and [`run`].
 
+use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{self, Receiver, Sender};
 
@@ -27,7 +28,7 @@ impl SolscopeHost {
             .storage
             .and_then(|s| eframe::get_value::<Persisted>(s, eframe::APP_KEY))
         {
-            app.persisted = p;
+            app.restore_persisted(p);
         }
         // On a workstation, verifying suggestions must not stall a click.
         app.background = true;
@@ -37,57 +38,100 @@ impl SolscopeHost {
         }
     }
 
-    /// Shows the file dialog the app asked for and carries out its choice.
-    fn show_dialog(&mut self, ctx: &egui::Context, dialog: Dialog) {
-        match dialog {
-            Dialog::Open => {
-                if let Some(p) = plan_dialog().pick_file() {
-                    self.app.apply(Command::Open(p));
-                }
-            }
-            Dialog::OpenActuals => {
-                if let Some(p) = rfd::FileDialog::new()
-                    .add_filter("solscope actuals", &["json"])
-                    .pick_file()
-                {
-                    self.app.apply(Command::OpenActuals(p));
-                }
-            }
-            Dialog::SaveAs => {
-                if let Some(p) = plan_dialog().save_file() {
-                    self.app.apply(Command::SaveTo(with_extension(p, "json")));
-                }
-            }
-            Dialog::ExportSchedule => {
-                if let Some(p) = rfd::FileDialog::new()
-                    .add_filter("schedule JSON", &["json"])
-                    .save_file()
-                {
-                    self.app
-                        .apply(Command::ExportScheduleTo(with_extension(p, "json")));
-                }
-            }
-            Dialog::ExportPng => {
-                if let Some(path) = rfd::FileDialog::new()
-                    .add_filter("PNG", &["png"])
-                    .save_file()
-                    .map(|p| with_extension(p, "png"))
-                {
-                    let errors = self.png_errors.0.clone();
-                    let repaint = ctx.clone();
-                    ctx.request_screenshot(move |img: std::sync::Arc<egui::ColorImage>| {
-                        if let Err(e) = save_color_image(&img, &path) {
-                            let msg = format!("Could not write {}: {e}", path.display());
-                            // The host owns the receiver for as long as the app runs.
-                            if errors.send(msg).is_ok() {
-                                repaint.request_repaint();
-                            }
-                        }
-                    });
-                }
-            }
+    /// Shows the file dialog the app asked for and carries out its choice; with
+    /// no file dialog service, the app asks for a typed path instead.
+    fn show_dialog(&mut self, dialog: Dialog) {
+        if let Some(why) = no_dialog_service() {
+            self.app.apply(Command::AskPath { dialog, why });
+            return;
+        }
+        let suggested = self.app.suggested_path(dialog);
+        let mut fd = rfd::FileDialog::new().add_filter(filter_name(dialog), &[dialog.extension()]);
+        if let Some(dir) = suggested.parent().filter(|_| dialog.saves()) {
+            fd = fd.set_directory(dir);
+        } else {
+            fd = fd.set_directory(&suggested);
+        }
+        if let Some(name) = suggested.file_name().filter(|_| dialog.saves()) {
+            fd = fd.set_file_name(name.to_string_lossy());
+        }
+        let asked = std::time::Instant::now();
+        let chosen = if dialog.saves() {
+            fd.save_file()
+        } else {
+            fd.pick_file()
+        };
+        match chosen {
+            Some(path) => self.app.apply(Command::Chosen { dialog, path }),
+            // Nobody closes a dialog that fast: none was shown (the portal and
+            // zenity both failed).
+            None if asked.elapsed() < DIALOG_FAILED_WITHIN => self.app.apply(Command::AskPath {
+                dialog,
+                why: "The file dialog closed at once: no desktop file dialog answered \
+                      (xdg-desktop-portal or zenity)."
+                    .into(),
+            }),
+            None => self.app.apply(Command::DialogCancelled),
         }
     }
+
+    /// Renders the next frame into `path` as PNG; a failure is shown by the app.
+    fn export_png(&self, ctx: &egui::Context, path: PathBuf) {
+        let errors = self.png_errors.0.clone();
+        let repaint = ctx.clone();
+        ctx.request_screenshot(move |img: std::sync::Arc<egui::ColorImage>| {
+            if let Err(e) = save_color_image(&img, &path) {
+                let msg = format!("Could not write {}: {e}", path.display());
+                // The host owns the receiver for as long as the app runs.
+                if errors.send(msg).is_ok() {
+                    repaint.request_repaint();
+                }
+            }
+        });
+    }
+}
+
+/// A file dialog that returns with nothing sooner than this was never shown.
+const DIALOG_FAILED_WITHIN: std::time::Duration = std::time::Duration::from_millis(300);
+
+/// The file type filter's name in the dialog.
+fn filter_name(dialog: Dialog) -> &'static str {
+    match dialog {
+        Dialog::Open | Dialog::SaveAs => "solscope plan",
+        Dialog::OpenActuals => "solscope actuals",
+        Dialog::ExportSchedule => "schedule JSON",
+        Dialog::ExportScheduleCsv => "schedule CSV",
+        Dialog::ExportPng => "PNG",
+    }
+}
+
+/// Why no file dialog can be shown, if none can: rfd asks the desktop portal
+/// over the D-Bus session bus, then zenity; with neither a session bus nor
+/// zenity on the `PATH` nothing answers.
+fn no_dialog_service() -> Option<String> {
+    no_dialog_service_in(
+        std::env::var_os("PATH"),
+        std::env::var_os("DBUS_SESSION_BUS_ADDRESS"),
+        std::env::var_os("XDG_RUNTIME_DIR"),
+    )
+}
+
+/// [`no_dialog_service`] for these values of `PATH`,
+/// `DBUS_SESSION_BUS_ADDRESS` and `XDG_RUNTIME_DIR`.
+fn no_dialog_service_in(
+    path: Option<OsString>,
+    bus: Option<OsString>,
+    runtime: Option<OsString>,
+) -> Option<String> {
+    let zenity =
+        path.is_some_and(|p| std::env::split_paths(&p).any(|d| d.join("zenity").is_file()));
+    let bus = bus.is_some_and(|a| !a.is_empty())
+        || runtime.is_some_and(|d| Path::new(&d).join("bus").exists());
+    (!zenity && !bus).then(|| {
+        "No file dialog is available here (no D-Bus session bus for the desktop portal, \
+         and no zenity)."
+            .into()
+    })
 }
 
 impl eframe::App for SolscopeHost {
@@ -108,7 +152,10 @@ impl eframe::App for SolscopeHost {
         }
         self.app.frame_ui(ui);
         if let Some(dialog) = self.app.take_dialog() {
-            self.show_dialog(ui.ctx(), dialog);
+            self.show_dialog(dialog);
+        }
+        if let Some(path) = self.app.take_png_request() {
+            self.export_png(ui.ctx(), path);
         }
         if self.app.quit_confirmed() {
             ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
@@ -117,19 +164,6 @@ impl eframe::App for SolscopeHost {
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         eframe::set_value(storage, eframe::APP_KEY, &self.app.persisted);
-    }
-}
-
-/// A dialog for plan files.
-fn plan_dialog() -> rfd::FileDialog {
-    rfd::FileDialog::new().add_filter("solscope plan", &["json"])
-}
-
-fn with_extension(p: PathBuf, ext: &str) -> PathBuf {
-    if p.extension().is_some() {
-        p
-    } else {
-        p.with_extension(ext)
     }
 }
 
@@ -167,6 +201,25 @@ pub fn run(app: SolscopeApp) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn no_session_bus_and_no_zenity_means_no_file_dialog() {
+        let dir = std::env::temp_dir().join(format!("solscope-zenity-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        let empty = Some(dir.clone().into_os_string());
+        let why = no_dialog_service_in(empty.clone(), None, None).expect("no service");
+        assert!(why.contains("zenity"), "{why}");
+        // An empty bus address is no bus; a runtime directory without a bus
+        // socket neither.
+        assert!(no_dialog_service_in(empty.clone(), Some("".into()), empty.clone()).is_some());
+        assert!(no_dialog_service_in(empty.clone(), Some("unix:path=/x".into()), None).is_none());
+        std::fs::write(dir.join("bus"), "").expect("bus");
+        assert!(no_dialog_service_in(None, None, empty.clone()).is_none());
+        std::fs::remove_file(dir.join("bus")).expect("clean up");
+        std::fs::write(dir.join("zenity"), "").expect("zenity");
+        assert!(no_dialog_service_in(empty, None, None).is_none());
+        std::fs::remove_dir_all(&dir).expect("clean up");
+    }
 
     #[test]
     fn a_png_that_cannot_be_written_is_an_error() {

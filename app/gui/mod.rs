@@ -9,14 +9,15 @@
 //! saved by the eframe host ([`SolscopeHost`]).
 //!
 //! Modules, lowest first (each uses only those before it):
-//! `time_axis`, `theme` → `document` → `state`, `commands` → `execution` →
-//! `montecarlo` → `derived` → `views` → `app` → `host`.
+//! `time_axis`, `theme` → `document` → `state`, `commands` → `execution`,
+//! `export` → `montecarlo` → `derived` → `views` → `app` → `host`.
 
 pub mod app;
 pub mod commands;
 mod derived;
 pub mod document;
 pub mod execution;
+pub mod export;
 pub mod host;
 pub mod montecarlo;
 pub mod state;
@@ -30,6 +31,6 @@ pub use document::{Analysis, Document, OutcomeDiff};
 pub use execution::{ActualsSource, CycleRun, ExecutionRun};
 pub use host::{SolscopeHost, run, save_color_image};
 pub use montecarlo::{CampaignResult, Progress, StopReason, Stopped};
-pub use state::{LAST_STEP, Mode, Pending, Persisted, StepView, UiState};
+pub use state::{LAST_STEP, Mode, PathPrompt, Pending, Persisted, StepView, UiState};
 pub use theme::Theme;
 pub use time_axis::TimeAxis;

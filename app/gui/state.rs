@@ -33,12 +33,80 @@ pub struct Persisted {
 }
 
 impl Persisted {
-    /// Puts `path` first in the recent files (at most ten).
+    /// Puts `path` first in the recent files (at most ten), made absolute so
+    /// it opens from any working directory (as given when the working directory
+    /// cannot be read: then it is the best there is).
     pub fn remember(&mut self, path: &std::path::Path) {
-        self.recent.retain(|p| p != path);
-        self.recent.insert(0, path.to_path_buf());
+        let path = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+        self.recent.retain(|p| *p != path);
+        self.recent.insert(0, path);
         self.recent.truncate(10);
     }
+}
+
+/// A file dialog the host is asked to show after the frame: the app never blocks
+/// on one (headless, nobody shows it). Where no file dialog service exists, the
+/// app asks for a typed path instead ([`PathPrompt`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dialog {
+    /// Choose a plan to open.
+    Open,
+    /// Choose where to save the plan.
+    SaveAs,
+    /// Choose where to write the schedule JSON.
+    ExportSchedule,
+    /// Choose where to write the schedule CSV.
+    ExportScheduleCsv,
+    /// Choose where to write the view as PNG.
+    ExportPng,
+    /// Choose an actuals file to execute the plan with.
+    OpenActuals,
+}
+
+impl Dialog {
+    /// What the dialog is for (the typed-path prompt's heading).
+    pub fn title(self) -> &'static str {
+        match self {
+            Self::Open => "Open a plan",
+            Self::SaveAs => "Save the plan as",
+            Self::ExportSchedule => "Export the schedule as JSON",
+            Self::ExportScheduleCsv => "Export the schedule as CSV",
+            Self::ExportPng => "Export the view as PNG",
+            Self::OpenActuals => "Open an actuals file",
+        }
+    }
+
+    /// The button that carries it out.
+    pub fn action(self) -> &'static str {
+        match self {
+            Self::Open | Self::OpenActuals => "Open",
+            Self::SaveAs => "Save",
+            Self::ExportSchedule | Self::ExportScheduleCsv | Self::ExportPng => "Export",
+        }
+    }
+
+    /// The file extension it writes or reads.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Self::ExportScheduleCsv => "csv",
+            Self::ExportPng => "png",
+            _ => "json",
+        }
+    }
+
+    /// Whether it chooses a file to write (a save dialog).
+    pub fn saves(self) -> bool {
+        !matches!(self, Self::Open | Self::OpenActuals)
+    }
+}
+
+/// No file dialog could be shown: the user types the path instead.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PathPrompt {
+    /// What the path is for.
+    pub dialog: Dialog,
+    /// Why no dialog was shown.
+    pub why: String,
 }
 
 /// An action waiting for "discard unsaved changes?".
@@ -185,6 +253,11 @@ pub struct Messages {
     /// A bar dropped outside its slack: waiting for "pin it there and
     /// reschedule?".
     pub pin: Option<PinOffer>,
+    /// No file dialog could be shown: waiting for a typed path.
+    pub path_prompt: Option<PathPrompt>,
+    /// What to do once the plan is saved ("Save and open", "Save and quit" on
+    /// a plan without a file: after the save dialog).
+    pub after_save: Option<Pending>,
 }
 
 /// An activity dragged on the Gantt to a start outside its slack, offered to be
@@ -215,6 +288,8 @@ pub struct TextBuffers {
     pub campaign_runs_text: String,
     /// The seed field of the Monte Carlo panel.
     pub campaign_seed_text: String,
+    /// The typed path when no file dialog could be shown.
+    pub path_text: String,
 }
 
 impl Default for TextBuffers {
@@ -226,6 +301,7 @@ impl Default for TextBuffers {
             seed_text: "1".into(),
             campaign_runs_text: DEFAULT_CAMPAIGN_RUNS.to_string(),
             campaign_seed_text: "1".into(),
+            path_text: String::new(),
         }
     }
 }

@@ -1,6 +1,27 @@
-//! Colours and spacing, in one place, for the dark and light themes.
+//! Colours, spacing and fonts, in one place, for the dark and light themes.
 
-use eframe::egui::{Color32, Visuals};
+use eframe::egui::{self, Color32, Visuals};
+
+/// The fonts: egui's bundled ones, with its monospace font (Hack) also a
+/// fallback of the proportional text, so arrows (→) and the other symbols Hack
+/// has render in labels instead of missing-glyph boxes.
+pub fn fonts() -> egui::FontDefinitions {
+    let mut fonts = egui::FontDefinitions::default();
+    let mono = fonts
+        .families
+        .get(&egui::FontFamily::Monospace)
+        .and_then(|f| f.first())
+        .cloned();
+    if let (Some(mono), Some(prop)) = (
+        mono,
+        fonts.families.get_mut(&egui::FontFamily::Proportional),
+    ) {
+        if !prop.contains(&mono) {
+            prop.push(mono);
+        }
+    }
+    fonts
+}
 
 /// The palette the views draw with.
 #[derive(Clone, Copy, Debug)]
@@ -116,6 +137,14 @@ pub const CYCLE_LINE_STROKE: f32 = 1.5;
 pub const SEED_FIELD_WIDTH: f32 = 60.0;
 /// Width of the cycle slider.
 pub const CYCLE_SLIDER_WIDTH: f32 = 240.0;
+/// Width of the typed-path prompt (no file dialog service).
+pub const PROMPT_WIDTH: f32 = 480.0;
+/// Width of the step slider's rail.
+pub const STEP_SLIDER_WIDTH: f32 = 320.0;
+/// Height of a failure tick on the step slider.
+pub const FAILURE_TICK_HEIGHT: f32 = 5.0;
+/// Width of a failure tick on the step slider.
+pub const FAILURE_TICK_STROKE: f32 = 1.5;
 /// Width of the Monte Carlo panel's runs and seed fields.
 pub const CAMPAIGN_FIELD_WIDTH: f32 = 60.0;
 /// Height of a Monte Carlo histogram (lowest and handover state of charge).

@@ -10,7 +10,7 @@ use solscope_engine::{
     ViolationKind, format_watts, format_wh, loss_line, mbit, reason_line, wh,
 };
 
-use super::{Model, Status, inspector, step_row_ui};
+use super::{Model, inspector, step_row_ui};
 use crate::gui::commands::{Command, UiCommand};
 use crate::gui::execution::ExecutionRun;
 use crate::gui::theme::{CYCLE_SLIDER_WIDTH, SEED_FIELD_WIDTH};
@@ -133,20 +133,25 @@ pub fn cycle_steps_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>)
         );
         return;
     }
-    let j = m.exec.step;
-    let what = match cr.activity_of_step(j) {
+    let what = |j: usize| match cr.activity_of_step(j) {
         None => format!("cycle {k}, before step 1: nothing placed"),
         Some(a) => {
-            let outcome = match m.cycle_status(a) {
-                Some(Status::Scheduled(s, e)) => format!("placed {}–{}", m.time(s), m.time(e)),
-                Some(Status::Failed) => "failed".into(),
-                Some(Status::Skipped) => "skipped".into(),
-                Some(Status::Pending) | None => String::new(),
+            let outcome = match cr.step_of(a).filter(|s| s.step <= j).map(|s| &s.outcome) {
+                Some(Outcome::Scheduled { start, end }) => {
+                    format!("placed {}–{}", m.time(*start), m.time(*end))
+                }
+                Some(Outcome::Failed(_)) => "failed".into(),
+                Some(Outcome::Skipped { .. }) => "skipped".into(),
+                None => String::new(),
             };
             format!("cycle {k}, step {j}: {} — {outcome}", m.label(a))
         }
     };
-    step_row_ui(ui, m, cr.steps(), j, what, cmds);
+    let failed: Vec<usize> = match &cr.schedule {
+        Ok(s) => super::failed_steps(&s.steps).map(|(j, _)| j).collect(),
+        Err(_) => Vec::new(),
+    };
+    step_row_ui(ui, m, (cr.steps(), m.exec.step), &failed, what, cmds);
 }
 
 /// Why a cycle ran.

@@ -279,7 +279,11 @@ fn json_field_ui(
     ui.end_row();
     if let Some(err) = &entry.1 {
         ui.label("");
-        ui.label(RichText::new(err).color(m.theme.error));
+        // Wrapped at the field's width: a long message never widens the panel.
+        ui.vertical(|ui| {
+            ui.set_max_width(FIELD_WIDTH);
+            ui.add(egui::Label::new(RichText::new(err).color(m.theme.error)).wrap());
+        });
         ui.end_row();
     }
 }

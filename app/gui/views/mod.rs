@@ -23,8 +23,9 @@ use crate::gui::execution::{ActualsSource, CycleRun, ExecutionRun};
 use crate::gui::montecarlo::{CampaignResult, Progress, Stopped};
 use crate::gui::state::{Messages, Mode, Navigation, Pending, Persisted, StepView, TextBuffers};
 use crate::gui::theme::{
-    FILTER_WIDTH, INSPECTOR_WIDTH, LIST_WIDTH, MESSAGE_MARGIN, RANGE_FIELD_WIDTH, SHARE_BAR_HEIGHT,
-    SHARE_BAR_WIDTH, Theme,
+    FAILURE_TICK_HEIGHT, FAILURE_TICK_STROKE, FILTER_WIDTH, INSPECTOR_WIDTH, LIST_WIDTH,
+    MESSAGE_MARGIN, PROMPT_WIDTH, RANGE_FIELD_WIDTH, SHARE_BAR_HEIGHT, SHARE_BAR_WIDTH,
+    STEP_SLIDER_WIDTH, Theme,
 };
 use crate::gui::time_axis::TimeAxis;
 
@@ -132,6 +133,10 @@ pub struct ViewCache {
     pub bars: Vec<(usize, egui::Rect)>,
     /// The bar being dragged, if any.
     pub drag: Option<BarDrag>,
+    /// The activity list's rows wholly in view last frame.
+    pub list_rows: std::ops::Range<usize>,
+    /// The selection the activity list last scrolled to.
+    pub list_selected: Option<usize>,
 }
 
 impl ViewCache {
@@ -192,21 +197,6 @@ impl Model<'_> {
         }
     }
 
-    /// Status of plan activity `a` after the step shown of the looked-at cycle's
-    /// run; `None` when that cycle's plan does not have it.
-    pub fn cycle_status(&self, a: usize) -> Option<Status> {
-        let st = self.exec.cycle_run?.step_of(a)?;
-        Some(if st.step <= self.exec.step {
-            match st.outcome {
-                Outcome::Scheduled { start, end } => Status::Scheduled(start, end),
-                Outcome::Failed(_) => Status::Failed,
-                Outcome::Skipped { .. } => Status::Skipped,
-            }
-        } else {
-            Status::Pending
-        })
-    }
-
     /// The flexible schedule, when derived without error.
     pub fn flex_ready(&self) -> Option<&'_ solscope_engine::Flex> {
         self.flex.and_then(|r| r.as_ref().ok()).map(AsRef::as_ref)
@@ -248,11 +238,26 @@ pub fn shortcuts(ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
     }
     for cmd in UiCommand::PLAIN_KEYS {
         if let Some(shortcut) = cmd.kb_shortcut() {
-            if ui.input(|i| i.key_pressed(shortcut.logical_key)) {
+            // Every press counts: five quick presses between two frames are five
+            // steps (key repeats too).
+            for _ in 0..ui.input(|i| presses(i, shortcut)) {
                 cmds.push(cmd.into());
             }
         }
     }
+}
+
+/// How many times `shortcut` was pressed this frame, with exactly its modifiers
+/// (Shift+Right is not also Right).
+fn presses(input: &egui::InputState, shortcut: egui::KeyboardShortcut) -> usize {
+    input
+        .events
+        .iter()
+        .filter(|e| {
+            matches!(e, egui::Event::Key { key, pressed: true, modifiers, .. }
+                if *key == shortcut.logical_key && modifiers.matches_exact(shortcut.modifiers))
+        })
+        .count()
 }
 
 /// A button that gives `cmd` (its label is the command's).
@@ -303,7 +308,7 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
         .resizable(true)
         .default_size(LIST_WIDTH)
         .show(ui, |ui| {
-            activities_ui(ui, m, cmds);
+            activities_ui(ui, m, w.cache, cmds);
         });
     egui::Panel::right("inspector")
         .resizable(false)
@@ -334,6 +339,7 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
     });
     confirm_ui(ui, m, cmds);
     pin_ui(ui, m, cmds);
+    path_prompt_ui(ui, m, &mut w.text.path_text, cmds);
 }
 
 /// "Pin it at this start and reschedule?" after a bar was dropped outside its
@@ -399,6 +405,7 @@ fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
                 UiCommand::Save,
                 UiCommand::SaveAs,
                 UiCommand::ExportSchedule,
+                UiCommand::ExportScheduleCsv,
                 UiCommand::ExportPng,
             ] {
                 menu_item(ui, cmd, cmds);
@@ -491,31 +498,43 @@ fn mode_button(ui: &mut egui::Ui, cmd: UiCommand, selected: bool, cmds: &mut Vec
 
 /// The step slider and its buttons (schedule mode).
 fn steps_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
-    let nav = m.nav;
-    let what = match m.activity_of_step(nav.step) {
+    let what = |k: usize| match m.activity_of_step(k) {
         None => "before step 1: nothing placed".to_string(),
         Some(a) => {
-            let outcome = match m.status(a, nav.step) {
+            let outcome = match m.status(a, k) {
                 Status::Scheduled(s, e) => format!("scheduled {}–{}", m.time(s), m.time(e)),
                 Status::Failed => "failed".into(),
                 Status::Skipped => "skipped".into(),
                 Status::Pending => String::new(),
             };
-            format!("step {}: {} — {outcome}", nav.step, m.label(a))
+            format!("step {k}: {} — {outcome}", m.label(a))
         }
     };
-    step_row_ui(ui, m, m.analysis.steps(), nav.step, what, cmds);
+    let failed: Vec<usize> = failed_steps(&m.analysis.schedule.steps)
+        .map(|(k, _)| k)
+        .collect();
+    step_row_ui(ui, m, (m.analysis.steps(), m.nav.step), &failed, what, cmds);
 }
 
-/// Step buttons, play, and the slider over steps `0..=n` at step `k`, with
-/// `what` the step did: of the plan's schedule, or in execution mode of the
-/// looked-at cycle's run.
+/// The steps (1-based) at which an activity failed, with the activity (an index
+/// into the run's plan).
+pub fn failed_steps(steps: &[solscope_engine::Step]) -> impl Iterator<Item = (usize, usize)> + '_ {
+    steps
+        .iter()
+        .filter(|s| matches!(s.outcome, Outcome::Failed(_)))
+        .map(|s| (s.step, s.activity))
+}
+
+/// Step buttons, play, and the slider over steps `0..=n` at step `k` (`(n, k)`)
+/// with a tick at each step in `failed`, and what the step shown did
+/// (`what(k)`): of the plan's schedule, or in execution mode of the looked-at
+/// cycle's run. The text follows the slider in the frame it moves.
 fn step_row_ui(
     ui: &mut egui::Ui,
     m: &Model<'_>,
-    n: usize,
-    k: usize,
-    what: String,
+    (n, k): (usize, usize),
+    failed: &[usize],
+    what: impl Fn(usize) -> String,
     cmds: &mut Vec<Command>,
 ) {
     let playing = m.nav.playing;
@@ -527,16 +546,71 @@ fn step_row_ui(
         }
         command_button(ui, UiCommand::NextStep, true, cmds);
         command_button(ui, UiCommand::LastStep, true, cmds);
+        let has_before = failed.first().is_some_and(|&f| f < k);
+        let has_after = failed.last().is_some_and(|&f| f > k);
+        shortcut_button(ui, UiCommand::PreviousFailure, has_before, cmds);
+        shortcut_button(ui, UiCommand::NextFailure, has_after, cmds);
         let mut k = k;
+        ui.spacing_mut().slider_width = STEP_SLIDER_WIDTH;
         let slider = egui::Slider::new(&mut k, 0..=n).text("Step");
-        if ui.add(slider).changed() {
+        let resp = ui.add(slider);
+        failure_ticks(ui, m, resp.rect, n, failed);
+        let resp = resp.on_hover_text(format!(
+            "{} failure(s), marked under the slider",
+            failed.len()
+        ));
+        if resp.changed() {
             cmds.push(match m.nav.mode {
                 Mode::Schedule => Command::SetStep(k),
                 Mode::Execution => Command::SetCycleStep(k),
             });
         }
-        ui.label(what);
+        ui.label(what(k));
     });
+}
+
+/// A tick under the step slider's rail at each failed step (the rail is the
+/// left part of the slider's rect; its handle travels inset by its radius, as
+/// egui lays it out).
+fn failure_ticks(ui: &egui::Ui, m: &Model<'_>, rect: egui::Rect, n: usize, failed: &[usize]) {
+    if n == 0 || failed.is_empty() {
+        return;
+    }
+    let thickness = ui
+        .text_style_height(&egui::TextStyle::Body)
+        .max(ui.spacing().interact_size.y);
+    let radius = thickness / 2.5;
+    let (x0, x1) = (
+        rect.left() + radius,
+        rect.left() + STEP_SLIDER_WIDTH - radius,
+    );
+    let y = rect.center().y + thickness / 2.0;
+    let painter = ui.painter();
+    let stroke = egui::Stroke::new(FAILURE_TICK_STROKE, m.theme.failed);
+    let mut last_x = f32::NEG_INFINITY;
+    for &f in failed {
+        let x = x0 + (x1 - x0) * (f as f32 / n as f32);
+        // One tick per pixel column on long runs.
+        if x - last_x >= 1.0 {
+            painter.line_segment(
+                [egui::pos2(x, y - FAILURE_TICK_HEIGHT), egui::pos2(x, y)],
+                stroke,
+            );
+            last_x = x;
+        }
+    }
+}
+
+/// A button that gives `cmd`, its shortcut as its tooltip.
+fn shortcut_button(ui: &mut egui::Ui, cmd: UiCommand, enabled: bool, cmds: &mut Vec<Command>) {
+    let mut resp = ui.add_enabled(enabled, egui::Button::new(cmd.label()));
+    if let Some(shortcut) = cmd.kb_shortcut() {
+        resp = resp.on_hover_text(ui.ctx().format_shortcut(&shortcut));
+        resp = resp.on_disabled_hover_text(ui.ctx().format_shortcut(&shortcut));
+    }
+    if resp.clicked() {
+        cmds.push(cmd.into());
+    }
 }
 
 /// The outcome of the last edit, and the last error.
@@ -564,73 +638,97 @@ fn banner_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
     }
 }
 
-/// The activity list: search, status as of the current step, click to select.
-fn activities_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
-    ui.heading("Activities");
-    let needle = m.nav.filter.to_lowercase();
-    let shown: Vec<&solscope_engine::Step> = m
-        .analysis
-        .schedule
-        .steps
+/// The activities the list shows, in step order: those whose id or name
+/// contains `filter` (ignoring case).
+pub fn listed_activities(
+    plan: &solscope_engine::Plan,
+    steps: &[solscope_engine::Step],
+    filter: &str,
+) -> Vec<usize> {
+    let needle = filter.to_lowercase();
+    steps
         .iter()
-        .filter(|step| {
-            let act = &m.doc.plan.activities[step.activity];
+        .map(|step| step.activity)
+        .filter(|&a| {
+            let act = &plan.activities[a];
             needle.is_empty()
                 || act.id.to_lowercase().contains(&needle)
                 || act.display_name().to_lowercase().contains(&needle)
         })
-        .collect();
+        .collect()
+}
+
+/// The activity list: search, status as of the current step, click to select;
+/// a selection made elsewhere (keys, the Gantt, a culprit) is scrolled into view.
+fn activities_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &mut Vec<Command>) {
+    ui.heading("Activities");
+    let shown = listed_activities(&m.doc.plan, &m.analysis.schedule.steps, &m.nav.filter);
     let campaign = m.exec.campaign.ready();
     // Only the visible rows are laid out, so 10k activities stay cheap.
     let row_height = ui.spacing().interact_size.y;
-    egui::ScrollArea::vertical()
-        .auto_shrink([false; 2])
-        .show_rows(ui, row_height, shown.len(), |ui, rows| {
-            for step in &shown[rows] {
-                let a = step.activity;
-                let act = &m.doc.plan.activities[a];
-                let (mark, color) = match m.nav.mode {
-                    Mode::Schedule => match m.status(a, m.nav.step) {
-                        Status::Scheduled(..) => ("+", m.theme.scheduled),
-                        Status::Failed => ("x", m.theme.failed),
-                        Status::Skipped => ("-", m.theme.skipped),
-                        Status::Pending => (".", m.theme.muted),
+    let mut area = egui::ScrollArea::vertical().auto_shrink([false; 2]);
+    if cache.list_selected != m.nav.selected {
+        cache.list_selected = m.nav.selected;
+        let row = m
+            .nav
+            .selected
+            .and_then(|a| shown.iter().position(|&b| b == a));
+        if let Some(i) = row.filter(|i| !cache.list_rows.contains(i)) {
+            // Rows are `row_height` apart plus the item spacing; put the row a
+            // few rows below the top.
+            let pitch = row_height + ui.spacing().item_spacing.y;
+            area = area.vertical_scroll_offset((i.saturating_sub(3)) as f32 * pitch);
+        }
+    }
+    area.show_rows(ui, row_height, shown.len(), |ui, rows| {
+        // Whole rows in view (the first and last may be cut).
+        cache.list_rows = rows.start + 1..rows.end.saturating_sub(1);
+        for &a in &shown[rows] {
+            let Some(step) = m.analysis.schedule.step_of(a) else {
+                continue;
+            };
+            let act = &m.doc.plan.activities[a];
+            let (mark, color) = match m.nav.mode {
+                Mode::Schedule => match m.status(a, m.nav.step) {
+                    Status::Scheduled(..) => ("+", m.theme.scheduled),
+                    Status::Failed => ("x", m.theme.failed),
+                    Status::Skipped => ("-", m.theme.skipped),
+                    Status::Pending => (".", m.theme.muted),
+                },
+                Mode::Execution => match m.exec.ready().and_then(|r| r.activity(a)) {
+                    Some(r) => match r.outcome {
+                        RunOutcome::Completed => ("+", m.theme.scheduled),
+                        RunOutcome::Aborted => ("!", m.theme.aborted),
+                        RunOutcome::NotRun => ("x", m.theme.failed),
                     },
-                    Mode::Execution => match m.exec.ready().and_then(|r| r.activity(a)) {
-                        Some(r) => match r.outcome {
-                            RunOutcome::Completed => ("+", m.theme.scheduled),
-                            RunOutcome::Aborted => ("!", m.theme.aborted),
-                            RunOutcome::NotRun => ("x", m.theme.failed),
-                        },
-                        None => (".", m.theme.muted),
-                    },
-                };
-                let text =
-                    RichText::new(format!("{mark} {:>3} {}", step.step, act.id)).color(color);
-                let button = egui::Button::new(text)
-                    .selected(m.nav.selected == Some(a))
-                    .frame(false);
-                // In execution mode, once a campaign is summarised: the
-                // activity's shares across its runs before its name.
-                let shares = campaign
-                    .and_then(|c| c.activity(a).map(|s| (s, c.runs())))
-                    .filter(|_| m.nav.mode == Mode::Execution);
-                let resp = match shares {
-                    Some((s, runs)) => {
-                        ui.horizontal(|ui| {
-                            let size = egui::vec2(SHARE_BAR_WIDTH, SHARE_BAR_HEIGHT);
-                            montecarlo::share_bar(ui, m, s, runs, size);
-                            ui.add(button)
-                        })
-                        .inner
-                    }
-                    None => ui.add(button),
-                };
-                if resp.clicked() {
-                    cmds.push(Command::Select(Some(a)));
+                    None => (".", m.theme.muted),
+                },
+            };
+            let text = RichText::new(format!("{mark} {:>3} {}", step.step, act.id)).color(color);
+            let button = egui::Button::new(text)
+                .selected(m.nav.selected == Some(a))
+                .frame(false);
+            // In execution mode, once a campaign is summarised: the
+            // activity's shares across its runs before its name.
+            let shares = campaign
+                .and_then(|c| c.activity(a).map(|s| (s, c.runs())))
+                .filter(|_| m.nav.mode == Mode::Execution);
+            let resp = match shares {
+                Some((s, runs)) => {
+                    ui.horizontal(|ui| {
+                        let size = egui::vec2(SHARE_BAR_WIDTH, SHARE_BAR_HEIGHT);
+                        montecarlo::share_bar(ui, m, s, runs, size);
+                        ui.add(button)
+                    })
+                    .inner
                 }
+                None => ui.add(button),
+            };
+            if resp.clicked() {
+                cmds.push(Command::Select(Some(a)));
             }
-        });
+        }
+    });
 }
 
 /// Zoom/pan controls and the exact range.
@@ -688,21 +786,27 @@ fn axis_ui(
     });
 }
 
-/// "Discard unsaved changes?"
+/// "Discard unsaved changes?", or save them first.
 fn confirm_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
     let Some(pending) = &m.messages.confirm else {
         return;
     };
-    let what = match pending {
-        Pending::Open(p) => format!("open {}", p.display()),
-        Pending::Quit => "quit".into(),
+    let (what, save_and) = match pending {
+        Pending::Open(p) => (format!("open {}", p.display()), "Save and open"),
+        Pending::Quit => ("quit".to_string(), "Save and quit"),
     };
     egui::Modal::new(egui::Id::unique("confirm_discard")).show(ui.ctx(), |ui| {
         ui.heading("Unsaved changes");
         ui.label(format!(
-            "The plan has unsaved edits. Discard them and {what}?"
+            "The plan has unsaved edits. Save them, or discard them and {what}?"
         ));
+        if m.doc.path.is_none() {
+            ui.label(RichText::new("It has no file yet: saving asks where.").color(m.theme.muted));
+        }
         ui.horizontal(|ui| {
+            if ui.button(save_and).clicked() {
+                cmds.push(Command::SaveAndContinue);
+            }
             if ui.button("Discard changes").clicked() {
                 cmds.push(Command::ConfirmDiscard(true));
             }
@@ -711,4 +815,45 @@ fn confirm_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
             }
         });
     });
+}
+
+/// No file dialog could be shown: say why and take a typed path.
+fn path_prompt_ui(ui: &mut egui::Ui, m: &Model<'_>, path: &mut String, cmds: &mut Vec<Command>) {
+    let Some(prompt) = &m.messages.path_prompt else {
+        return;
+    };
+    let dialog = prompt.dialog;
+    let modal = egui::Modal::new(egui::Id::unique("path_prompt")).show(ui.ctx(), |ui| {
+        ui.set_max_width(PROMPT_WIDTH);
+        ui.heading(dialog.title());
+        ui.add(egui::Label::new(prompt.why.as_str()).wrap());
+        ui.label("Type the path of the file instead:");
+        let label = ui.label("Path");
+        let field = ui
+            .add(egui::TextEdit::singleline(path).desired_width(PROMPT_WIDTH))
+            .labelled_by(label.id);
+        let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+        ui.horizontal(|ui| {
+            let go = ui.button(dialog.action()).clicked() || enter;
+            if go {
+                if path.trim().is_empty() {
+                    cmds.push(Command::ShowError(format!(
+                        "{}: type a path",
+                        dialog.title()
+                    )));
+                } else {
+                    cmds.push(Command::Chosen {
+                        dialog,
+                        path: path.trim().into(),
+                    });
+                }
+            }
+            if ui.button("Cancel").clicked() {
+                cmds.push(Command::DialogCancelled);
+            }
+        });
+    });
+    if modal.should_close() {
+        cmds.push(Command::DialogCancelled);
+    }
 }
