@@ -36,8 +36,9 @@ pub use execute::{
 };
 pub use explain::{
     Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,
-    Suggestion, energy_consumers, explain, explain_text, explanation_notes, involved,
-    minimal_conflicts, peak_users, reason_line, suggestion_line, verified_suggestions,
+    Suggestion, energy_consumers, explain, explain_each, explain_text, explanation_notes,
+    explanation_text, involved, minimal_conflicts, peak_users, reason_line, suggestion_line,
+    verified_suggestions,
 };
 pub use flex::{
     Bound, Constraint, Controllability, DispatchEdge, EventBounds, Flex, FlexActivity, FlexOptions,
@@ -59,7 +60,7 @@ pub use report::{
     EditEntry, EventEntry, ExecutionDoc, ExplainDoc, ExplanationEntry, FLEX_FORMAT, FlexDoc,
     FlexEntry, FlexSummary, GeneratedEntry, PointEntry, RelaxationEntry, RunEntry, ScheduleDoc,
     SuggestionEntry, SummaryEntry, TimedValue, ViolationEntry, WaitEntry, WhyEntry,
-    execution_document, explain_document, flex_document, schedule_document,
+    execution_document, explain_document, explanation_entry, flex_document, schedule_document,
 };
 pub use scheduler::{
     Act, Category, CategoryIntervals, FailurePhase, Generated, GeneratedKind, Outcome,

@@ -664,3 +664,53 @@ fn no_single_fix_names_a_pair_that_works() {
         "{notes:#?}"
     );
 }
+
+/// `explain_each` without suggestions hands on each explanation as soon as the
+/// replay has passed it (before the replay ends), in step order, and exactly as
+/// `explain` gives them.
+#[test]
+fn explanations_stream_in_step_order_as_the_replay_passes_them() {
+    let plan = solscope_engine::generate_plan(300, 1, 5);
+    let sched = schedule(&plan).unwrap();
+    let opts = ExplainOptions {
+        activity: None,
+        no_suggestions: true,
+    };
+    let whole = explain(&plan, &sched, &opts).unwrap();
+    assert!(whole.len() > 10, "a plan with failures");
+    // (explanations handed on so far, steps replayed) at each hand-over.
+    let log = std::cell::RefCell::new(Vec::new());
+    let replayed = std::cell::Cell::new(0usize);
+    let mut streamed = Vec::new();
+    solscope_engine::explain_each(
+        &plan,
+        &sched,
+        &opts,
+        &mut |done, total| {
+            assert!(done <= total);
+            replayed.set(done);
+        },
+        &mut |ex| {
+            log.borrow_mut().push(replayed.get());
+            streamed.push(ex);
+        },
+    )
+    .unwrap();
+    assert_eq!(
+        serde_json::to_string(&streamed).unwrap(),
+        serde_json::to_string(&whole).unwrap()
+    );
+    let log = log.into_inner();
+    assert!(
+        log[0] < sched.steps.len(),
+        "the first explanation waited for the whole replay"
+    );
+    for (ex, &at) in streamed.iter().zip(&log) {
+        // Known once the replay has probed it at its failure step.
+        assert!(
+            ex.failure_step.is_none_or(|k| at > k),
+            "handed on before its failure step was replayed"
+        );
+    }
+    assert!(log.windows(2).all(|w| w[0] <= w[1]));
+}

@@ -19,7 +19,9 @@ use serde::Serialize;
 
 pub use conflicts::{Relaxation, minimal_conflicts};
 pub use culprits::{Blame, Consumer, energy_consumers, peak_users};
-pub use text::{explain_text, explanation_notes, involved, reason_line, suggestion_line};
+pub use text::{
+    explain_text, explanation_notes, explanation_text, involved, reason_line, suggestion_line,
+};
 
 use crate::error::Error;
 use crate::model::Plan;
@@ -147,6 +149,24 @@ pub fn explain(
     sched: &Schedule,
     opts: &ExplainOptions,
 ) -> Result<Vec<Explanation>, Error> {
+    let mut out = Vec::new();
+    explain_each(plan, sched, opts, &mut |_, _| {}, &mut |ex| out.push(ex))?;
+    Ok(out)
+}
+
+/// [`explain`], handing each explanation to `each` in step order, and reporting
+/// `progress(steps replayed, steps)` as the run is replayed. Without suggestions
+/// an explanation is handed on as soon as it and every one before it are
+/// complete, so that a caller can write a large document as it goes, in bounded
+/// memory; with suggestions (verified together, edits shared between failures)
+/// all of them come at the end.
+pub fn explain_each(
+    plan: &Plan,
+    sched: &Schedule,
+    opts: &ExplainOptions,
+    progress: &mut dyn FnMut(usize, usize),
+    each: &mut dyn FnMut(Explanation),
+) -> Result<(), Error> {
     let targets: Vec<usize> = match &opts.activity {
         Some(id) => {
             let a = plan
@@ -164,40 +184,68 @@ pub fn explain(
             .collect(),
     };
     let step_of = &sched.problem.step_of;
+    let total = sched.steps.len();
+    // Without suggestions each explanation goes out once it and those before it
+    // are done; with them they are kept for the verification at the end.
+    let mut kept: Vec<Explanation> = Vec::new();
+    let stream = opts.no_suggestions;
+    // The explanation of targets[i] once complete (taken when handed on).
+    let found: std::cell::RefCell<Vec<Option<Explanation>>> =
+        std::cell::RefCell::new(vec![None; targets.len()]);
+    let next = std::cell::Cell::new(0usize);
+    // Hands on the complete explanations at the front, in step order.
+    let flush = |each: &mut dyn FnMut(Explanation), kept: &mut Vec<Explanation>| {
+        let mut found = found.borrow_mut();
+        while let Some(ex) = found.get_mut(next.get()).and_then(Option::take) {
+            next.set(next.get() + 1);
+            if stream {
+                each(ex);
+            } else {
+                kept.push(ex);
+            }
+        }
+    };
     // Culprits need the state at the failure step: take it from the replay that
     // finds the step instead of rebuilding it per activity.
-    let mut found: Vec<Option<Explanation>> = vec![None; targets.len()];
-    replay::failure_probes(sched, &targets, |i, k, record, state| {
-        let a = targets[i];
-        let step = &sched.steps[step_of[a] - 1];
-        let mut ex = from_probe(sched, a, step, k, record);
-        ex.culprits = culprits::culprits(state, &ex);
-        found[i] = Some(ex);
-    });
-    let mut out = Vec::with_capacity(targets.len());
-    for (a, ex) in targets.iter().copied().zip(found) {
-        let ex = match ex {
-            Some(ex) => ex,
-            None => {
-                let step = &sched.steps[step_of[a] - 1];
-                let mut ex = from_step(a, step);
-                let state = sched.state_after(step.step - 1);
-                ex.culprits = culprits::culprits(&state, &ex);
-                ex
-            }
-        };
-        out.push(ex);
-    }
-    if !opts.no_suggestions {
-        // In parallel, collected in order, so the output does not depend on the
-        // number of threads.
-        let lists = suggest::suggestions(plan, sched, &out);
-        for (ex, fixes) in out.iter_mut().zip(lists) {
-            ex.suggestions = fixes.single;
-            ex.together = fixes.together;
+    replay::failure_probes(
+        sched,
+        &targets,
+        |i, k, record, state| {
+            let a = targets[i];
+            let step = &sched.steps[step_of[a] - 1];
+            let mut ex = from_probe(sched, a, step, k, record);
+            ex.culprits = culprits::culprits(state, &ex);
+            found.borrow_mut()[i] = Some(ex);
+        },
+        |k| {
+            progress(k, total);
+            flush(each, &mut kept);
+        },
+    );
+    // Targets the replay did not find fail on their own records.
+    for (i, &a) in targets.iter().enumerate().skip(next.get()) {
+        let missing = found.borrow()[i].is_none();
+        if missing {
+            let step = &sched.steps[step_of[a] - 1];
+            let mut ex = from_step(a, step);
+            let state = sched.state_after(step.step - 1);
+            ex.culprits = culprits::culprits(&state, &ex);
+            found.borrow_mut()[i] = Some(ex);
         }
     }
-    Ok(out)
+    flush(each, &mut kept);
+    progress(total, total);
+    if !stream {
+        // In parallel, collected in order, so the output does not depend on the
+        // number of threads.
+        let lists = suggest::suggestions(plan, sched, &kept);
+        for (mut ex, fixes) in kept.into_iter().zip(lists) {
+            ex.suggestions = fixes.single;
+            ex.together = fixes.together;
+            each(ex);
+        }
+    }
+    Ok(())
 }
 
 /// The verified suggestions for an explained failure (what [`explain`] adds unless

@@ -283,6 +283,7 @@ pub(super) fn failure_probes(
     sched: &Schedule,
     targets: &[usize],
     mut on_failure: impl FnMut(usize, usize, Step, &State<'_>),
+    mut stepped: impl FnMut(usize),
 ) {
     use std::cmp::Reverse;
     let problem = &sched.problem;
@@ -373,6 +374,7 @@ pub(super) fn failure_probes(
             }
         }
         state.replay(&sched.steps[k]);
+        stepped(k + 1);
     }
 }
 

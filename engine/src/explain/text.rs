@@ -280,27 +280,34 @@ pub fn involved(ex: &Explanation) -> &[Culprit] {
 
 /// Planner-facing text for a set of explanations.
 pub fn explain_text(plan: &Plan, schedule: &Schedule, explanations: &[Explanation]) -> String {
+    explanations
+        .iter()
+        .map(|ex| explanation_text(plan, schedule, ex))
+        .collect()
+}
+
+/// The text of one explanation, as [`explain_text`] prints it (for a caller that
+/// writes explanations one at a time).
+pub fn explanation_text(plan: &Plan, schedule: &Schedule, ex: &Explanation) -> String {
     let problem = &schedule.problem;
     let mut out = String::new();
-    for ex in explanations {
-        let a = &plan.activities[ex.activity];
-        out.push_str(&format!(
-            "== {} ({}), step {}\n",
-            a.display_name(),
-            a.id,
-            ex.step
-        ));
-        for n in explanation_notes(plan, problem, ex) {
-            out.push_str(&format!("  {n}\n"));
-        }
-        for (i, s) in ex.suggestions.iter().enumerate() {
-            out.push_str(&format!(
-                "  suggestion {}: {}\n",
-                i + 1,
-                suggestion_line(plan, s)
-            ));
-        }
-        out.push('\n');
+    let a = &plan.activities[ex.activity];
+    out.push_str(&format!(
+        "== {} ({}), step {}\n",
+        a.display_name(),
+        a.id,
+        ex.step
+    ));
+    for n in explanation_notes(plan, problem, ex) {
+        out.push_str(&format!("  {n}\n"));
     }
+    for (i, s) in ex.suggestions.iter().enumerate() {
+        out.push_str(&format!(
+            "  suggestion {}: {}\n",
+            i + 1,
+            suggestion_line(plan, s)
+        ));
+    }
+    out.push('\n');
     out
 }

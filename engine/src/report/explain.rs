@@ -130,6 +130,18 @@ pub fn explain_document(
     schedule: &Schedule,
     explanations: &[Explanation],
 ) -> ExplainDoc {
+    ExplainDoc {
+        format: "solscope.explain/1",
+        explanations: explanations
+            .iter()
+            .map(|ex| explanation_entry(plan, schedule, ex))
+            .collect(),
+    }
+}
+
+/// One explanation as the document lists it (for a caller that writes the
+/// document one explanation at a time).
+pub fn explanation_entry(plan: &Plan, schedule: &Schedule, ex: &Explanation) -> ExplanationEntry {
     let problem = &schedule.problem;
     let id = |a: usize| plan.activities[a].id.clone();
     let entry = |s: &crate::explain::Suggestion| SuggestionEntry {
@@ -140,9 +152,8 @@ pub fn explain_document(
         },
         side_effects: s.side_effects.iter().map(|&a| id(a)).collect(),
     };
-    let entries = explanations
-        .iter()
-        .map(|ex| ExplanationEntry {
+    {
+        ExplanationEntry {
             activity: id(ex.activity),
             status: ex.outcome.status(),
             step: ex.step,
@@ -198,10 +209,6 @@ pub fn explain_document(
                     witness: r.witness,
                 })
                 .collect(),
-        })
-        .collect();
-    ExplainDoc {
-        format: "solscope.explain/1",
-        explanations: entries,
+        }
     }
 }

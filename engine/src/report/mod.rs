@@ -14,7 +14,7 @@ pub use execution::{
 };
 pub use explain::{
     CulpritEntry, EditEntry, ExplainDoc, ExplanationEntry, RelaxationEntry, SuggestionEntry,
-    explain_document,
+    explain_document, explanation_entry,
 };
 pub use flex::{
     BoundEntry, BoundsEntry, ConditionEntry, ConstraintEntry, ControllabilityEntry, EdgeEntry,
