@@ -310,7 +310,25 @@ fn main() -> ExitCode {
             return ExitCode::from(EXIT_INVALID);
         }
     };
-    match run(command, limit) {
+    let result = match command {
+        // An explanation is written as it is made (a large plan's is hundreds
+        // of megabytes), once the plan has loaded and scheduled.
+        Command::Explain {
+            plan,
+            activity,
+            text,
+            no_suggestions,
+            ..
+        } => {
+            let opts = solscope_engine::ExplainOptions {
+                activity,
+                no_suggestions,
+            };
+            return explain_streamed(&plan, limit, &opts, text);
+        }
+        command => run(command, limit),
+    };
+    match result {
         Ok(text) => {
             let mut out = std::io::stdout().lock();
             match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
@@ -329,6 +347,126 @@ fn main() -> ExitCode {
         }
         Err(Failure::Output(what)) => {
             eprintln!("error: {what}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// `solscope explain`: loads and schedules the plan (a failure prints nothing on
+/// standard output), then writes the explanations one at a time as the engine
+/// hands them on, byte for byte the document `explain_document` would make, with
+/// a progress bar on standard error (after a second, on a terminal).
+fn explain_streamed(
+    plan: &std::path::Path,
+    limit: usize,
+    opts: &solscope_engine::ExplainOptions,
+    text: bool,
+) -> ExitCode {
+    use std::io::IsTerminal;
+    let prepared = (|| -> Result<_, solscope_engine::Error> {
+        let source = solscope_engine::read_plan_text(plan, limit)?;
+        let loaded = solscope_engine::load_plan_limited(&source, limit)?;
+        let schedule = solscope_engine::schedule(&loaded.plan)?;
+        if let Some(id) = &opts.activity {
+            if !loaded.plan.activities.iter().any(|a| &a.id == id) {
+                return Err(solscope_engine::Error::UnknownActivity(id.clone()));
+            }
+        }
+        Ok((loaded, schedule))
+    })();
+    let (loaded, schedule) = match prepared {
+        Ok(x) => x,
+        Err(err) => {
+            eprintln!("error: {err}");
+            return ExitCode::from(EXIT_INVALID);
+        }
+    };
+    let bar = indicatif::ProgressBar::with_draw_target(
+        Some(schedule.steps.len() as u64),
+        indicatif::ProgressDrawTarget::hidden(),
+    );
+    let started = std::time::Instant::now();
+    let terminal = std::io::stderr().is_terminal();
+    let mut shown = false;
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    // Pieces written so far (the header is the first), or the first error.
+    let mut written: Result<usize, std::io::Error> = Ok(0);
+    let mut write = |piece: &str, written: &mut Result<usize, std::io::Error>| {
+        if let Ok(n) = written {
+            match out.write_all(piece.as_bytes()) {
+                Ok(()) => *n += 1,
+                Err(e) => *written = Err(e),
+            }
+        }
+    };
+    if !text {
+        write(
+            "{\n  \"format\": \"solscope.explain/1\",\n  \"explanations\": [",
+            &mut written,
+        );
+    }
+    let plan_ref = &loaded.plan;
+    let outcome = solscope_engine::explain_each(
+        plan_ref,
+        &schedule,
+        opts,
+        &mut |done, _| {
+            bar.set_position(done as u64);
+            if terminal && !shown && started.elapsed() > std::time::Duration::from_secs(1) {
+                shown = true;
+                bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
+            }
+        },
+        &mut |ex| {
+            let piece = if text {
+                solscope_engine::explanation_text(plan_ref, &schedule, &ex)
+            } else {
+                let entry = solscope_engine::explanation_entry(plan_ref, &schedule, &ex);
+                match serde_json::to_string_pretty(&entry) {
+                    // The entry as the whole document's pretty form nests it:
+                    // two levels (four spaces) in.
+                    Ok(json) => {
+                        let first = matches!(written, Ok(1));
+                        let mut piece = String::from(if first { "\n" } else { ",\n" });
+                        for (i, line) in json.lines().enumerate() {
+                            if i > 0 {
+                                piece.push('\n');
+                            }
+                            piece.push_str("    ");
+                            piece.push_str(line);
+                        }
+                        piece
+                    }
+                    Err(e) => {
+                        written = Err(std::io::Error::other(format!(
+                            "could not write the document as JSON: {e}"
+                        )));
+                        return;
+                    }
+                }
+            };
+            write(&piece, &mut written);
+        },
+    );
+    bar.finish_and_clear();
+    if let Err(err) = outcome {
+        eprintln!("error: {err}");
+        return ExitCode::from(EXIT_INVALID);
+    }
+    if !text {
+        let end = if matches!(written, Ok(1)) {
+            "]\n}\n"
+        } else {
+            "\n  ]\n}\n"
+        };
+        write(end, &mut written);
+    }
+    match written.and_then(|_| out.flush()) {
+        Ok(()) => ExitCode::SUCCESS,
+        // A reader that stopped early (`| head`) wants no more: not news.
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::FAILURE,
+        Err(e) => {
+            eprintln!("error: could not write the output to standard output: {e}");
             ExitCode::FAILURE
         }
     }
@@ -425,31 +563,6 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
             let schedule = solscope_engine::schedule(&loaded.plan)?;
             let doc = solscope_engine::schedule_document(&loaded, &schedule, &default_name(&plan));
             to_json(&doc)
-        }
-        Command::Explain {
-            plan,
-            activity,
-            text,
-            no_suggestions,
-            ..
-        } => {
-            let loaded = load(&plan)?;
-            let schedule = solscope_engine::schedule(&loaded.plan)?;
-            let opts = solscope_engine::ExplainOptions {
-                activity,
-                no_suggestions,
-            };
-            let explanations = solscope_engine::explain(&loaded.plan, &schedule, &opts)?;
-            if text {
-                Ok(solscope_engine::explain_text(
-                    &loaded.plan,
-                    &schedule,
-                    &explanations,
-                ))
-            } else {
-                let doc = solscope_engine::explain_document(&loaded.plan, &schedule, &explanations);
-                to_json(&doc)
-            }
         }
         Command::Execute {
             plan,
@@ -593,7 +706,8 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
                 to_json(&solscope_engine::summarize(&campaign, &records))
             }
         }
-        Command::Screenshot { .. } => Ok(String::new()),
+        // Written by `main` itself: `screenshot` and `explain_streamed`.
+        Command::Screenshot { .. } | Command::Explain { .. } => Ok(String::new()),
         Command::Generate {
             activities,
             sols,
