@@ -514,6 +514,9 @@ fn screenshot(
     probe: Option<i64>,
     size: &str,
 ) -> ExitCode {
+    if let Some(code) = solscope::screenshot::rerun_with_runtime_dir() {
+        return code;
+    }
     let parsed = size
         .split_once('x')
         .and_then(|(w, h)| Some((w.trim().parse::<f32>().ok()?, h.trim().parse::<f32>().ok()?)))

@@ -75,3 +75,33 @@ pub fn snapshot_options() -> egui_kittest::SnapshotOptions {
 
 /// Size of the screenshot views (points).
 pub const SNAPSHOT_SIZE: [f32; 2] = [1400.0, 900.0];
+
+/// Without `XDG_RUNTIME_DIR`, the graphics stack probing for Wayland (Mesa,
+/// libwayland) prints "XDG_RUNTIME_DIR is invalid or not set" twice on
+/// standard error, though it renders. Run this same command again with a
+/// private, empty runtime directory so it renders quietly: `Some(exit code)`
+/// of that run. `None` when `XDG_RUNTIME_DIR` is set (render here), or when
+/// the run could not be started (render here, as before, with those lines).
+pub fn rerun_with_runtime_dir() -> Option<std::process::ExitCode> {
+    use std::os::unix::fs::DirBuilderExt;
+    if std::env::var_os("XDG_RUNTIME_DIR").is_some() {
+        return None;
+    }
+    let exe = std::env::current_exe().ok()?;
+    let dir = std::env::temp_dir().join(format!("solscope-runtime-{}", std::process::id()));
+    std::fs::DirBuilder::new().mode(0o700).create(&dir).ok()?;
+    let status = std::process::Command::new(exe)
+        .args(std::env::args_os().skip(1))
+        .env("XDG_RUNTIME_DIR", &dir)
+        .status();
+    if let Err(e) = std::fs::remove_dir_all(&dir) {
+        eprintln!("warning: could not remove {}: {e}", dir.display());
+    }
+    match status {
+        Ok(s) => Some(match s.code().and_then(|c| u8::try_from(c).ok()) {
+            Some(c) => std::process::ExitCode::from(c),
+            None => std::process::ExitCode::FAILURE,
+        }),
+        Err(_) => None,
+    }
+}

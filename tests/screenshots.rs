@@ -250,3 +250,44 @@ fn dragging_a_bar_previews_the_shift() {
     h.run_steps(3);
     h.snapshot_options("flex_drag_preview", &snapshot_options());
 }
+
+#[test]
+fn the_screenshot_command_is_quiet_without_xdg_runtime_dir() {
+    let out = std::env::temp_dir().join(format!("solscope-quiet-{}.png", std::process::id()));
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_solscope"))
+        .args(["screenshot", "assets/examples/pitfall.json", "--out"])
+        .arg(&out)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env_remove("XDG_RUNTIME_DIR")
+        .output()
+        .expect("runs");
+    assert!(run.status.success(), "{run:?}");
+    assert_eq!(
+        String::from_utf8_lossy(&run.stderr),
+        "",
+        "nothing on stderr"
+    );
+    assert!(out.exists(), "the PNG is written");
+    std::fs::remove_file(&out).expect("clean up");
+    // A bad argument still says what is wrong, once, with its exit status.
+    let bad = std::process::Command::new(env!("CARGO_BIN_EXE_solscope"))
+        .args([
+            "screenshot",
+            "assets/examples/pitfall.json",
+            "--size",
+            "5x5",
+            "--out",
+        ])
+        .arg(&out)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env_remove("XDG_RUNTIME_DIR")
+        .output()
+        .expect("runs");
+    assert_eq!(bad.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&bad.stderr)
+            .matches("error:")
+            .count(),
+        1
+    );
+}
