@@ -221,8 +221,20 @@ pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
             for (cat, span_lo, span_hi) in blamed {
                 let overlaps = |(s, e): (i64, i64)| s < span_hi && span_lo < e;
                 let blame = Blame::Constraint(cat);
-                for (x, placed) in state.placed.iter().enumerate() {
-                    let Some(iv) = *placed else { continue };
+                // The placed activities this category can blame, in activity
+                // order: those overlapping the span where only overlap counts (an
+                // index query, not a scan of every activity), else all placed.
+                let candidates: Vec<usize> = match cat {
+                    Category::Execution => Vec::new(),
+                    Category::UnitResource | Category::SequenceEngines | Category::Uhf => {
+                        state.placed_overlapping(span_lo, span_hi)
+                    }
+                    _ => (0..state.placed.len())
+                        .filter(|&x| state.placed[x].is_some())
+                        .collect(),
+                };
+                for x in candidates {
+                    let Some(iv) = state.placed[x] else { continue };
                     let other = &problem.acts[x];
                     let hit = match cat {
                         Category::Execution => false,
@@ -273,11 +285,9 @@ pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
                     | Phase2Reason::MinSleep { sleep: x }
                     | Phase2Reason::MinAwake { sleep: Some(x) } => push(x, kind),
                     Phase2Reason::MaxPeakPower { at, .. } => {
-                        for (x, placed) in state.placed.iter().enumerate() {
-                            if let Some((s, e)) = *placed {
-                                if s <= at && at < e && problem.acts[x].peak > 0 {
-                                    push(x, kind);
-                                }
+                        for x in state.placed_overlapping(at, at.saturating_add(1)) {
+                            if problem.acts[x].peak > 0 {
+                                push(x, kind);
                             }
                         }
                     }
@@ -288,10 +298,9 @@ pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
                         };
                         let from = last_full_before(state, t).unwrap_or(problem.h0);
                         let mut users: Vec<(i64, usize)> = state
-                            .placed
-                            .iter()
-                            .enumerate()
-                            .filter_map(|(x, p)| p.map(|(s, e)| (x, s, e)))
+                            .placed_overlapping(from, t)
+                            .into_iter()
+                            .filter_map(|x| state.placed[x].map(|(s, e)| (x, s, e)))
                             .map(|(x, s, e)| {
                                 (
                                     problem.acts[x]

@@ -30,6 +30,11 @@ pub struct State<'p> {
     pub problem: &'p Problem,
     /// `[start, end)` of each placed activity.
     pub placed: Vec<Option<(i64, i64)>>,
+    /// The placed activities by `(start, activity)`, and the longest placed
+    /// duration: what overlaps a span without a scan of every activity
+    /// ([`State::placed_overlapping`]).
+    by_start: std::collections::BTreeSet<(i64, usize)>,
+    longest: i64,
     /// The scheduled member of each group.
     pub group_member: Vec<Option<usize>>,
     /// Busy intervals per unit resource.
@@ -76,6 +81,8 @@ impl<'p> State<'p> {
         Self {
             problem,
             placed: vec![None; problem.acts.len()],
+            by_start: std::collections::BTreeSet::new(),
+            longest: 0,
             group_member: vec![None; groups],
             busy: vec![Vec::new(); problem.resource_count],
             engines: StepFn::constant(problem.h0, problem.h1, 0),
@@ -216,12 +223,37 @@ impl<'p> State<'p> {
         }
     }
 
+    /// The placed activities whose `[start, end)` overlaps `[lo, hi)`, in activity
+    /// order (those starting at most the longest placed duration before `lo`).
+    pub fn placed_overlapping(&self, lo: i64, hi: i64) -> Vec<usize> {
+        if hi <= lo {
+            return Vec::new();
+        }
+        let mut out: Vec<usize> = self
+            .by_start
+            .range((lo.saturating_sub(self.longest), 0)..(hi, 0))
+            .map(|&(_, x)| x)
+            .filter(|&x| self.placed[x].is_some_and(|(s, e)| s < hi && lo < e))
+            .collect();
+        out.sort_unstable();
+        debug_assert_eq!(
+            out,
+            (0..self.placed.len())
+                .filter(|&x| self.placed[x].is_some_and(|(s, e)| s < hi && lo < e))
+                .collect::<Vec<_>>(),
+            "placed overlap index"
+        );
+        out
+    }
+
     /// Applies a placement decided at `step`.
     pub fn apply(&mut self, step: usize, p: &Placement) {
         let problem = self.problem;
         let act = &problem.acts[p.act];
         let (s, e) = (p.start, p.start + p.duration);
         self.placed[p.act] = Some((s, e));
+        self.by_start.insert((s, p.act));
+        self.longest = self.longest.max(e - s);
         if let Some(g) = act.group {
             self.group_member[g] = Some(p.act);
         }
