@@ -113,6 +113,15 @@ struct RunEffects {
     /// How far the wake/sleep and preheat rules can couple two placements: the
     /// widening of a witness's footprint in [`next_check`].
     reach: i64,
+    /// Over the steps, `(lowest lo, highest hi)` of the applied footprints per
+    /// node of a complete binary tree (leaves from `leaves`): the first step after
+    /// `k` whose footprint meets a span, without a scan of every step.
+    tree: Vec<(i64, i64)>,
+    leaves: usize,
+    /// Per state: the steps whose activity has an effect on it, and those whose
+    /// activity has an effect on it or requires it, ascending.
+    effect_steps: Vec<Vec<usize>>,
+    touch_steps: Vec<Vec<usize>>,
 }
 
 impl RunEffects {
@@ -125,6 +134,10 @@ impl RunEffects {
             data: Vec::with_capacity(n + 1),
             handover: Vec::with_capacity(n + 1),
             group_steps: Vec::new(),
+            tree: Vec::new(),
+            leaves: 0,
+            effect_steps: Vec::new(),
+            touch_steps: Vec::new(),
             reach: {
                 let preheat = problem
                     .zones
@@ -171,13 +184,87 @@ impl RunEffects {
                     }
                 }
             }
+            if applied.is_some() {
+                let act = &problem.acts[step.activity];
+                let j = out.applied.len();
+                for e in &act.effects {
+                    push_step(&mut out.effect_steps, e.state, j);
+                    push_step(&mut out.touch_steps, e.state, j);
+                }
+                for r in &act.requires {
+                    push_step(&mut out.touch_steps, r.state, j);
+                }
+            }
             out.applied.push(applied);
             let last = |v: &Vec<i128>| v.last().copied().unwrap_or(0);
             out.energy.push(last(&out.energy).saturating_add(e));
             out.data.push(last(&out.data).saturating_add(d));
             out.handover.push(last(&out.handover).saturating_add(h));
         }
+        out.leaves = out.applied.len().next_power_of_two();
+        out.tree = vec![(i64::MAX, i64::MIN); 2 * out.leaves];
+        for (j, p) in out.applied.iter().enumerate() {
+            if let Some(p) = p {
+                out.tree[out.leaves + j] = (p.lo, p.hi);
+            }
+        }
+        for i in (1..out.leaves).rev() {
+            let (l, r) = (out.tree[2 * i], out.tree[2 * i + 1]);
+            out.tree[i] = (l.0.min(r.0), l.1.max(r.1));
+        }
         out
+    }
+
+    /// The first step in `[from, to)` whose applied footprint meets `[lo, hi)`
+    /// (`to` when none): a descent that skips every subtree whose footprints all
+    /// end by `lo` or start at `hi` or later.
+    fn first_meeting(&self, from: usize, to: usize, lo: i64, hi: i64) -> usize {
+        fn go(
+            fx: &RunEffects,
+            node: usize,
+            nlo: usize,
+            nhi: usize,
+            q: (usize, usize, i64, i64),
+        ) -> Option<usize> {
+            let (from, to, lo, hi) = q;
+            let (min_lo, max_hi) = fx.tree[node];
+            if nhi <= from || to <= nlo || min_lo >= hi || max_hi <= lo {
+                return None;
+            }
+            if nhi - nlo == 1 {
+                return Some(nlo);
+            }
+            let mid = (nlo + nhi) / 2;
+            go(fx, 2 * node, nlo, mid, q).or_else(|| go(fx, 2 * node + 1, mid, nhi, q))
+        }
+        if from >= to {
+            return to;
+        }
+        go(self, 1, 0, self.leaves, (from, to, lo, hi)).unwrap_or(to)
+    }
+
+    /// The first step in `[from, to)` whose activity shares a state with `a`
+    /// ([`share_state`]; `to` when none).
+    fn first_sharing(&self, problem: &Problem, a: usize, from: usize, to: usize) -> usize {
+        let act = &problem.acts[a];
+        let first = |steps: Option<&Vec<usize>>| {
+            steps
+                .and_then(|s| s.get(s.partition_point(|&j| j < from)).copied())
+                .unwrap_or(to)
+        };
+        // Another's effect on a state `a` requires or sets; another's effect or
+        // requirement on a state `a` sets.
+        let by_effect = act
+            .requires
+            .iter()
+            .map(|r| r.state)
+            .chain(act.effects.iter().map(|e| e.state))
+            .map(|s| first(self.effect_steps.get(s)));
+        let by_touch = act
+            .effects
+            .iter()
+            .map(|e| first(self.touch_steps.get(e.state)));
+        by_effect.chain(by_touch).fold(to, usize::min).min(to)
     }
 
     /// The first step after `k` whose running total exceeds the total at `k` by
@@ -256,14 +343,32 @@ fn next_check(
     }
     let (lo, hi) = ev.footprint(problem);
     let (lo, hi) = (lo.saturating_sub(fx.reach), hi.saturating_add(fx.reach));
-    for j in k + 1..due.min(fx.applied.len()) {
-        if let Some(p) = &fx.applied[j] {
-            if (p.lo < hi && lo < p.hi) || share_state(problem, a, p.act) {
-                return j;
-            }
-        }
+    let end = due.min(fx.applied.len());
+    let first = fx
+        .first_meeting(k + 1, end, lo, hi)
+        .min(fx.first_sharing(problem, a, k + 1, end));
+    debug_assert_eq!(
+        first,
+        (k + 1..end)
+            .find(|&j| {
+                fx.applied[j]
+                    .as_ref()
+                    .is_some_and(|p| (p.lo < hi && lo < p.hi) || share_state(problem, a, p.act))
+            })
+            .unwrap_or(end),
+        "disturbing step index"
+    );
+    if first < end { first } else { due }
+}
+
+/// Appends step `j` to the list of state `s`.
+fn push_step(lists: &mut Vec<Vec<usize>>, s: usize, j: usize) {
+    if lists.len() <= s {
+        lists.resize(s + 1, Vec::new());
     }
-    due
+    if lists[s].last() != Some(&j) {
+        lists[s].push(j);
+    }
 }
 
 /// Length of the overlap of two half-open intervals.
