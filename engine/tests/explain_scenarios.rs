@@ -714,3 +714,17 @@ fn explanations_stream_in_step_order_as_the_replay_passes_them() {
     }
     assert!(log.windows(2).all(|w| w[0] <= w[1]));
 }
+
+/// An empty `windows` list allows no start (the loader warns): removing it fixes
+/// the failure.
+#[test]
+fn an_empty_windows_list_suggests_removing_it() {
+    let p = plan(
+        json!({}),
+        json!([ { "id": "e", "priority": 1, "duration": 100, "windows": [] } ]),
+    );
+    let (_, ex) = explain_one(&p, "e");
+    let f = fix(&ex, "Remove the empty windows list of e");
+    assert_eq!(f.set["windows"], Value::Null);
+    assert!(ex.together.is_none());
+}

@@ -131,6 +131,18 @@ fn widen_window(
     duration: i64,
 ) -> Option<Candidate> {
     let w = witness;
+    if activity.windows.as_ref().is_some_and(Vec::is_empty) {
+        // An empty list allows no start at all: without it, the whole plan.
+        return Some(Candidate::activity(
+            activity,
+            format!(
+                "Remove the empty windows list of {}, so it may start anywhere in the plan",
+                activity.id
+            ),
+            "windows",
+            Value::Null,
+        ));
+    }
     let mut windows: Vec<Window> = activity.windows.clone().unwrap_or_else(|| {
         vec![Window {
             start: h0,
