@@ -201,7 +201,8 @@ fn fixed(problem: &Problem, plan: &Plan, prepared: &Prepared, sim: &mut Sim) -> 
 /// started). An activity some event of whose `after` list never happens does not
 /// run. `docs/semantics.md` ("Execution policies") is the reading.
 fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<Event> {
-    let mut times: BTreeMap<TimePoint, i64> = BTreeMap::new();
+    // When each event happened, by `Times::slot`.
+    let mut times = Times(vec![None; 1 + 2 * plan.activities.len()]);
     times.insert(TimePoint::Origin, problem.h0);
     let (waits, tightened): (Vec<crate::flex::Wait>, Vec<(usize, i64, i64)>) =
         match &flex.controllability {
@@ -212,13 +213,34 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
         };
     // On a controllable network the start bounds are the tightened ones (they hold
     // whatever the uncertain durations turn out to be).
-    let bounds = |j: usize| {
-        let fa = &flex.activities[j];
-        tightened
+    // Looked up once per activity, not per activity and event.
+    let by_activity: BTreeMap<usize, (i64, i64)> =
+        tightened.iter().map(|t| (t.0, (t.1, t.2))).collect();
+    let bounds_of: Vec<(i64, i64)> = flex
+        .activities
+        .iter()
+        .map(|fa| {
+            by_activity
+                .get(&fa.activity)
+                .copied()
+                .unwrap_or((fa.start.lb, fa.start.ub))
+        })
+        .collect();
+    let bounds = |j: usize| bounds_of[j];
+    let mut waits_of: Vec<Vec<crate::flex::Wait>> = vec![Vec::new(); flex.activities.len()];
+    {
+        let index: BTreeMap<usize, usize> = flex
+            .activities
             .iter()
-            .find(|t| t.0 == fa.activity)
-            .map_or((fa.start.lb, fa.start.ub), |t| (t.1, t.2))
-    };
+            .enumerate()
+            .map(|(j, fa)| (fa.activity, j))
+            .collect();
+        for w in &waits {
+            if let Some(&j) = index.get(&w.activity) {
+                waits_of[j].push(*w);
+            }
+        }
+    }
     let blocking = Blocking::new(flex, &waits);
     let mut pending: Vec<usize> = (0..flex.activities.len()).collect();
     // Running activities whose end has not happened: (end, activity).
@@ -240,7 +262,7 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
                 .condition
                 .within
                 .iter()
-                .filter_map(|b| times.get(&b.event).map(|&x| x + b.offset))
+                .filter_map(|b| times.get(b.event).map(|x| x + b.offset))
                 .fold(ub, i64::min);
         }
         blocking.propagate(&pending, &mut latest);
@@ -259,8 +281,8 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
             // held back there (it may be what that one waits for).
             let mut only_at = None;
             for b in &c.after {
-                match times.get(&b.event) {
-                    Some(&x) => t = t.max(x + b.offset),
+                match times.get(b.event) {
+                    Some(x) => t = t.max(x + b.offset),
                     // A bound at or after the event needs it to have happened; one
                     // before it binds only if it happened first.
                     None if b.offset >= 0 => match b.event {
@@ -280,14 +302,14 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
                     None => {}
                 }
             }
-            for w in waits.iter().filter(|w| w.activity == a) {
+            for w in &waits_of[j] {
                 match (
-                    times.get(&TimePoint::Start(w.on)),
-                    times.get(&TimePoint::End(w.on)),
+                    times.get(TimePoint::Start(w.on)),
+                    times.get(TimePoint::End(w.on)),
                 ) {
                     // Ended: nothing to wait for.
                     (_, Some(_)) => {}
-                    (Some(&s), None) => t = t.max(s + w.offset),
+                    (Some(s), None) => t = t.max(s + w.offset),
                     // Not started: a wait at or after its start needs it to
                     // have started; one before it binds only if it starts first.
                     (None, None) if w.offset >= 0 => enabled = false,
@@ -383,6 +405,30 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
         });
     }
     events
+}
+
+/// The time each event of the dispatch happened: a slot per event (the origin,
+/// then each activity's start and end), not a map searched per condition.
+struct Times(Vec<Option<i64>>);
+
+impl Times {
+    fn slot(e: TimePoint) -> usize {
+        match e {
+            TimePoint::Origin => 0,
+            TimePoint::Start(a) => 1 + 2 * a,
+            TimePoint::End(a) => 2 + 2 * a,
+        }
+    }
+
+    fn get(&self, e: TimePoint) -> Option<i64> {
+        self.0.get(Self::slot(e)).copied().flatten()
+    }
+
+    fn insert(&mut self, e: TimePoint, t: i64) {
+        if let Some(x) = self.0.get_mut(Self::slot(e)) {
+            *x = Some(t);
+        }
+    }
 }
 
 /// Which pending activities hold back which: `b` cannot start before `a` has
