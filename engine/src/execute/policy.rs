@@ -228,17 +228,10 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
         .collect();
     let bounds = |j: usize| bounds_of[j];
     let mut waits_of: Vec<Vec<crate::flex::Wait>> = vec![Vec::new(); flex.activities.len()];
-    {
-        let index: BTreeMap<usize, usize> = flex
-            .activities
-            .iter()
-            .enumerate()
-            .map(|(j, fa)| (fa.activity, j))
-            .collect();
-        for w in &waits {
-            if let Some(&j) = index.get(&w.activity) {
-                waits_of[j].push(*w);
-            }
+    let index = flex_index(flex);
+    for w in &waits {
+        if let Some(&j) = index.get(&w.activity) {
+            waits_of[j].push(*w);
         }
     }
     let blocking = Blocking::new(flex, &waits);
@@ -407,6 +400,15 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
     events
 }
 
+/// Each placed activity's index in the flexible schedule.
+fn flex_index(flex: &Flex) -> BTreeMap<usize, usize> {
+    flex.activities
+        .iter()
+        .enumerate()
+        .map(|(j, fa)| (fa.activity, j))
+        .collect()
+}
+
 /// The time each event of the dispatch happened: a slot per event (the origin,
 /// then each activity's start and end), not a map searched per condition.
 struct Times(Vec<Option<i64>>);
@@ -450,12 +452,7 @@ struct Blocking {
 impl Blocking {
     fn new(flex: &Flex, waits: &[crate::flex::Wait]) -> Self {
         let n = flex.activities.len();
-        let index: BTreeMap<usize, usize> = flex
-            .activities
-            .iter()
-            .enumerate()
-            .map(|(j, fa)| (fa.activity, j))
-            .collect();
+        let index = flex_index(flex);
         // How long each activity is planned to run (a controllable network's
         // bounds already allow for the longest).
         let planned = |j: usize| {
