@@ -728,3 +728,74 @@ fn an_empty_windows_list_suggests_removing_it() {
     assert_eq!(f.set["windows"], Value::Null);
     assert!(ex.together.is_none());
 }
+
+/// `handover_soc`: the optional `h` drains 200 Wh before the handover at 5000,
+/// from 600 Wh, leaving 400 Wh against a handover minimum of 500 Wh: lowering
+/// that minimum to 400 Wh, or making `h` mandatory, fixes it.
+#[test]
+fn handover_soc_suggests_a_lower_minimum_or_mandatory() {
+    let p = plan(
+        json!({ "battery": { "capacity": 1000.0, "initial": 600.0, "min_soc": 0.0 },
+                "handover": { "time": 5000, "min_soc": 500.0 } }),
+        json!([
+            { "id": "h", "priority": 1, "duration": 3600, "energy_rate": 200.0,
+              "mandatory": false, "windows": [ { "start": 0, "end": 0 } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "h");
+    assert!(
+        ex.reasons
+            .iter()
+            .all(|r| matches!(r.reason, Phase2Reason::HandoverSoc { .. })),
+        "{:?}",
+        ex.reasons
+    );
+    let f = fix(&ex, "Lower the handover state of charge to 400");
+    assert_eq!(f.set["handover"]["min_soc"], json!(400.0));
+    fix(&ex, "Make h mandatory");
+}
+
+/// `sequence_engines` alone: the plan has one engine, `a` holds it over
+/// [1000, 2000) and `b` must start in [1200, 1500): a second engine fixes it.
+#[test]
+fn sequence_engines_alone_suggest_one_more() {
+    let p = plan(
+        json!({ "sequence_engines": 1 }),
+        json!([
+            { "id": "a", "priority": 1, "duration": 1000, "sequence_engines": 1,
+              "windows": [ { "start": 1000, "end": 1000 } ] },
+            { "id": "b", "priority": 2, "duration": 100, "sequence_engines": 1,
+              "windows": [ { "start": 1200, "end": 1500 } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "b");
+    assert_eq!(
+        ex.conflicts,
+        vec![vec![Category::Execution, Category::SequenceEngines]]
+    );
+    let f = fix(&ex, "Raise the number of sequence engines to 2");
+    assert_eq!(f.set["sequence_engines"], json!(2));
+}
+
+/// `data_volume` alone: `a` stores 50 Mbit, and `b`, fixed at 3000, would add 60
+/// to a 100 Mbit store: the least raise of the capacity is to 110 Mbit.
+#[test]
+fn data_volume_alone_suggests_the_least_larger_capacity() {
+    let p = plan(
+        json!({ "data": { "capacity": 100.0, "initial": 0.0 } }),
+        json!([
+            { "id": "a", "priority": 1, "duration": 1000, "data_rate": 0.05,
+              "windows": [ { "start": 1000, "end": 1000 } ] },
+            { "id": "b", "priority": 2, "duration": 1000, "data_rate": 0.06,
+              "windows": [ { "start": 3000, "end": 3000 } ] }
+        ]),
+    );
+    let (_, ex) = explain_one(&p, "b");
+    assert_eq!(
+        ex.conflicts,
+        vec![vec![Category::Execution, Category::DataVolume]]
+    );
+    let f = fix(&ex, "Raise the data capacity to 110");
+    let cap = f.set["data"]["capacity"].as_f64().unwrap();
+    assert!((110.0..110.002).contains(&cap), "{cap}");
+}
