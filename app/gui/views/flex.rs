@@ -405,7 +405,7 @@ fn controllability_ui(ui: &mut egui::Ui, m: &Model<'_>, flex: &Flex, fa: &FlexAc
         Controllability::NotControllable {
             activities,
             constraints,
-        } => {
+        } if activities.contains(&fa.activity) => {
             ui.colored_label(
                 m.theme.error,
                 "NOT dynamically controllable. The constraints that make it so:",
@@ -413,9 +413,19 @@ fn controllability_ui(ui: &mut egui::Ui, m: &Model<'_>, flex: &Flex, fa: &FlexAc
             for c in constraints {
                 ui.label(format!("• {}", constraint_line(plan, c)));
             }
-            if activities.contains(&fa.activity) {
-                ui.label("This activity is one of those involved.");
-            }
+            ui.label("This activity is one of those involved.");
+        }
+        // The plan-wide verdict in full only where it applies: elsewhere one
+        // line naming the activities involved, to select.
+        Controllability::NotControllable { activities, .. } => {
+            let names: Vec<&str> = activities
+                .iter()
+                .map(|&x| plan.activities[x].id.as_str())
+                .collect();
+            ui.label(format!(
+                "The plan is not dynamically controllable, because of {}; this activity is not involved.",
+                names.join(", ")
+            ));
         }
     }
 }
