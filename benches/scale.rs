@@ -13,7 +13,10 @@
 //! campaign of 1,000 runs of the bundled plan. `--flex` measures flexible schedules:
 //! the network, bounds, minimum dispatchable network and controllability, and the
 //! free slack apart, on 1,000 and 10,000 activities of both profiles (worst of
-//! `--sweep N` seeds too when given).
+//! `--sweep N` seeds too when given). `--huge` measures 200,000 activities over 30
+//! sols (issue 14): validation and scheduling, and explaining every failure without
+//! suggestions (`explain_each`, as `solscope explain --no-suggestions` streams it),
+//! once each (minutes).
 
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
@@ -90,6 +93,10 @@ fn main() {
         execution();
         return;
     }
+    if std::env::args().any(|a| a == "--huge") {
+        huge();
+        return;
+    }
     if std::env::args().any(|a| a == "--flex") {
         let seeds = arg("--sweep")
             .and_then(|v| v.parse::<u64>().ok())
@@ -105,6 +112,42 @@ fn main() {
         println!("\n### profile {name}\n");
         table(profile, sizes);
     }
+    if let Some(mb) = peak_rss_mb() {
+        println!("\npeak resident memory of the whole run: {mb:.0} MB");
+    }
+}
+
+/// 200,000 activities over 30 sols (standard profile, seed 1): validation,
+/// scheduling and explaining every failure without suggestions, once each.
+fn huge() {
+    let plan = generate_plan_with(Profile::Standard, 200_000, 30, 1);
+    let t = Instant::now();
+    solscope_engine::validate(&plan).expect("a generated plan is valid");
+    let validated = t.elapsed();
+    let t = Instant::now();
+    let sched = schedule(&plan).expect("schedules");
+    let scheduled = t.elapsed();
+    let t = Instant::now();
+    let mut explained = 0usize;
+    let opts = ExplainOptions {
+        activity: None,
+        no_suggestions: true,
+    };
+    solscope_engine::explain_each(&plan, &sched, &opts, &mut |_, _| {}, &mut |_| {
+        explained += 1
+    })
+    .expect("explains");
+    let explain_time = t.elapsed();
+    println!(
+        "| activities | sols | validate | schedule | explanations | explain (no suggestions) |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|");
+    println!(
+        "| 200000 | 30 | {} | {} | {explained} | {} |",
+        ms(validated),
+        ms(scheduled),
+        ms(explain_time)
+    );
     if let Some(mb) = peak_rss_mb() {
         println!("\npeak resident memory of the whole run: {mb:.0} MB");
     }
