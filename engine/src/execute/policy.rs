@@ -228,13 +228,12 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
         .collect();
     let bounds = |j: usize| bounds_of[j];
     let mut waits_of: Vec<Vec<crate::flex::Wait>> = vec![Vec::new(); flex.activities.len()];
-    let index = flex_index(flex);
     for w in &waits {
-        if let Some(&j) = index.get(&w.activity) {
+        if let Some(j) = flex.position(w.activity) {
             waits_of[j].push(*w);
         }
     }
-    let blocking = Blocking::new(flex, &waits);
+    let blocking = Blocking::new(flex, &waits_of);
     let mut pending: Vec<usize> = (0..flex.activities.len()).collect();
     // Running activities whose end has not happened: (end, activity).
     let mut running: Vec<(i64, usize)> = Vec::new();
@@ -400,15 +399,6 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
     events
 }
 
-/// Each placed activity's index in the flexible schedule.
-fn flex_index(flex: &Flex) -> BTreeMap<usize, usize> {
-    flex.activities
-        .iter()
-        .enumerate()
-        .map(|(j, fa)| (fa.activity, j))
-        .collect()
-}
-
 /// The time each event of the dispatch happened: a slot per event (the origin,
 /// then each activity's start and end), not a map searched per condition.
 struct Times(Vec<Option<i64>>);
@@ -450,9 +440,9 @@ struct Blocking {
 }
 
 impl Blocking {
-    fn new(flex: &Flex, waits: &[crate::flex::Wait]) -> Self {
+    /// `waits_of[k]`: the waits of the activity at flex index `k`.
+    fn new(flex: &Flex, waits_of: &[Vec<crate::flex::Wait>]) -> Self {
         let n = flex.activities.len();
-        let index = flex_index(flex);
         // How long each activity is planned to run (a controllable network's
         // bounds already allow for the longest).
         let planned = |j: usize| {
@@ -462,25 +452,23 @@ impl Blocking {
         let mut held: Vec<Vec<(usize, i64)>> = vec![Vec::new(); n];
         for (k, fa) in flex.activities.iter().enumerate() {
             for b in fa.condition.after.iter().filter(|b| b.offset >= 0) {
-                let (a, gap) = match b.event {
-                    TimePoint::Start(a) => (a, b.offset),
-                    TimePoint::End(a) => match index.get(&a) {
-                        Some(&j) => (a, b.offset.saturating_add(planned(j))),
+                let (j, gap) = match b.event {
+                    TimePoint::Start(a) => match flex.position(a) {
+                        Some(j) => (j, b.offset),
+                        None => continue,
+                    },
+                    TimePoint::End(a) => match flex.position(a) {
+                        Some(j) => (j, b.offset.saturating_add(planned(j))),
                         None => continue,
                     },
                     TimePoint::Origin => continue,
                 };
-                if let Some(&j) = index.get(&a) {
-                    if j != k {
-                        held[j].push((k, gap));
-                    }
+                if j != k {
+                    held[j].push((k, gap));
                 }
             }
-            for w in waits
-                .iter()
-                .filter(|w| w.activity == fa.activity && w.offset >= 0)
-            {
-                if let Some(&j) = index.get(&w.on) {
+            for w in waits_of[k].iter().filter(|w| w.offset >= 0) {
+                if let Some(j) = flex.position(w.on) {
                     held[j].push((k, w.offset));
                 }
             }

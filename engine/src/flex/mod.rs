@@ -161,10 +161,14 @@ pub struct Flex {
 impl Flex {
     /// The entry of activity `a`, if placed.
     pub fn activity(&self, a: usize) -> Option<&FlexActivity> {
+        self.position(a).map(|i| &self.activities[i])
+    }
+
+    /// The index in `activities` of activity `a`, if placed.
+    pub fn position(&self, a: usize) -> Option<usize> {
         self.activities
             .binary_search_by_key(&a, |x| x.activity)
             .ok()
-            .map(|i| &self.activities[i])
     }
 }
 
