@@ -22,6 +22,9 @@ use crate::scheduler::Schedule;
 /// only together block the activity: a pair of one from each may fix it.
 type Pairing = (Vec<Candidate>, Vec<Candidate>);
 
+/// A failed activity and its candidate edits.
+type Failure = (usize, Vec<Candidate>);
+
 /// At most this many pairs of edits are tried per failure without a single fix.
 const PAIRS_PER_FAILURE: usize = 12;
 
@@ -30,7 +33,6 @@ const PAIRS_PER_FAILURE: usize = 12;
 const PAIRS_PER_RUN: usize = 240;
 
 /// A candidate edit before verification.
-#[derive(Clone)]
 struct Candidate {
     description: String,
     target: String,
@@ -97,7 +99,7 @@ pub(crate) struct Fixes {
 /// else two of its own candidates (bounded per failure and per run).
 pub(crate) fn suggestions(plan: &Plan, sched: &Schedule, exs: &[Explanation]) -> Vec<Fixes> {
     let runs = verify::Runs::new(plan, sched);
-    let built: Vec<(usize, Vec<Candidate>, Vec<Pairing>)> = exs
+    let (failures, pairings): (Vec<Failure>, Vec<Vec<Pairing>>) = exs
         .par_iter()
         .map(|ex| {
             let (candidates, pairings) = if ex.failure_step.is_some() {
@@ -105,19 +107,18 @@ pub(crate) fn suggestions(plan: &Plan, sched: &Schedule, exs: &[Explanation]) ->
             } else {
                 (Vec::new(), Vec::new())
             };
-            (ex.activity, candidates, pairings)
+            ((ex.activity, candidates), pairings)
         })
-        .collect();
-    let failures: Vec<(usize, Vec<Candidate>)> =
-        built.iter().map(|(a, c, _)| (*a, c.clone())).collect();
+        .unzip();
     let singles = verify::verified(&runs, &failures);
     // The pairs each failure without a single fix may try, within the budgets.
     let mut budget = PAIRS_PER_RUN;
-    let asked: Vec<Option<Vec<(Candidate, Candidate)>>> = built
+    let asked: Vec<Option<Vec<(&Candidate, &Candidate)>>> = failures
         .iter()
+        .zip(&pairings)
         .zip(&singles)
         .zip(exs)
-        .map(|(((_, candidates, pairings), single), ex)| {
+        .map(|((((_, candidates), pairings), single), ex)| {
             if !single.is_empty() || ex.failure_step.is_none() {
                 return None;
             }
@@ -125,14 +126,14 @@ pub(crate) fn suggestions(plan: &Plan, sched: &Schedule, exs: &[Explanation]) ->
             for (xs, ys) in pairings {
                 for x in xs {
                     for y in ys {
-                        pairs.push((x.clone(), y.clone()));
+                        pairs.push((x, y));
                     }
                 }
             }
             let first: Vec<&Candidate> = candidates.iter().take(5).collect();
-            for (i, x) in first.iter().enumerate() {
-                for y in &first[i + 1..] {
-                    pairs.push(((*x).clone(), (*y).clone()));
+            for (i, &x) in first.iter().enumerate() {
+                for &y in &first[i + 1..] {
+                    pairs.push((x, y));
                 }
             }
             // Two edits of the same field are one edit.
@@ -144,10 +145,10 @@ pub(crate) fn suggestions(plan: &Plan, sched: &Schedule, exs: &[Explanation]) ->
             Some(pairs)
         })
         .collect();
-    let together: Vec<Option<Vec<Suggestion>>> = built
+    let together: Vec<Option<Vec<Suggestion>>> = failures
         .par_iter()
         .zip(asked.par_iter())
-        .map(|((a, ..), pairs)| {
+        .map(|((a, _), pairs)| {
             let pairs = pairs.as_ref()?;
             let found = pairs.iter().find_map(|(x, y)| runs.verify_pair(x, y, *a));
             Some(found.unwrap_or_default())
