@@ -25,15 +25,28 @@ pub struct LevelCheck {
 /// levels are next asked for (replaying a schedule, steps that fail before phase 2,
 /// placements that change only the other timeline), so the levels are derived on
 /// first use after a change rather than on every change.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct RateTimeline {
     cap: i128,
     initial: i128,
     rate: StepFn,
     levels: std::sync::OnceLock<Levels>,
     /// The levels before the latest changes, and the earliest time they changed
-    /// the rate at: the next derivation integrates only from there.
-    stale: Option<(Levels, i64)>,
+    /// the rate at: the next derivation updates them in place from there (a
+    /// lock only because queries take `&self`; it is never contended).
+    stale: std::sync::Mutex<Option<(Levels, i64)>>,
+}
+
+impl Clone for RateTimeline {
+    fn clone(&self) -> Self {
+        Self {
+            cap: self.cap,
+            initial: self.initial,
+            rate: self.rate.clone(),
+            levels: self.levels.clone(),
+            stale: std::sync::Mutex::new(self.stale_levels().clone()),
+        }
+    }
 }
 
 /// The levels of a [`RateTimeline`] and the summaries its queries use.
@@ -61,28 +74,70 @@ struct Levels {
 }
 
 /// An iterative segment tree answering "first minimum on `[l, r)`" in O(log n).
+/// Leaves sit at `cap + i` for a power-of-two `cap`, so a change to the values
+/// from index `k` on updates only those leaves and their ancestors.
 #[derive(Clone, Debug, Default)]
 struct MinTree {
     n: usize,
+    cap: usize,
     tree: Vec<(i128, usize)>,
 }
 
 impl MinTree {
     fn build(values: impl ExactSizeIterator<Item = i128>) -> Self {
         let n = values.len();
-        let mut tree = vec![(i128::MAX, usize::MAX); 2 * n];
+        let cap = n.next_power_of_two();
+        let mut tree = vec![(i128::MAX, usize::MAX); 2 * cap];
         for (i, v) in values.enumerate() {
-            tree[n + i] = (v, i);
+            tree[cap + i] = (v, i);
         }
-        for i in (1..n).rev() {
+        for i in (1..cap).rev() {
             tree[i] = tree[2 * i].min(tree[2 * i + 1]);
         }
-        Self { n, tree }
+        Self { n, cap, tree }
+    }
+
+    /// Replaces the values from index `k` on with `values` (the new total
+    /// length is `k + values.len()`).
+    fn update_from(&mut self, k: usize, values: impl ExactSizeIterator<Item = i128>) {
+        let n = k + values.len();
+        if n > self.cap || k > self.n {
+            // (rebuilt whole: the caller passes only the tail)
+            let mut all: Vec<i128> = self.tree[self.cap..self.cap + k.min(self.n)]
+                .iter()
+                .map(|x| x.0)
+                .collect();
+            all.extend(values);
+            *self = Self::build(all.into_iter());
+            return;
+        }
+        let end = n.max(self.n);
+        for (i, v) in values.enumerate() {
+            self.tree[self.cap + k + i] = (v, k + i);
+        }
+        for i in n..end {
+            self.tree[self.cap + i] = (i128::MAX, usize::MAX);
+        }
+        self.n = n;
+        let (mut lo, mut hi) = ((self.cap + k) / 2, (self.cap + end.max(k + 1) - 1) / 2);
+        while lo >= 1 {
+            for p in lo..=hi {
+                self.tree[p] = self.tree[2 * p].min(self.tree[2 * p + 1]);
+            }
+            lo /= 2;
+            hi /= 2;
+        }
+    }
+
+    /// The leaves, for debug comparisons (the layout's size may differ).
+    #[cfg(debug_assertions)]
+    fn leaves(&self) -> &[(i128, usize)] {
+        &self.tree[self.cap..self.cap + self.n]
     }
 
     /// `(min, first index)` over `[l, r)`; `None` when empty.
     fn query(&self, l: usize, r: usize) -> Option<(i128, usize)> {
-        let (mut l, mut r) = (l + self.n, r.min(self.n) + self.n);
+        let (mut l, mut r) = (l + self.cap, r.min(self.n) + self.cap);
         let mut best: Option<(i128, usize)> = None;
         let mut take = |x: (i128, usize)| {
             if best.is_none_or(|b| x < b) {
@@ -123,8 +178,16 @@ impl RateTimeline {
             initial,
             rate,
             levels: std::sync::OnceLock::new(),
-            stale: None,
+            stale: std::sync::Mutex::new(None),
         }
+    }
+
+    /// The stale levels (a poisoned lock still holds consistent data: the only
+    /// writer replaces the value whole).
+    fn stale_levels(&self) -> std::sync::MutexGuard<'_, Option<(Levels, i64)>> {
+        self.stale
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
     }
 
     /// Adds `delta` to the rate on `[a, b)`.
@@ -133,9 +196,13 @@ impl RateTimeline {
             return;
         }
         self.rate.add(a, b, delta);
+        let stale = self
+            .stale
+            .get_mut()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
         if let Some(levels) = self.levels.take() {
-            self.stale = Some((levels, a));
-        } else if let Some((_, from)) = &mut self.stale {
+            *stale = Some((levels, a));
+        } else if let Some((_, from)) = stale {
             *from = (*from).min(a);
         }
     }
@@ -151,10 +218,11 @@ impl RateTimeline {
     }
 
     fn levels(&self) -> &Levels {
-        self.levels.get_or_init(|| match &self.stale {
-            Some((old, from)) => Levels::update(old, &self.rate, *from),
-            None => Levels::new(&self.rate, self.initial, self.cap),
-        })
+        self.levels
+            .get_or_init(|| match self.stale_levels().take() {
+                Some((old, from)) => old.update(&self.rate, from),
+                None => Levels::new(&self.rate, self.initial, self.cap),
+            })
     }
 
     /// The level at time `t` (clamped to the domain).
@@ -208,95 +276,110 @@ impl RateTimeline {
 impl Levels {
     /// Integrates `rate` from `initial`, capped at `cap`.
     fn new(rate: &StepFn, initial: i128, cap: i128) -> Self {
-        Self::build(rate, initial, cap, None)
-    }
-
-    /// The levels of `rate`, given `old`, those of a rate that was the same before
-    /// time `from`: the segments before `from` and the levels up to the last of
-    /// them are copied, the rest integrated again.
-    fn update(old: &Levels, rate: &StepFn, from: i64) -> Self {
-        let fresh = Self::build(rate, old.initial, old.cap, Some((old, from)));
-        #[cfg(debug_assertions)]
-        {
-            let full = Self::new(rate, old.initial, old.cap);
-            debug_assert!(
-                fresh.times == full.times
-                    && fresh.rates == full.rates
-                    && fresh.levels == full.levels
-                    && fresh.wasted == full.wasted
-                    && fresh.prefix_min == full.prefix_min
-                    && fresh.suffix_min == full.suffix_min
-                    && fresh.uncapped.tree == full.uncapped.tree,
-                "incremental levels differ from a full integration"
-            );
-        }
+        let mut fresh = Self {
+            cap,
+            initial,
+            times: Vec::new(),
+            rates: Vec::new(),
+            levels: Vec::new(),
+            prefix_min: Vec::new(),
+            suffix_min: Vec::new(),
+            wasted: Vec::new(),
+            uncapped: MinTree::default(),
+            last_full: std::sync::OnceLock::new(),
+        };
+        fresh.integrate(rate, None);
         fresh
     }
 
-    /// Integrates `rate`, reusing `old`'s levels before `from` when given.
-    fn build(rate: &StepFn, initial: i128, cap: i128, old: Option<(&Levels, i64)>) -> Self {
-        let size = rate.points().len() + 1;
-        let mut times = Vec::with_capacity(size);
-        let mut rates = Vec::with_capacity(size);
-        let mut levels = Vec::with_capacity(size);
-        let mut wasted_at = Vec::with_capacity(size);
-        let mut prefix_min = Vec::with_capacity(size);
+    /// These levels updated in place to `rate`, a rate that is the same as
+    /// theirs before time `from`: the segments before `from` are kept, the rest
+    /// integrated again.
+    fn update(mut self, rate: &StepFn, from: i64) -> Self {
+        self.integrate(rate, Some(from));
+        #[cfg(debug_assertions)]
+        {
+            let full = Self::new(rate, self.initial, self.cap);
+            debug_assert!(
+                self.times == full.times
+                    && self.rates == full.rates
+                    && self.levels == full.levels
+                    && self.wasted == full.wasted
+                    && self.prefix_min == full.prefix_min
+                    && self.suffix_min == full.suffix_min
+                    && self.uncapped.leaves() == full.uncapped.leaves()
+                    && (1..self.uncapped.cap).all(|p| {
+                        let t = &self.uncapped.tree;
+                        t[p] == t[2 * p].min(t[2 * p + 1])
+                    }),
+                "incremental levels differ from a full integration"
+            );
+        }
+        self
+    }
+
+    /// Integrates `rate` from the segment holding `from` on (from the start
+    /// without it), keeping what comes before. The suffix minima before that
+    /// segment are recomputed backwards only until one comes out as it was:
+    /// the levels before it did not change, so neither does anything earlier.
+    fn integrate(&mut self, rate: &StepFn, from: Option<i64>) {
+        let n = self.rates.len();
         // Segments [0, k) are unchanged, and so is the level at times[k].
-        let (k, mut level, mut wasted, from_t) = match old {
-            Some((old, from)) => {
-                let n = old.rates.len();
-                let k = old.times[..n]
+        let (k, mut level, mut wasted, from_t) = match from {
+            Some(from) if n > 0 => {
+                let k = self.times[..n]
                     .partition_point(|&t| t < from)
                     .saturating_sub(1);
-                times.extend_from_slice(&old.times[..k]);
-                rates.extend_from_slice(&old.rates[..k]);
-                levels.extend_from_slice(&old.levels[..k]);
-                wasted_at.extend_from_slice(&old.wasted[..k]);
-                prefix_min.extend_from_slice(&old.prefix_min[..k]);
-                (k, old.levels[k], old.wasted[k], old.times[k])
+                (k, self.levels[k], self.wasted[k], self.times[k])
             }
-            None => (0, initial, 0, rate.start()),
+            _ => (0, self.initial, 0, rate.start()),
         };
+        self.times.truncate(k);
+        self.rates.truncate(k);
+        self.levels.truncate(k);
+        self.wasted.truncate(k);
+        self.prefix_min.truncate(k);
         for (lo, hi, r) in rate.segments(from_t, rate.end()) {
-            times.push(lo);
-            rates.push(r);
-            levels.push(level);
-            wasted_at.push(wasted);
-            let next = advance(level, r, hi - lo, cap);
+            self.times.push(lo);
+            self.rates.push(r);
+            self.levels.push(level);
+            self.wasted.push(wasted);
+            let next = advance(level, r, hi - lo, self.cap);
             wasted += level + i128::from(r) * i128::from(hi - lo) - next;
             level = next;
         }
-        times.push(rate.end());
-        levels.push(level);
-        wasted_at.push(wasted);
-        let mut best = prefix_min.last().copied().unwrap_or((i128::MAX, 0));
+        self.times.push(rate.end());
+        self.levels.push(level);
+        self.wasted.push(wasted);
+        let levels = &self.levels;
+        let mut best = self.prefix_min.last().copied().unwrap_or((i128::MAX, 0));
         for (i, &l) in levels.iter().enumerate().skip(k) {
             if l < best.0 {
                 best = (l, i);
             }
-            prefix_min.push(best);
+            self.prefix_min.push(best);
         }
-        let mut suffix_min = vec![(i128::MAX, 0); levels.len()];
+        let len = levels.len();
+        let suffix = &mut self.suffix_min;
+        suffix.truncate(k.min(len));
+        suffix.resize(len, (i128::MAX, 0));
         let mut best = (i128::MAX, 0);
-        for i in (0..levels.len()).rev() {
+        for i in (0..len).rev() {
             if levels[i] <= best.0 {
                 best = (levels[i], i);
             }
-            suffix_min[i] = best;
+            if i < k && suffix[i] == best {
+                break;
+            }
+            suffix[i] = best;
         }
-        let uncapped = MinTree::build(levels.iter().zip(&wasted_at).map(|(l, w)| l + w));
-        Self {
-            cap,
-            initial,
-            times,
-            rates,
-            levels,
-            prefix_min,
-            suffix_min,
-            wasted: wasted_at,
-            uncapped,
-            last_full: std::sync::OnceLock::new(),
+        let unc = levels.iter().zip(&self.wasted).skip(k).map(|(l, w)| l + w);
+        if k == 0 {
+            self.uncapped = MinTree::build(unc);
+        } else {
+            self.uncapped.update_from(k, unc);
         }
+        self.last_full = std::sync::OnceLock::new();
     }
 
     /// Segment index containing `t` (the last segment for `t >= end`).
