@@ -348,6 +348,7 @@ impl ExecutionCache {
                                     index: k,
                                     schedule: Err(e.clone()),
                                     activity_of: Vec::new(),
+                                    tries: Vec::new(),
                                 },
                             );
                             lost = Some(e);

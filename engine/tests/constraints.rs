@@ -59,6 +59,11 @@ fn step_of(s: &Schedule, idx: usize) -> &solscope_engine::Step {
     s.step_of(idx).expect("step")
 }
 
+/// The phase-2 tries of activity `idx`'s step.
+fn tries_of(s: &Schedule, idx: usize) -> Vec<solscope_engine::Try> {
+    s.tries(step_of(s, idx).step)
+}
+
 #[test]
 fn execution_window_preferred_and_cutoff() {
     let (_, doc) = run(&plan(
@@ -229,7 +234,7 @@ fn min_soc_and_handover_soc() {
     let c = step_of(&s, 2);
     assert_eq!(c.outcome, Outcome::Failed(FailurePhase::Placement));
     assert!(
-        c.tries
+        s.tries(c.step)
             .iter()
             .all(|t| matches!(t.reason, Some(Phase2Reason::MinSoc { .. })))
     );
@@ -255,7 +260,7 @@ fn min_soc_and_handover_soc() {
     // start that leaves the handover level untouched.
     assert_eq!(placed(&doc, "late"), 5000);
     assert!(matches!(
-        step_of(&s, 1).tries[0].reason,
+        tries_of(&s, 1)[0].reason,
         Some(Phase2Reason::HandoverSoc { .. })
     ));
 }
@@ -288,7 +293,7 @@ fn peak_power() {
     assert_eq!(placed(&doc, "b"), 100);
     failed(&doc, "c");
     assert!(matches!(
-        step_of(&s, 2).tries[0].reason,
+        tries_of(&s, 2)[0].reason,
         Some(Phase2Reason::MaxPeakPower { .. })
     ));
 }
@@ -334,8 +339,7 @@ fn awake_periods_wakeup_min_awake_merge_and_forced_sleep() {
     assert_eq!(awake, vec![(0, 2000)]);
     // c tried the nap first (its preferred time) and was refused for forced sleep.
     assert!(
-        step_of(&s, 3)
-            .tries
+        tries_of(&s, 3)
             .iter()
             .any(|t| matches!(t.reason, Some(Phase2Reason::ForcedSleep { sleep: Some(0) })))
     );
@@ -357,7 +361,7 @@ fn min_sleep_through_a_manual_sleep_fails() {
     // 1100 - 100 = 1000 >= min_sleep: first start that does not merge is 1100, outside
     // the window -> fails with min_sleep everywhere.
     failed(&doc, "late");
-    let tries = &step_of(&s, 2).tries;
+    let tries = tries_of(&s, 2);
     assert!(!tries.is_empty());
     assert!(
         tries
@@ -394,13 +398,13 @@ fn heating_preheat_table_operability_and_redundancy() {
     assert_eq!(placed(&doc, "c"), 6000);
     failed(&doc, "d");
     assert!(matches!(
-        step_of(&s, 3).tries[0].reason,
+        tries_of(&s, 3)[0].reason,
         Some(Phase2Reason::PreheatOutsidePlan {
             preheat_start: -400,
             ..
         })
     ));
-    assert!(step_of(&s, 0).tries.iter().any(|t| matches!(
+    assert!(tries_of(&s, 0).iter().any(|t| matches!(
         t.reason,
         Some(Phase2Reason::PreheatOperability {
             preheat_start: 700,

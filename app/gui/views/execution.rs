@@ -496,9 +496,11 @@ fn cycle_step_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Vec<Comm
         );
         inspector::intervals_ui(ui, m, &step.categories);
     }
-    let failing: Vec<ReasonRange> = step
+    let failing: Vec<ReasonRange> = cr
         .tries
-        .iter()
+        .get(step.step - 1)
+        .into_iter()
+        .flatten()
         .filter_map(|t| {
             Some(ReasonRange {
                 first: t.starts.lo,

@@ -26,7 +26,7 @@ pub use text::{
 use crate::error::Error;
 use crate::model::Plan;
 use crate::scheduler::{
-    Category, CategoryIntervals, FailurePhase, Outcome, Phase2Reason, Schedule, Step,
+    Category, CategoryIntervals, FailurePhase, Outcome, Phase2Reason, Schedule, Step, Try,
 };
 use crate::timeline::IntervalSet;
 
@@ -210,10 +210,10 @@ pub fn explain_each(
     replay::failure_probes(
         sched,
         &targets,
-        |i, k, record, state| {
+        |i, k, record, tries, state| {
             let a = targets[i];
             let step = &sched.steps[step_of[a] - 1];
-            let mut ex = from_probe(sched, a, step, k, record);
+            let mut ex = from_probe(sched, a, step, k, record, &tries);
             ex.culprits = culprits::culprits(state, &ex);
             found.borrow_mut()[i] = Some(ex);
         },
@@ -283,8 +283,16 @@ fn from_step(a: usize, step: &Step) -> Explanation {
     }
 }
 
-/// The explanation of a failure observed by the probe at step `k`.
-fn from_probe(sched: &Schedule, a: usize, step: &Step, k: usize, record: Step) -> Explanation {
+/// The explanation of a failure observed by the probe at step `k` (its record
+/// and phase-2 tries).
+fn from_probe(
+    sched: &Schedule,
+    a: usize,
+    step: &Step,
+    k: usize,
+    record: Step,
+    tries: &[Try],
+) -> Explanation {
     let (phase, blocked_by) = match record.outcome {
         Outcome::Skipped { by } => (Phase::Group, Some(by)),
         Outcome::Failed(FailurePhase::Dependency { on }) => (Phase::Dependency, Some(on)),
@@ -304,8 +312,7 @@ fn from_probe(sched: &Schedule, a: usize, step: &Step, k: usize, record: Step) -
         (Vec::new(), Vec::new())
     };
     // The trace already holds the tries grouped into ranges (`merge_tries`).
-    let reasons: Vec<ReasonRange> = record
-        .tries
+    let reasons: Vec<ReasonRange> = tries
         .iter()
         .filter_map(|t| {
             t.reason.clone().map(|reason| ReasonRange {

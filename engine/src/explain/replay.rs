@@ -10,7 +10,7 @@
 //! the first step that could disturb it ([`next_check`]).
 
 use crate::scheduler::{
-    Detail, Evaluated, FailurePhase, Outcome, Problem, Schedule, Scope, State, Step, run_step,
+    Detail, Evaluated, FailurePhase, Outcome, Problem, Schedule, Scope, State, Step, Try, run_step,
 };
 
 /// The inclusion rule precomputed: for each `(state, value)`, the steps of the
@@ -387,7 +387,7 @@ fn overlap(a: (i64, i64), b: (i64, i64)) -> i128 {
 pub(super) fn failure_probes(
     sched: &Schedule,
     targets: &[usize],
-    mut on_failure: impl FnMut(usize, usize, Step, &State<'_>),
+    mut on_failure: impl FnMut(usize, usize, Step, Vec<Try>, &State<'_>),
     mut stepped: impl FnMut(usize),
 ) {
     use std::cmp::Reverse;
@@ -451,17 +451,24 @@ pub(super) fn failure_probes(
                     // (phase 2 only looks inside the windows), so probe within the
                     // window span, and redo the failing probe over the whole horizon
                     // only when the relaxations need it (starts outside the windows).
-                    match run_step(&state, a, step_of[a], &scope, Detail::Trace) {
-                        (record, Some(ev)) => sturdier_witness(&state, &scope, &record, ev),
-                        (record, None) => {
-                            let record = if record.outcome
+                    // The search asks for the outcome first: a probe that finds
+                    // a placement needs no tries, and the outcome-only search
+                    // skips what a bound proves to fail; only the failing probe,
+                    // once per target, records its tries.
+                    let probe = run_step(&state, a, step_of[a], &scope, Detail::Outcome);
+                    match probe.found {
+                        Some(ev) => sturdier_witness(&state, &scope, &probe.step, ev),
+                        None => {
+                            let detail = if probe.step.outcome
                                 == Outcome::Failed(FailurePhase::ValidIntervals)
                             {
-                                run_step(&state, a, step_of[a], &scope, Detail::Horizon).0
+                                Detail::Horizon
                             } else {
-                                record
+                                Detail::Trace
                             };
-                            on_failure(i, k, record, &state);
+                            let failed = run_step(&state, a, step_of[a], &scope, detail);
+                            debug_assert!(failed.found.is_none(), "outcome-only probe");
+                            on_failure(i, k, failed.step, failed.tries, &state);
                             witness[i] = None;
                             continue;
                         }

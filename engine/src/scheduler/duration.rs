@@ -81,7 +81,7 @@ pub(super) fn longest_split(
     let act = &problem.acts[a];
     let top = longest_monotone(state, a, scope, span);
     let fits = |d: i64, only: (i64, i64)| {
-        try_duration(state, a, d, scope, span, Some(only))
+        try_duration(state, a, d, scope, span, Some(only), false)
             .found
             .is_some()
     };
@@ -115,9 +115,11 @@ pub(super) fn longest_by_scan(
 ) -> Option<i64> {
     let act = &state.problem.acts[a];
     let top = longest_monotone(state, a, scope, span);
-    (act.dur_min..=top)
-        .rev()
-        .find(|&d| try_duration(state, a, d, scope, span, None).found.is_some())
+    (act.dur_min..=top).rev().find(|&d| {
+        try_duration(state, a, d, scope, span, None, false)
+            .found
+            .is_some()
+    })
 }
 
 /// The longest duration for which the duration-monotone phase-1 categories (all but

@@ -28,11 +28,11 @@ pub use profiles::Profiles;
 pub use state::{Placement, State};
 #[cfg(debug_assertions)]
 use trace::merge_tries;
-use trace::merge_tries_with;
 pub use trace::{
     Category, CategoryIntervals, FailurePhase, Generated, GeneratedKind, Outcome, Phase2Reason,
     ReasonKind, Step, Try,
 };
+use trace::{Rejected, merge_tries_with};
 
 use crate::error::Error;
 use crate::model::Plan;
@@ -95,6 +95,59 @@ impl Schedule {
                 })
                 .collect()
         })
+    }
+
+    /// The phase-2 tries of step `k` (1-based), merged into ranges: every start
+    /// range searched, with its reason or as passing. The run records outcomes
+    /// only, so they are derived here by running step `k` again on the state
+    /// before it (what the run did, at the cost of replaying `k - 1`
+    /// placements and one search). Empty for a step that did not search (held,
+    /// skipped, or failed on a dependency) and for `k` out of range.
+    pub fn tries(&self, k: usize) -> Vec<Try> {
+        let Some(step) = k.checked_sub(1).and_then(|i| self.steps.get(i)) else {
+            return Vec::new();
+        };
+        let state = self.state_after(k - 1);
+        let again = run_step(&state, step.activity, k, &Scope::default(), Detail::Trace);
+        debug_assert_eq!(
+            (&again.step.outcome, again.step.duration),
+            (&step.outcome, step.duration),
+            "a step run again differs from the run's"
+        );
+        again.tries
+    }
+
+    /// The phase-2 tries of every step (`all_tries()[k - 1]` for step k): one
+    /// replay of the run that runs every failed step again as it recorded it,
+    /// the cost of one recorded run (what a view of a whole run's rejections
+    /// needs, where [`Schedule::tries`] per step would replay again each time).
+    /// Scheduled steps get none.
+    pub fn all_tries(&self) -> Vec<Vec<Try>> {
+        let mut state = State::new(&self.problem);
+        self.steps
+            .iter()
+            .map(|step| {
+                let failed = matches!(
+                    step.outcome,
+                    Outcome::Failed(FailurePhase::Placement | FailurePhase::ValidIntervals)
+                );
+                let tries = if failed {
+                    let again = run_step(
+                        &state,
+                        step.activity,
+                        step.step,
+                        &Scope::default(),
+                        Detail::Trace,
+                    );
+                    debug_assert_eq!(again.step.outcome, step.outcome, "a failed step run again");
+                    again.tries
+                } else {
+                    Vec::new()
+                };
+                state.replay(step);
+                tries
+            })
+            .collect()
     }
 
     /// The generated activities alive after step `k`.
@@ -178,8 +231,14 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>, until: usiz
             .skip(steps.len())
         {
             let step_no = k + 1;
-            let mut step = run_step(&state, a, step_no, &Scope::default(), Detail::Trace);
-            if let Some(placement) = step.1.take().map(|ev| ev.placement) {
+            // The run records outcomes and category intervals; a step's phase-2
+            // tries are derived on demand (`Schedule::tries`).
+            let StepRun {
+                step: mut record,
+                found,
+                ..
+            } = run_step(&state, a, step_no, &Scope::default(), Detail::Outcome);
+            if let Some(placement) = found.map(|ev| ev.placement) {
                 // Record generated activities.
                 let act = &problem.acts[a];
                 let (s, e) = (placement.start, placement.start + placement.duration);
@@ -187,7 +246,7 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>, until: usiz
                     for &i in &placement.retire {
                         let g = awake_gen[i];
                         generated[g].retired_at = Some(step_no);
-                        step.0.retired.push(g);
+                        record.retired.push(g);
                     }
                     let mut kept: Vec<usize> = awake_gen
                         .iter()
@@ -203,7 +262,7 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>, until: usiz
                         .count();
                     kept.insert(at, generated.len());
                     awake_gen = kept;
-                    step.0.added.push(generated.len());
+                    record.added.push(generated.len());
                     generated.push(Generated {
                         kind: GeneratedKind::Awake,
                         start: qa,
@@ -215,7 +274,7 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>, until: usiz
                 }
                 for &z in &act.zones {
                     if let Some(&(_, ps, pe)) = placement.preheats.iter().find(|x| x.0 == z) {
-                        step.0.added.push(generated.len());
+                        record.added.push(generated.len());
                         generated.push(Generated {
                             kind: GeneratedKind::Preheat {
                                 zone: z,
@@ -228,7 +287,7 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>, until: usiz
                             retired_at: None,
                         });
                     }
-                    step.0.added.push(generated.len());
+                    record.added.push(generated.len());
                     generated.push(Generated {
                         kind: GeneratedKind::Maintenance {
                             zone: z,
@@ -243,7 +302,7 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>, until: usiz
                 }
                 state.apply(step_no, &placement);
             }
-            steps.push(step.0);
+            steps.push(record);
         }
     }
     Schedule {
@@ -268,15 +327,28 @@ pub(crate) enum Detail {
     Horizon,
 }
 
-/// Runs one step against `state`; returns the record (filled in to `detail`) and
-/// the evaluation of the placement to apply.
+/// What [`run_step`] gives.
+pub(crate) struct StepRun {
+    /// The step's record, filled in to the detail asked for.
+    pub step: Step,
+    /// Its phase-2 tries merged into ranges (`merge_tries`): of every duration
+    /// tried, except for an expanding activity searched in two parts (the
+    /// min_awake extension near the plan end), whose partial searches are not
+    /// recorded: only the tries of `step.duration` (the chosen one, or the
+    /// shortest). Empty for [`Detail::Outcome`].
+    pub tries: Vec<Try>,
+    /// The evaluation of the placement to apply, if the activity fits.
+    pub found: Option<Evaluated>,
+}
+
+/// Runs one step against `state`.
 pub(crate) fn run_step(
     state: &State<'_>,
     a: usize,
     step_no: usize,
     scope: &Scope,
     detail: Detail,
-) -> (Step, Option<Evaluated>) {
+) -> StepRun {
     let problem = state.problem;
     let act = &problem.acts[a];
     let mut step = Step {
@@ -286,7 +358,7 @@ pub(crate) fn run_step(
         duration: act.dur_max,
         categories: Vec::new(),
         intersection: IntervalSet::empty(),
-        tries: Vec::new(),
+        rejected: Rejected::default(),
         added: Vec::new(),
         retired: Vec::new(),
     };
@@ -297,11 +369,20 @@ pub(crate) fn run_step(
             start: p.start,
             end: p.start + p.duration,
         };
-        return (step, Some(ev));
+        return StepRun {
+            step,
+            tries: Vec::new(),
+            found: Some(ev),
+        };
     }
+    let no_search = |step: Step| StepRun {
+        step,
+        tries: Vec::new(),
+        found: None,
+    };
     if let Some(by) = act.group.and_then(|g| state.group_member[g]) {
         step.outcome = Outcome::Skipped { by };
-        return (step, None);
+        return no_search(step);
     }
     let included = |k: &usize| !scope.skip_deps.contains(k);
     if let Some(dep) = (0..act.after.len())
@@ -310,7 +391,7 @@ pub(crate) fn run_step(
         .find(|d| state.placed[d.target].is_none())
     {
         step.outcome = Outcome::Failed(FailurePhase::Dependency { on: dep.target });
-        return (step, None);
+        return no_search(step);
     }
     let mut any_candidate = false;
     // The trace keeps category intervals within the window span only, so phase 1
@@ -321,10 +402,13 @@ pub(crate) fn run_step(
         window_span(problem, a)
     };
     let mut pending: Vec<(Try, Option<i64>)> = Vec::new();
+    let traced = detail != Detail::Outcome;
+    let mut rejected = Rejected::default();
     let mut attempt = |d: i64, step: &mut Step, record: bool| {
-        let tried = try_duration(state, a, d, scope, span, None);
+        let tried = try_duration(state, a, d, scope, span, None, traced);
         any_candidate |= !tried.union.is_empty();
         pending.extend(tried.tries);
+        rejected = rejected.join(tried.rejected);
         if record || tried.found.is_some() {
             step.duration = d;
             step.categories = tried.categories;
@@ -388,9 +472,6 @@ pub(crate) fn run_step(
     // Cells proven to fail on min_soc carry a bound instead of numbers; the exact
     // numbers are computed only for those that could be reported. Debug builds (the
     // property tests) check the result against computing every cell exactly.
-    if detail == Detail::Outcome {
-        pending.clear();
-    }
     #[cfg(debug_assertions)]
     let all_exact = merge_tries(
         pending
@@ -401,7 +482,7 @@ pub(crate) fn run_step(
             })
             .collect(),
     );
-    step.tries = merge_tries_with(std::mem::take(&mut pending), |t| {
+    let tries = merge_tries_with(std::mem::take(&mut pending), |t| {
         let exact = state.cell_tries(a, t.duration, t.starts.lo, t.starts.hi);
         debug_assert!(exact.len() == 1 && exact[0].reason.is_some());
         exact
@@ -410,24 +491,21 @@ pub(crate) fn run_step(
             .unwrap_or_else(|| t.clone())
     });
     #[cfg(debug_assertions)]
-    debug_assert_eq!(
-        step.tries, all_exact,
-        "pruned cells changed the reported tries"
-    );
-    if let Some(ev) = found {
-        let p = &ev.placement;
-        step.outcome = Outcome::Scheduled {
-            start: p.start,
-            end: p.start + p.duration,
-        };
-        return (step, Some(ev));
-    }
-    step.outcome = Outcome::Failed(if any_candidate {
-        FailurePhase::Placement
+    debug_assert_eq!(tries, all_exact, "pruned cells changed the reported tries");
+    step.outcome = match &found {
+        Some(ev) => Outcome::Scheduled {
+            start: ev.placement.start,
+            end: ev.placement.start + ev.placement.duration,
+        },
+        None if any_candidate => Outcome::Failed(FailurePhase::Placement),
+        None => Outcome::Failed(FailurePhase::ValidIntervals),
+    };
+    step.rejected = if traced {
+        Rejected::of_tries(tries.iter())
     } else {
-        FailurePhase::ValidIntervals
-    });
-    (step, None)
+        rejected
+    };
+    StepRun { step, tries, found }
 }
 
 /// What one duration gave.
@@ -436,11 +514,15 @@ pub(super) struct Tried {
     union: IntervalSet,
     found: Option<Evaluated>,
     tries: Vec<(Try, Option<i64>)>,
+    /// What an outcome-only search rejected (a recorded one: from its tries).
+    rejected: Rejected,
 }
 
 /// Phase 1 over starts in `span` and the window-by-window phase-2 search for one
 /// duration; with `only`, over the starts in `span` and in `only` (a partial
-/// search, never recorded: its categories are for the clipped span).
+/// search, never recorded: its categories are for the clipped span). Without
+/// `record`, only the outcome counts: no tries, and the search may skip whole
+/// spans that a bound proves to fail (`State::search_outcome`).
 pub(super) fn try_duration(
     state: &State<'_>,
     a: usize,
@@ -448,6 +530,7 @@ pub(super) fn try_duration(
     scope: &Scope,
     span: (i64, i64),
     only: Option<(i64, i64)>,
+    record: bool,
 ) -> Tried {
     let problem = state.problem;
     let act = &problem.acts[a];
@@ -458,6 +541,7 @@ pub(super) fn try_duration(
             union: IntervalSet::empty(),
             found: None,
             tries: Vec::new(),
+            rejected: Rejected::default(),
         };
     }
     let categories = state.phase1_in(a, d, scope, span.0, span.1);
@@ -470,6 +554,7 @@ pub(super) fn try_duration(
     let mut union = IntervalSet::empty();
     let mut found = None;
     let mut tries = Vec::new();
+    let mut rejected = Rejected::default();
     for w in &act.windows {
         let range = state.window_range(a, w, d);
         let cand = others.clip(range.lo.max(span.0), range.hi.min(span.1));
@@ -478,9 +563,15 @@ pub(super) fn try_duration(
         }
         union = union.union(&cand);
         if found.is_none() {
-            let (chosen, t) = state.search(a, d, &cand, w.preferred);
-            tries.extend(t);
-            found = chosen;
+            found = if record {
+                let (chosen, t) = state.search(a, d, &cand, w.preferred);
+                tries.extend(t);
+                chosen
+            } else {
+                let (chosen, r) = state.search_outcome(a, d, &cand, w.preferred);
+                rejected = rejected.join(r);
+                chosen
+            };
         }
     }
     Tried {
@@ -488,6 +579,7 @@ pub(super) fn try_duration(
         union,
         found,
         tries,
+        rejected,
     }
 }
 
@@ -504,6 +596,7 @@ pub(crate) fn accepted_starts(state: &State<'_>, a: usize, d: i64) -> (IntervalS
         &Scope::default(),
         (problem.h0, problem.h1),
         None,
+        false,
     );
     let both = state.passing(a, d, &tried.union);
     (tried.union, both)

@@ -13,9 +13,9 @@
 //!   `power.max_peak`, `data.capacity` or `handover.max_data_volume` raised), as
 //!   the explainer's least-relaxation search does: while every step so far came
 //!   out as in the original run, the state is the same, a relaxation only adds
-//!   feasible starts, and a step's outcome can change only where its recorded
-//!   tries failed on the relaxed limit by less than the relaxation
-//!   ([`Relaxation::keeps`]).
+//!   feasible starts, and a step's outcome can change only where the starts it
+//!   rejected on the relaxed limit came within the relaxation of it (the record
+//!   bounds how close they came; [`Relaxation::keeps`]).
 //! - Steps after a new placement. For an edit that makes activity `a` schedule,
 //!   the steps after `a`'s see one difference from the original run: `a`'s
 //!   placement (and what it generates). When that difference can only take starts
@@ -350,12 +350,12 @@ impl Relaxation {
     /// Whether the step recorded in `step` (run on the same state under the
     /// stricter limit) comes out the same under this relaxation. A relaxation only
     /// adds feasible starts, so the recorded choice stays feasible; it stays the
-    /// choice, and a failure stays a failure, when every try the record shows
-    /// failing still fails: only those failing on the relaxed limit could pass,
-    /// and a merged range's numbers are those of its closest start (the highest
-    /// lowest state of charge, the lowest peak) except where the failing part of a
-    /// cell touches its passing part. The record keeps the tries of one
-    /// duration, so an expanding activity that failed or got less than its
+    /// choice, and a failure stays a failure, when every start the step rejected
+    /// still fails: only those rejected on the relaxed limit could pass, and the
+    /// record bounds how close they came (`Step::rejected`: the highest lowest
+    /// state of charge, the lowest peak), except where the failing part of a
+    /// cell touches its passing part. The record covers the durations the step
+    /// recorded, so an expanding activity that failed or got less than its
     /// longest duration is not kept. Phase 1 does not look at energy or peak
     /// power; the data limits change it only where the record shows the data
     /// category excluding some start of the window span.
@@ -375,25 +375,12 @@ impl Relaxation {
                 // A cell whose feasible part is a sub-range reports the rest with
                 // the numbers of its far end, not its closest start: a failing range
                 // touching a passing one is not trusted.
-                let touches_pass = |t: &super::Try| {
-                    step.tries.iter().any(|p| {
-                        p.reason.is_none()
-                            && (p.starts.hi.saturating_add(1) == t.starts.lo
-                                || t.starts.hi.saturating_add(1) == p.starts.lo)
-                    })
-                };
-                !(handover_binds && problem.handover_soc.is_some())
-                    && step.tries.iter().all(|t| match t.reason {
-                        Some(super::Phase2Reason::MinSoc { soc_mj, .. }) => {
-                            i128::from(soc_mj) < min && !touches_pass(t)
-                        }
-                        _ => true,
-                    })
+                let r = &step.rejected;
+                let handover_limits = handover_binds && problem.handover_soc.is_some();
+                let trusted = !r.soc_untrusted;
+                !handover_limits && trusted && r.soc.is_none_or(|soc| i128::from(soc) < min)
             }
-            Self::MaxPeak(max) => step.tries.iter().all(|t| match t.reason {
-                Some(super::Phase2Reason::MaxPeakPower { peak_mw, .. }) => peak_mw > max,
-                _ => true,
-            }),
+            Self::MaxPeak(max) => step.rejected.peak.is_none_or(|peak| peak > max),
             Self::DataCap => act.data <= 0 || data_unbound(problem, step),
             Self::HandoverSoc => !handover_binds,
             Self::HandoverData => act.mandatory || data_unbound(problem, step),
@@ -417,7 +404,7 @@ fn outcome_step(state: &State<'_>, a: usize, step_no: usize) -> Option<Evaluated
     if let Some(ev) = ideal(state, a) {
         debug_assert_eq!(
             run_step(state, a, step_no, &Scope::default(), Detail::Outcome)
-                .0
+                .step
                 .outcome
                 .placement(),
             Some(span(&ev.placement)),
@@ -425,7 +412,7 @@ fn outcome_step(state: &State<'_>, a: usize, step_no: usize) -> Option<Evaluated
         );
         return Some(ev);
     }
-    run_step(state, a, step_no, &Scope::default(), Detail::Outcome).1
+    run_step(state, a, step_no, &Scope::default(), Detail::Outcome).found
 }
 
 /// Activity `a`'s ideal placement, if it fits: the longest duration, in the

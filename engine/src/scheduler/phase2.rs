@@ -20,9 +20,17 @@ use super::Scope;
 use super::cells::{cells, concave_feasible};
 use super::problem::Problem;
 use super::state::{Placement, State, uncovered};
-use super::trace::{Phase2Reason, Try};
+use super::trace::{Phase2Reason, Rejected, Try};
 use crate::model::AwakeMode;
 use crate::timeline::{Interval, IntervalSet};
+
+/// `State::search_outcome` halves a span of starts while it is at least this
+/// long and holds more than [`SPAN_LEAF_BREAKPOINTS`] rate breakpoints. Debug
+/// builds (the tests, on small plans) split down to single breakpoints, so that
+/// the cross-check against the full search sees every kind of span.
+const SPAN_MIN_SECONDS: i64 = if cfg!(debug_assertions) { 2 } else { 64 };
+/// See [`SPAN_MIN_SECONDS`].
+const SPAN_LEAF_BREAKPOINTS: usize = if cfg!(debug_assertions) { 1 } else { 8 };
 
 /// A candidate that passed the structural and peak checks, with its energy margin.
 #[derive(Clone, Debug)]
@@ -467,24 +475,26 @@ impl State<'_> {
         let (xlo, xhi) = (lo + omin - gap - 2, hi + omax + gap + 2);
         let mut fixed: Vec<i64> = Vec::new();
         let in_range = |x: &i64| xlo <= *x && *x <= xhi;
-        fixed.extend(
-            self.soc
-                .rate()
-                .points()
-                .iter()
-                .map(|p| p.0)
-                .filter(in_range),
-        );
-        fixed.extend(self.peak.points().iter().map(|p| p.0).filter(in_range));
+        // Every source is sorted by time: its points in range are one slice,
+        // found by binary search (a search over a few cells of a long plan must
+        // not scan every breakpoint of the plan).
+        let points_in = |pts: &[(i64, i64)]| {
+            let i = pts.partition_point(|p| p.0 < xlo);
+            let j = pts.partition_point(|p| p.0 <= xhi);
+            pts[i..j].iter().map(|p| p.0).collect::<Vec<i64>>()
+        };
+        // Sorted disjoint intervals whose points `[x - before, y + after]` may
+        // fall in range: ends are sorted too, so they are one slice.
+        let near = |ivs: &[(i64, i64)], before: i64, after: i64| {
+            let i = ivs.partition_point(|p| p.1.saturating_add(after) < xlo);
+            let j = ivs.partition_point(|p| p.0.saturating_sub(before) <= xhi);
+            ivs[i..j.max(i)].to_vec()
+        };
+        fixed.extend(points_in(self.soc.rate().points()));
+        fixed.extend(points_in(self.peak.points()));
         for &z in &act.zones {
-            fixed.extend(
-                self.zone_draw[z]
-                    .points()
-                    .iter()
-                    .map(|p| p.0)
-                    .filter(in_range),
-            );
-            for &(x, y) in &self.zone_on[z] {
+            fixed.extend(points_in(self.zone_draw[z].points()));
+            for (x, y) in near(&self.zone_on[z], 0, 1) {
                 fixed.extend([x, y, x + 1, y + 1].into_iter().filter(in_range));
             }
         }
@@ -495,11 +505,35 @@ impl State<'_> {
         if let Some(t) = problem.handover_time {
             fixed.push(t);
         }
-        for &(x, y) in &self.awake {
+        for (x, y) in near(&self.awake, gap, gap) {
             fixed.extend([x, y, x - gap, y + gap].into_iter().filter(in_range));
         }
         fixed.sort(); // sorted runs, one per source: merged
         fixed.dedup();
+        #[cfg(debug_assertions)]
+        {
+            let all = |pts: &[(i64, i64)]| pts.iter().map(|p| p.0).collect::<Vec<_>>();
+            let mut want: Vec<i64> = all(self.soc.rate().points());
+            want.extend(all(self.peak.points()));
+            for &z in &act.zones {
+                want.extend(all(self.zone_draw[z].points()));
+                for &(x, y) in &self.zone_on[z] {
+                    want.extend([x, y, x + 1, y + 1]);
+                }
+            }
+            for &(x, y) in &self.awake {
+                want.extend([x, y, x - gap, y + gap]);
+            }
+            for &(x, y, _) in &self.sleeps {
+                want.extend([x, y]);
+            }
+            want.retain(in_range);
+            want.extend([problem.h0, problem.h1]);
+            want.extend(problem.handover_time);
+            want.sort();
+            want.dedup();
+            debug_assert_eq!(fixed, want, "critical points by binary search");
+        }
         let mut points = Vec::with_capacity(fixed.len() * offsets.len() + 16);
         // One sorted run per offset (`cells` merges the runs).
         for &(o, end) in &offsets {
@@ -605,6 +639,121 @@ impl State<'_> {
         }
         let chosen = best.and_then(|(_, s)| self.evaluate(a, s, d).ok());
         (chosen, tries)
+    }
+
+    /// [`State::search`]'s choice without its tries (a run that records
+    /// outcomes only), found best-first over spans of `cand`, nearest
+    /// `preferred` first. A span is skipped whole when the state-of-charge bound
+    /// (`RateTimeline::drain_bound` over the span: the activity drains somewhere
+    /// inside it, and its generated pieces only drain more) proves that every
+    /// start in it fails on `min_soc`; otherwise it is halved, down to spans of a
+    /// few rate breakpoints, whose cells are searched as `search` searches them.
+    /// An activity that fails everywhere then costs about the number of places
+    /// where it could have fit, not the number of cells in its windows.
+    pub(crate) fn search_outcome(
+        &self,
+        a: usize,
+        d: i64,
+        cand: &IntervalSet,
+        preferred: i64,
+    ) -> (Option<Evaluated>, Rejected) {
+        let problem = self.problem;
+        let act = &problem.acts[a];
+        let mut rejected = Rejected::default();
+        let ivs = cand.intervals();
+        let (Some(first), Some(last)) = (cand.first(), ivs.last().map(|iv| iv.hi)) else {
+            return (None, rejected);
+        };
+        // No bound applies to an activity that does not drain, or when awake
+        // periods charge (as in `failing_soc_bound`): one span, not split.
+        let energy = (act.energy > 0 && problem.awake >= problem.asleep)
+            .then(|| i128::from(act.energy) * i128::from(d));
+        // The bound on the lowest state of charge when it proves that every
+        // start in `[lo, hi]` fails on `min_soc`.
+        let fails = |lo: i64, hi: i64| {
+            let bound = self.soc.drain_bound(lo, hi.saturating_add(d), energy?);
+            (bound < problem.min_soc).then(|| clamp_i64(bound))
+        };
+        let skipped = |rejected: &mut Rejected, bound: i64, lo: i64| {
+            let reason = Phase2Reason::MinSoc {
+                at: lo,
+                soc_mj: bound,
+            };
+            rejected.add(Some(&reason), false);
+        };
+        // The span's part of `cand`, as its first and last start.
+        let clip = |lo: i64, hi: i64| {
+            let i = ivs.partition_point(|iv| iv.hi < lo);
+            let j = ivs.partition_point(|iv| iv.lo <= hi);
+            (i < j).then(|| (ivs[i].lo.max(lo), ivs[j - 1].hi.min(hi)))
+        };
+        let dist = |lo: i64, hi: i64| {
+            if lo > preferred {
+                lo - preferred
+            } else if hi < preferred {
+                preferred - hi
+            } else {
+                0
+            }
+        };
+        let rate = self.soc.rate().points();
+        let splits = |lo: i64, hi: i64| {
+            energy.is_some()
+                && hi - lo >= SPAN_MIN_SECONDS
+                && rate.partition_point(|p| p.0 <= hi) - rate.partition_point(|p| p.0 < lo)
+                    > SPAN_LEAF_BREAKPOINTS
+        };
+        let mut spans = std::collections::BinaryHeap::new();
+        spans.push(std::cmp::Reverse((dist(first, last), first, last)));
+        let mut best: Option<(i64, i64)> = None; // (distance, start)
+        while let Some(std::cmp::Reverse((gap, lo, hi))) = spans.pop() {
+            if best.is_some_and(|b| gap > b.0) {
+                break;
+            }
+            if let Some(bound) = fails(lo, hi) {
+                skipped(&mut rejected, bound, lo);
+                continue;
+            }
+            if splits(lo, hi) {
+                let mid = lo + (hi - lo) / 2;
+                for (x, y) in [(lo, mid), (mid + 1, hi)] {
+                    if let Some((x, y)) = clip(x, y) {
+                        spans.push(std::cmp::Reverse((dist(x, y), x, y)));
+                    }
+                }
+                continue;
+            }
+            let mut cells = cells(&cand.clip(lo, hi), self.critical_points(a, d, lo, hi));
+            cells.sort_by_key(|&(x, y)| (dist(x, y), x));
+            for (cell_lo, cell_hi) in cells {
+                if best.is_some_and(|b| dist(cell_lo, cell_hi) > b.0) {
+                    break;
+                }
+                if let Some(bound) = fails(cell_lo, cell_hi) {
+                    skipped(&mut rejected, bound, cell_lo);
+                    continue;
+                }
+                let tries = self.cell_tries(a, d, cell_lo, cell_hi);
+                rejected = rejected.join(Rejected::of_tries(tries.iter()));
+                for t in tries.iter().filter(|t| t.reason.is_none()) {
+                    let s = preferred.clamp(t.starts.lo, t.starts.hi);
+                    let key = ((s - preferred).abs(), s);
+                    if best.is_none_or(|b| key < b) {
+                        best = Some(key);
+                    }
+                }
+            }
+        }
+        let chosen = best.and_then(|(_, s)| self.evaluate(a, s, d).ok());
+        #[cfg(debug_assertions)]
+        debug_assert_eq!(
+            chosen.as_ref().map(|ev| ev.placement.start),
+            self.search(a, d, cand, preferred)
+                .0
+                .map(|ev| ev.placement.start),
+            "skipping spans changed the search's choice"
+        );
+        (chosen, rejected)
     }
 
     /// Every start in `cand` at which activity `a` with duration `d` passes

@@ -366,15 +366,80 @@ pub struct Step {
     pub categories: Vec<CategoryIntervals>,
     /// Intersection of all categories for `duration`, restricted per window.
     pub intersection: IntervalSet,
-    /// The phase-2 tries, merged into ranges (`merge_tries`): of every duration
-    /// tried, except for an expanding activity searched in two parts (the
-    /// min_awake extension near the plan end), whose partial searches are not
-    /// recorded: only the tries of `duration` (the chosen one, or the shortest).
-    pub tries: Vec<Try>,
+    /// How close the starts phase 2 rejected came to the energy and peak
+    /// limits (the relaxation rule of outcome-only runs reads it).
+    #[serde(skip)]
+    pub(crate) rejected: Rejected,
     /// Generated activities added at this step (indices into `Schedule::generated`).
     pub added: Vec<usize>,
     /// Generated activities retired at this step (merged into a new awake period).
     pub retired: Vec<usize>,
+}
+
+/// Upper bounds on how close the starts a step's phase 2 rejected came to
+/// passing, over every duration the step records: what a relaxed plan-wide limit
+/// needs to know to keep the step's outcome (`Relaxation::keeps`). A run that
+/// records tries takes them from its tries; an outcome-only run from its search
+/// (a span skipped on a bound contributes the bound).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Rejected {
+    /// The highest lowest state of charge (mJ) of a start rejected on
+    /// `battery.min_soc`, or an upper bound on it.
+    pub soc: Option<i64>,
+    /// The lowest peak (mW) of a start rejected on `power.max_peak`.
+    pub peak: Option<i64>,
+    /// A start rejected on `min_soc` is reported with numbers that are not its
+    /// range's closest (its cell's passing part lies beside it): no bound.
+    pub soc_untrusted: bool,
+}
+
+impl Rejected {
+    /// Takes in one try: its reason, and whether a passing start touches it.
+    pub(crate) fn add(&mut self, reason: Option<&Phase2Reason>, touches_pass: bool) {
+        match reason {
+            Some(Phase2Reason::MinSoc { soc_mj, .. }) => {
+                self.soc = Some(self.soc.map_or(*soc_mj, |s| s.max(*soc_mj)));
+                self.soc_untrusted |= touches_pass;
+            }
+            Some(Phase2Reason::MaxPeakPower { peak_mw, .. }) => {
+                self.peak = Some(self.peak.map_or(*peak_mw, |p| p.min(*peak_mw)));
+            }
+            _ => {}
+        }
+    }
+
+    /// The summary of tries (merged or not): a try touches a pass when a
+    /// passing try of any duration ends right before it or starts right after it.
+    pub(crate) fn of_tries<'a>(tries: impl Iterator<Item = &'a Try> + Clone) -> Self {
+        let passing = tries.clone().filter(|p| p.reason.is_none());
+        let before: std::collections::HashSet<i64> = passing
+            .clone()
+            .map(|p| p.starts.lo.saturating_sub(1))
+            .collect();
+        let after: std::collections::HashSet<i64> =
+            passing.map(|p| p.starts.hi.saturating_add(1)).collect();
+        let mut out = Self::default();
+        for t in tries {
+            let touches_pass = before.contains(&t.starts.hi) || after.contains(&t.starts.lo);
+            out.add(t.reason.as_ref(), touches_pass);
+        }
+        out
+    }
+
+    /// Both summaries in one.
+    pub(crate) fn join(self, other: Self) -> Self {
+        let mut out = self;
+        out.soc = match (self.soc, other.soc) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        };
+        out.peak = match (self.peak, other.peak) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+        out.soc_untrusted |= other.soc_untrusted;
+        out
+    }
 }
 
 /// What a generated activity is.
