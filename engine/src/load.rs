@@ -2,7 +2,7 @@
 
 use crate::error::{Error, Warning};
 use crate::model::Plan;
-use crate::validate::{check_json_shape, validate};
+use crate::validate::{check_json_shape, shape_may_fail, validate};
 
 /// A plan that passed strict parsing and semantic validation, with its warnings.
 #[derive(Clone, Debug)]
@@ -59,15 +59,27 @@ pub fn load_plan_limited(text: &str, limit: usize) -> Result<LoadedPlan, Error> 
     }
     // serde's derived impls also accept arrays for structs (fields by position);
     // the format does not, and the shape error explains a failed parse better.
-    let too_deep = match serde_json::from_str::<serde_json::Value>(text) {
-        Ok(doc) => {
+    // The streaming walk rules the check out for almost every plan without
+    // building the document; the exact check runs when it cannot.
+    let suspect = shape_may_fail(text);
+    let too_deep = match suspect.then(|| serde_json::from_str::<serde_json::Value>(text)) {
+        None => false,
+        Some(Ok(doc)) => {
             check_json_shape(&doc)?;
             false
         }
         // The typed parse then fails somewhere inside the nesting, with a message
         // about the first value it could not read; the depth is the real cause.
-        Err(e) => e.to_string().contains("recursion limit exceeded"),
+        Some(Err(e)) => e.to_string().contains("recursion limit exceeded"),
     };
+    #[cfg(debug_assertions)]
+    if !suspect {
+        let doc = serde_json::from_str::<serde_json::Value>(text);
+        debug_assert!(
+            doc.is_ok_and(|doc| check_json_shape(&doc).is_ok()),
+            "the shape walk passed a plan the shape check rejects"
+        );
+    }
     let plan = typed.map_err(|e| {
         // Drop trailing unknown segments (`activities[3].?` when the input ends
         // inside an object key); the root is `$`.
@@ -161,6 +173,45 @@ pub fn read_plan_text(path: &std::path::Path, limit: usize) -> Result<String, Er
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_shape_walk_clears_real_plans_and_flags_every_shape_the_check_rejects() {
+        for plan in [
+            include_str!("../../assets/default-plan.json"),
+            include_str!("../../assets/tutorial-plan.json"),
+            include_str!("../../assets/examples/drill-sol.json"),
+        ] {
+            assert!(!shape_may_fail(plan), "a valid plan needs no Value");
+        }
+        let base =
+            r#"{"format":"solscope.plan/1","horizon":{"start":0,"end":10},"activities":[ACT]}"#;
+        let act = r#"{"id":"a","priority":1,"duration":1,"windows":[{"start":0,"end":5}],"effects":[{"state":"s","value":"v","at":"end"}]}"#;
+        assert!(!shape_may_fail(&base.replace("ACT", act)));
+        for (from, to) in [
+            (r#"{"start":0,"end":10}"#, "[0, 10]"),
+            (r#"{"start":0,"end":5}"#, "[0, 5]"),
+            (r#""at":"end""#, r#""at":{"end":null}"#),
+            (r#""at":"end""#, r#""at":["end"]"#),
+            (r#""duration":1,"#, r#""duration":1,"awake":{"any":null},"#),
+            (
+                r#""duration":1,"#,
+                r#""duration":1,"duration_model":[1,2],"#,
+            ),
+            (r#""duration":1,"#, r#""duration":1,"after":[["b"]],"#),
+        ] {
+            let text = base.replace("ACT", act).replacen(from, to, 1);
+            assert!(shape_may_fail(&text), "{text}");
+            let doc: serde_json::Value = serde_json::from_str(&text).expect("json");
+            assert!(check_json_shape(&doc).is_err(), "{text}");
+        }
+        assert!(shape_may_fail(&format!("[{}]", base.replace("ACT", act))));
+        assert!(shape_may_fail(&base.replace("ACT", &format!("[{act}]"))));
+        assert!(shape_may_fail(
+            r#"{"thermal_zones":{"z":{"preheat":[[1]]}}}"#
+        ));
+        assert!(shape_may_fail(r#"{"states":{"s":[1]}}"#));
+        assert!(!shape_may_fail(r#"{"states":{"s":{"values":["a"]}}}"#));
+    }
 
     fn temp(name: &str, bytes: &[u8]) -> std::path::PathBuf {
         let path =

@@ -132,6 +132,242 @@ pub(crate) fn check_json_shape(doc: &Value) -> Result<(), Error> {
     Ok(())
 }
 
+/// Whether [`check_json_shape`] could reject `text`: a streaming walk over the
+/// same paths that flags any array or object where that check looks for one,
+/// without building the document (the `Value` of a 10,000-activity plan costs
+/// more than the rest of loading). `false` guarantees the check passes; `true`
+/// (also for text that is not JSON, or nested too deeply) sends the caller to the
+/// exact check, which names the path.
+pub(crate) fn shape_may_fail(text: &str) -> bool {
+    use serde::de::DeserializeSeed;
+    let de = &mut serde_json::Deserializer::from_str(text);
+    Walk(Ctx::Root).deserialize(&mut *de).is_err() || de.end().is_err()
+}
+
+/// Where [`Walk`] is: what the value there may be.
+#[derive(Clone, Copy)]
+enum Ctx {
+    /// Anything (walked all the same: the walk must meet serde_json's nesting
+    /// and number limits where the exact check's parse does).
+    Any,
+    /// The plan: an object.
+    Root,
+    /// Not an array; contents not looked at.
+    NoArray,
+    /// An array whose elements are in the given context.
+    ArrayOf(Elem),
+    /// `states` or `thermal_zones` (`true`): an object of definitions.
+    Named(bool),
+    /// A state (`false`) or zone (`true`) definition: not an array.
+    Def(bool),
+    /// Not an array and not an object (`awake`, `at`).
+    Scalar,
+}
+
+/// What an array's elements may be.
+#[derive(Clone, Copy)]
+enum Elem {
+    /// Anything.
+    Any,
+    /// Not arrays.
+    NoArray,
+    /// Activities.
+    Activity,
+    /// Effects.
+    Effect,
+}
+
+/// The walk of [`shape_may_fail`]: fails (with a message nobody reads) where the
+/// shape could be wrong.
+struct Walk(Ctx);
+
+fn suspect<E: serde::de::Error>() -> E {
+    E::custom("shape to check")
+}
+
+impl<'de> serde::de::DeserializeSeed<'de> for Walk {
+    type Value = ();
+
+    fn deserialize<D: serde::Deserializer<'de>>(self, de: D) -> Result<(), D::Error> {
+        de.deserialize_any(self)
+    }
+}
+
+impl<'de> serde::de::Visitor<'de> for Walk {
+    type Value = ();
+
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("any JSON value")
+    }
+
+    fn visit_bool<E>(self, _: bool) -> Result<(), E> {
+        Ok(())
+    }
+    fn visit_i64<E>(self, _: i64) -> Result<(), E> {
+        Ok(())
+    }
+    fn visit_u64<E>(self, _: u64) -> Result<(), E> {
+        Ok(())
+    }
+    fn visit_f64<E>(self, _: f64) -> Result<(), E> {
+        Ok(())
+    }
+    fn visit_str<E>(self, _: &str) -> Result<(), E> {
+        Ok(())
+    }
+    fn visit_unit<E>(self) -> Result<(), E> {
+        Ok(())
+    }
+
+    fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<(), A::Error> {
+        let elem = match self.0 {
+            Ctx::ArrayOf(elem) => elem,
+            Ctx::Any => Elem::Any,
+            _ => return Err(suspect()),
+        };
+        while seq.next_element_seed(Elements(elem))?.is_some() {}
+        Ok(())
+    }
+
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
+        while let Some(key) = map.next_key_seed(KeyName)? {
+            let k = key;
+            let ctx = match (self.0, k) {
+                (Ctx::Scalar, _) => return Err(suspect()),
+                (Ctx::Root, Some("activities")) => Some(Ctx::ArrayOf(Elem::Activity)),
+                (Ctx::Root, Some("states")) => Some(Ctx::Named(false)),
+                (Ctx::Root, Some("thermal_zones")) => Some(Ctx::Named(true)),
+                (
+                    Ctx::Root,
+                    Some(
+                        "horizon" | "local_time" | "battery" | "power" | "sleep" | "data"
+                        | "handover" | "execution",
+                    ),
+                ) => Some(Ctx::NoArray),
+                (Ctx::Named(zones), _) => Some(Ctx::Def(zones)),
+                (Ctx::Def(true), Some("preheat" | "operable")) => Some(Ctx::ArrayOf(Elem::NoArray)),
+                _ => None,
+            };
+            map.next_value_seed(Walk(ctx.unwrap_or(Ctx::Any)))?;
+        }
+        Ok(())
+    }
+}
+
+/// An array element of this kind: activities and effects are objects whose
+/// fields are walked in their own context.
+struct Elements(Elem);
+
+impl<'de> serde::de::DeserializeSeed<'de> for Elements {
+    type Value = ();
+
+    fn deserialize<D: serde::Deserializer<'de>>(self, de: D) -> Result<(), D::Error> {
+        match self.0 {
+            Elem::Any => Walk(Ctx::Any).deserialize(de),
+            Elem::NoArray => Walk(Ctx::NoArray).deserialize(de),
+            Elem::Activity => de.deserialize_any(Fields(Elem::Activity)),
+            Elem::Effect => de.deserialize_any(Fields(Elem::Effect)),
+        }
+    }
+}
+
+/// The fields of an activity or an effect.
+struct Fields(Elem);
+
+impl<'de> serde::de::Visitor<'de> for Fields {
+    type Value = ();
+
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("an object")
+    }
+
+    fn visit_bool<E>(self, _: bool) -> Result<(), E> {
+        Ok(())
+    }
+    fn visit_i64<E>(self, _: i64) -> Result<(), E> {
+        Ok(())
+    }
+    fn visit_u64<E>(self, _: u64) -> Result<(), E> {
+        Ok(())
+    }
+    fn visit_f64<E>(self, _: f64) -> Result<(), E> {
+        Ok(())
+    }
+    fn visit_str<E>(self, _: &str) -> Result<(), E> {
+        Ok(())
+    }
+    fn visit_unit<E>(self) -> Result<(), E> {
+        Ok(())
+    }
+
+    fn visit_seq<A: serde::de::SeqAccess<'de>>(self, _: A) -> Result<(), A::Error> {
+        Err(suspect())
+    }
+
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
+        while let Some(key) = map.next_key_seed(KeyName)? {
+            let ctx = match (self.0, key) {
+                (Elem::Activity, Some("duration_model")) => Some(Ctx::NoArray),
+                (Elem::Activity, Some("windows" | "after" | "requires")) => {
+                    Some(Ctx::ArrayOf(Elem::NoArray))
+                }
+                (Elem::Activity, Some("effects")) => Some(Ctx::ArrayOf(Elem::Effect)),
+                (Elem::Activity, Some("awake")) | (Elem::Effect, Some("at")) => Some(Ctx::Scalar),
+                _ => None,
+            };
+            map.next_value_seed(Walk(ctx.unwrap_or(Ctx::Any)))?;
+        }
+        Ok(())
+    }
+}
+
+/// A map key, kept only when it is one the walk looks at (no allocation for the
+/// others: borrowed from the input when it has no escapes).
+struct KeyName;
+
+const KEYS: &[&str] = &[
+    "activities",
+    "states",
+    "thermal_zones",
+    "horizon",
+    "local_time",
+    "battery",
+    "power",
+    "sleep",
+    "data",
+    "handover",
+    "execution",
+    "preheat",
+    "operable",
+    "duration_model",
+    "windows",
+    "after",
+    "requires",
+    "effects",
+    "awake",
+    "at",
+];
+
+impl<'de> serde::de::DeserializeSeed<'de> for KeyName {
+    type Value = Option<&'static str>;
+
+    fn deserialize<D: serde::Deserializer<'de>>(self, de: D) -> Result<Self::Value, D::Error> {
+        de.deserialize_str(self)
+    }
+}
+
+impl<'de> serde::de::Visitor<'de> for KeyName {
+    type Value = Option<&'static str>;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("a key")
+    }
+
+    fn visit_str<E>(self, v: &str) -> Result<Self::Value, E> {
+        Ok(KEYS.iter().find(|k| **k == v).copied())
+    }
+}
+
 /// [`check_json_shape`] for one activity object at `path`.
 pub(crate) fn check_activity_shape(act: &Object, path: &str) -> Result<(), Error> {
     if let Some(model) = act.get("duration_model") {
