@@ -258,7 +258,7 @@ fn every_reason_kind_shows_its_numbers() {
     // its kind.
     assert!(
         h.query_by_label_contains(
-            "preheat_operability for starts 44680–45580: mast preheat from 41080"
+            "preheat_operability for starts Sol 412 05:45:05 (t=44680)–Sol 412 06:00:05 (t=45580): mast preheat from Sol 412 04:45:05 (t=41080)"
         )
         .is_some()
     );
@@ -356,7 +356,7 @@ fn the_cycle_slider_and_the_step_slider_inside_a_cycle() {
     h.run_steps(3);
     assert_eq!(h.state().ui.nav.cycle, 1);
     assert!(
-        h.query_by_label_contains("cycle 1 of 21: at 1800 (10:30:00), replan period")
+        h.query_by_label_contains("cycle 1 of 21: at Sol 0 10:30:00 (t=1800), replan period")
             .is_some()
     );
     // Page Down moves on; the cycle's run is shown at its last step.
@@ -373,7 +373,7 @@ fn the_cycle_slider_and_the_step_slider_inside_a_cycle() {
     assert_eq!(cycle.activity_of.len(), 3);
     assert_eq!(h.state().cycle_run().unwrap().steps(), 3);
     assert!(
-        h.query_by_label_contains("cycle 4 of 21: at 6400 (11:46:40), after drive ended")
+        h.query_by_label_contains("cycle 4 of 21: at Sol 0 11:46:40 (t=6400), after drive ended")
             .is_some()
     );
     assert!(
@@ -523,7 +523,7 @@ fn an_edit_reruns_the_execution_and_the_inspector_shows_what_happened() {
             .is_some()
     );
     assert!(
-        h.query_by_label_contains("min_soc broken from 7030 (11:57:10): worst 915.1 Wh")
+        h.query_by_label_contains("min_soc broken from Sol 0 11:57:10 (t=7030): worst 915.1 Wh")
             .is_some()
     );
     assert!(
@@ -537,7 +537,7 @@ fn an_edit_reruns_the_execution_and_the_inspector_shows_what_happened() {
     // Why, from the explainer at the cycle that decided it.
     assert!(
         h.query_by_label_contains(
-            "post_drive_imaging was not run: at the cycle at 7200 (12:00:00) the scheduler could not place it: placement (min_soc)"
+            "post_drive_imaging was not run: at the cycle at Sol 0 12:00:00 (t=7200) the scheduler could not place it: placement (min_soc)"
         )
         .is_some()
     );
@@ -1039,19 +1039,19 @@ fn selecting_an_activity_shows_its_flexibility() {
     // The same numbers as `solscope flex --text`.
     let text = solscope_engine::flex_text(&h.state().doc.plan, h.state().flex().unwrap());
     assert!(text.contains(
-        "watson_pre_abrasion: scheduled at 57880 (09:25:05); may start from 56980 (09:10:05) \
-         to 63580 (11:00:05) (15 min earlier, 1 h 35 min later)."
+        "watson_pre_abrasion: scheduled at Sol 412 09:25:05 (t=57880); may start from Sol 412 09:10:05 (t=56980) \
+         to Sol 412 11:00:05 (t=63580) (15 min earlier, 1 h 35 min later)."
     ));
     assert!(h.query_by_label("Flexibility").is_some());
     for line in [
-        "Scheduled at 57880 (09:25:05).",
-        "May start from 56980 (09:10:05) to 63580 (11:00:05) (15 min earlier, 1 h 35 min later).",
+        "Scheduled at Sol 412 09:25:05 (t=57880).",
+        "May start from Sol 412 09:10:05 (t=56980) to Sol 412 11:00:05 (t=63580) (15 min earlier, 1 h 35 min later).",
         "Starts no earlier than 10 min after arm_unstow_412 starts.",
         "Starts no earlier than 10 min after fsw_housekeeping_412 starts.",
         "Starts no later than 40 min after arm_unstow_412 starts.",
-        "Skipped once the earliest of 63580 (11:00:05) and 40 min after arm_unstow_412 starts \
+        "Skipped once the earliest of Sol 412 11:00:05 (t=63580) and 40 min after arm_unstow_412 starts \
          has passed without it starting.",
-        "Free slack (every check, others fixed): 57880 (09:25:05) to 58480 (09:35:05)",
+        "Free slack (every check, others fixed): Sol 412 09:25:05 (t=57880) to Sol 412 09:35:05 (t=58480)",
         // The bundled plan's sol-413 drive is not dynamically controllable; the
         // WATSON image is not involved: one line, not the whole verdict.
         "The plan is not dynamically controllable, because of drive_413; this activity is not involved.",
@@ -1077,7 +1077,7 @@ fn selecting_an_activity_shows_its_flexibility() {
     assert_eq!(h.state().ui.nav.selected, Some(unstow));
     assert!(
         h.query_by_label(
-            "May start from 56380 (09:00:05) to 61780 (10:30:05) (15 min earlier, 1 h 15 min later)."
+            "May start from Sol 412 09:00:05 (t=56380) to Sol 412 10:30:05 (t=61780) (15 min earlier, 1 h 15 min later)."
         )
         .is_some()
     );
@@ -1157,7 +1157,7 @@ fn dragging_a_bar_inside_its_slack_previews_and_changes_nothing() {
     let watson = index(h.state(), "watson_pre_abrasion");
     let to = drag_bar(&mut h, watson, 3000);
     assert!(
-        h.query_by_label_contains("watson_pre_abrasion at 60880")
+        h.query_by_label_contains("watson_pre_abrasion at Sol 412 10:15:05 (t=60880)")
             .is_some_and(|n| n
                 .accesskit_node()
                 .value()
@@ -1274,7 +1274,7 @@ fn an_activity_fixed_in_time_outlines_no_unrelated_neighbours() {
     assert!(listed.is_empty(), "{listed:?}");
     assert!(
         h.query_by_label(
-            "May start from 4200 (19:10:00) to 4200 (19:10:00) (0 s earlier, 0 s later)."
+            "May start from Sol 411 19:10:00 (t=4200) to Sol 411 19:10:00 (t=4200) (0 s earlier, 0 s later)."
         )
         .is_some()
     );
@@ -1291,10 +1291,10 @@ fn a_controllable_plan_shows_the_waits_of_the_selected_activity() {
     app.apply(Command::Select(Some(post)));
     let h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
     for line in [
-        "May start from 4600 (11:16:40) to 9400 (12:36:40) (30 min earlier, 50 min later).",
+        "May start from Sol 0 11:16:40 (t=4600) to Sol 0 12:36:40 (t=9400) (30 min earlier, 50 min later).",
         "Starts no earlier than when drive ends.",
         "Starts no later than 30 min after drive ends.",
-        "Skipped once the earliest of 9400 (12:36:40) and 30 min after drive ends has passed \
+        "Skipped once the earliest of Sol 0 12:36:40 (t=9400) and 30 min after drive ends has passed \
          without it starting.",
         "Dynamically controllable: every outcome of the uncertain durations can be met.",
         "Waits until drive ends or 1 h 50 min after it starts.",

@@ -104,7 +104,10 @@ fn explain_text_and_single_activity() {
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("== B (B), step 2"), "{text}");
-    assert!(text.contains("(00:00:00)"), "local times are shown: {text}");
+    assert!(
+        text.contains("Sol 0 00:00:00 (t=0)"),
+        "sol and local times are shown: {text}"
+    );
     // A scheduled activity on request.
     let doc = json(&run(&[
         "explain",

@@ -86,6 +86,15 @@ pub struct Theme {
     pub ghost: Color32,
 }
 
+/// Height of the Gantt's time ruler (points).
+pub const RULER_HEIGHT: f32 = 16.0;
+/// Least distance between two labelled time ticks (points).
+pub const TICK_GAP: f64 = 64.0;
+/// Length of a time tick on the ruler (points).
+pub const TICK_LENGTH: f32 = 4.0;
+/// Stroke of a sol boundary line through the Gantt rows.
+pub const SOL_LINE_STROKE: f32 = 1.0;
+
 /// Height of one Gantt lane (points).
 pub const LANE_HEIGHT: f32 = 16.0;
 /// Gap between lanes.

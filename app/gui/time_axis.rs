@@ -1,7 +1,98 @@
 //! The one place where plan time and screen x are mapped to each other (in `f64`),
-//! shared by the Gantt rows and the plots.
+//! shared by the Gantt rows and the plots, and where the time ticks are chosen:
+//! round local times of day, and sol boundaries.
 
 use eframe::egui::Rect;
+use solscope_engine::{LocalTime, format_time_of_day};
+
+/// Local-time tick steps (seconds), finest first: a tick sits where the local
+/// time of day is a multiple of the step, so they restart at every midnight.
+const TICK_STEPS: [i64; 13] = [
+    10,
+    30,
+    60,
+    300,
+    600,
+    900,
+    1800,
+    3600,
+    7200,
+    10800,
+    21600,
+    43200,
+    i64::MAX,
+];
+
+/// One labelled time on an axis.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tick {
+    /// Plan time.
+    pub t: f64,
+    /// `Sol 412` at a sol boundary, else the local time of day (`14:00`, or
+    /// `14:05:30` when the step is under a minute). Empty for a sol boundary
+    /// drawn as a line without a label (too many sols to label each).
+    pub label: String,
+    /// A sol boundary (local midnight).
+    pub sol_start: bool,
+    /// The step this tick belongs to (the sol length for sol boundaries).
+    pub step: f64,
+}
+
+/// The ticks of `axis` shown `width` pixels wide, at least `min_gap` pixels
+/// apart: the finest round local-time step that keeps them apart, and every sol
+/// boundary (labelled every sol, or every few sols when they are too close).
+pub fn ticks(axis: &TimeAxis, width: f64, clock: &LocalTime, min_gap: f64) -> Vec<Tick> {
+    let per_px = axis.seconds_per_pixel(width);
+    let sol = clock.sol_length.max(1);
+    let step = TICK_STEPS
+        .into_iter()
+        .find(|&s| s >= sol || (s as f64) / per_px >= min_gap)
+        .unwrap_or(i64::MAX);
+    let label_every = ((min_gap * per_px) / sol as f64).ceil().max(1.0) as i64;
+    let (lo, hi) = (axis.start.floor() as i64, axis.end.ceil() as i64);
+    let mut out = Vec::new();
+    // The local midnight at or before the start, then one sol at a time.
+    let mut midnight = lo - clock.time_of_day(lo);
+    while midnight <= hi {
+        let number = clock.sol(midnight);
+        if midnight >= lo {
+            out.push(Tick {
+                t: midnight as f64,
+                label: if number.rem_euclid(label_every) == 0 {
+                    format!("Sol {number}")
+                } else {
+                    String::new()
+                },
+                sol_start: true,
+                step: sol as f64,
+            });
+        }
+        if step < sol {
+            // The first step in the visible part of this sol.
+            let from = ((lo - midnight).max(step) + step - 1) / step * step;
+            let mut tod = from;
+            while tod < sol && midnight + tod <= hi {
+                // The last step of a sol is shorter: skip a tick crowding midnight.
+                if (sol - tod) as f64 / per_px >= min_gap / 2.0 {
+                    let label = if step < 60 {
+                        format_time_of_day(tod)
+                    } else {
+                        format_time_of_day(tod)[..5].to_string()
+                    };
+                    out.push(Tick {
+                        t: (midnight + tod) as f64,
+                        label,
+                        sol_start: false,
+                        step: step as f64,
+                    });
+                }
+                tod += step;
+            }
+        }
+        midnight += sol;
+    }
+    out
+}
 
 /// The visible time range `[start, end)` in plan seconds.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -82,6 +173,55 @@ impl TimeAxis {
 mod tests {
     use super::*;
     use eframe::egui::{Rect, pos2};
+
+    fn clock() -> LocalTime {
+        LocalTime {
+            sol_length: 88_775,
+            offset: 64_800,
+            first_sol: Some(411),
+        }
+    }
+
+    #[test]
+    fn ticks_sit_on_round_local_times_and_sol_boundaries() {
+        // Two sols on 1,000 px: hours would be 40 px apart, so every 3 h.
+        let axis = TimeAxis::new(0.0, 177_550.0);
+        let t = ticks(&axis, 1000.0, &clock(), 60.0);
+        let sols: Vec<&str> = t
+            .iter()
+            .filter(|k| k.sol_start)
+            .map(|k| k.label.as_str())
+            .collect();
+        assert_eq!(sols, ["Sol 412", "Sol 413"]);
+        assert_eq!((t[0].t, t[0].label.as_str()), (0.0, "18:00"), "{t:?}");
+        assert_eq!((t[1].t, t[1].label.as_str()), (10_800.0, "21:00"));
+        let first_sol = t.iter().position(|k| k.sol_start).expect("a sol");
+        assert_eq!(t[first_sol].t, 23_975.0, "local midnight");
+        assert_eq!(t[first_sol + 1].label, "03:00");
+        for pair in t.windows(2) {
+            assert!(pair[1].t > pair[0].t, "sorted: {pair:?}");
+            let gap = (pair[1].t - pair[0].t) / axis.seconds_per_pixel(1000.0);
+            assert!(gap >= 30.0, "not crowded: {pair:?}");
+        }
+        // Zoomed to 20 minutes: ticks every five minutes, labelled hh:mm.
+        let axis = TimeAxis::new(23_975.0 + 36_000.0, 23_975.0 + 37_200.0);
+        let t = ticks(&axis, 1000.0, &clock(), 60.0);
+        assert!(t.iter().all(|k| !k.sol_start));
+        assert_eq!(t[0].label, "10:00");
+        assert_eq!(t[1].label, "10:05");
+        assert_eq!(t.len(), 5, "{t:?}");
+        // Thirty sols on 600 px: only sol boundaries, every few labelled.
+        let axis = TimeAxis::new(0.0, 30.0 * 88_775.0);
+        let t = ticks(&axis, 600.0, &clock(), 60.0);
+        assert!(t.iter().all(|k| k.sol_start));
+        assert_eq!(t.len(), 30);
+        let labelled: Vec<&Tick> = t.iter().filter(|k| !k.label.is_empty()).collect();
+        assert!(labelled.len() >= 5 && labelled.len() <= 10, "{labelled:?}");
+        for pair in labelled.windows(2) {
+            let gap = (pair[1].t - pair[0].t) / axis.seconds_per_pixel(600.0);
+            assert!(gap >= 60.0, "labels apart: {pair:?}");
+        }
+    }
 
     #[test]
     fn maps_both_ways_and_zooms_about_a_point() {

@@ -348,6 +348,7 @@ pub fn generate_plan(activities: usize, sols: usize, seed: u64) -> Plan {
         local_time: LocalTime {
             sol_length: sol,
             offset: 0,
+            first_sol: None,
         },
         battery: Battery {
             capacity: 2400.0,
@@ -566,6 +567,7 @@ impl Realistic {
             local_time: LocalTime {
                 sol_length: MARS_SOL,
                 offset: self.offset,
+                first_sol: None,
             },
             battery: Battery {
                 capacity,

@@ -161,7 +161,8 @@ pub struct Horizon {
     pub end: i64,
 }
 
-/// Local time of day: `(offset + t) mod sol_length`.
+/// Local time of day, `(offset + t) mod sol_length`, and the sol number,
+/// `first_sol + floor((offset + t) / sol_length)`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LocalTime {
@@ -171,6 +172,11 @@ pub struct LocalTime {
     /// Local time of day at plan time 0.
     #[serde(default)]
     pub offset: i64,
+    /// The number of the sol that holds plan time 0 (solscope's extension of the
+    /// format; 0 when absent). It names sols in what solscope prints and
+    /// changes nothing the scheduler decides.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first_sol: Option<i64>,
 }
 
 fn default_sol_length() -> i64 {
@@ -182,11 +188,20 @@ impl Default for LocalTime {
         Self {
             sol_length: MARS_SOL,
             offset: 0,
+            first_sol: None,
         }
     }
 }
 
 impl LocalTime {
+    /// The sol number of plan time `t`: local midnights start sols, and the sol
+    /// holding plan time 0 is `first_sol` (0 when absent).
+    pub fn sol(&self, t: i64) -> i64 {
+        let len = self.sol_length.max(1);
+        let days = (self.offset.saturating_add(t)).div_euclid(len);
+        self.first_sol.unwrap_or(0).saturating_add(days)
+    }
+
     /// Local time of day (seconds after local midnight) of plan time `t`.
     pub fn time_of_day(&self, t: i64) -> i64 {
         let len = self.sol_length.max(1);

@@ -140,14 +140,20 @@ pub fn format_time_of_day(time_of_day: i64) -> String {
     )
 }
 
-/// The local time of day of plan time `t` as `hh:mm:ss`.
+/// Plan time `t` as a planner reads it: its sol and local time of day,
+/// `Sol 413 14:15:00`.
 pub fn format_local(clock: &LocalTime, t: i64) -> String {
-    format_time_of_day(clock.time_of_day(t))
+    format!(
+        "Sol {} {}",
+        clock.sol(t),
+        format_time_of_day(clock.time_of_day(t))
+    )
 }
 
-/// Plan time `t` with its local time of day: `600 (00:10:00)`.
+/// Plan time `t` in sol and local time, with the plan second it is (what the
+/// JSON documents hold): `Sol 413 14:15:00 (t=600)`.
 pub fn format_plan_time(clock: &LocalTime, t: i64) -> String {
-    format!("{t} ({})", format_local(clock, t))
+    format!("{} (t={t})", format_local(clock, t))
 }
 
 /// A length of time for reading: `45 s`, `12 min 05 s`, `3 h 07 min`.
@@ -175,11 +181,22 @@ mod tests {
         let clock = LocalTime {
             sol_length: 88_775,
             offset: 64_800,
+            first_sol: Some(411),
         };
-        assert_eq!(format_local(&clock, 0), "18:00:00");
-        assert_eq!(format_plan_time(&clock, 600), "600 (18:10:00)");
-        // Past local midnight the day wraps at the sol length.
-        assert_eq!(format_local(&clock, 88_775 - 64_800), "00:00:00");
+        assert_eq!(format_local(&clock, 0), "Sol 411 18:00:00");
+        assert_eq!(format_plan_time(&clock, 600), "Sol 411 18:10:00 (t=600)");
+        // Past local midnight the day wraps at the sol length, and the sol counts on.
+        assert_eq!(format_local(&clock, 88_775 - 64_800), "Sol 412 00:00:00");
+        assert_eq!(
+            format_local(&clock, 88_775 - 64_800 - 1),
+            "Sol 411 24:39:34"
+        );
+        assert_eq!(format_local(&clock, -64_801), "Sol 410 24:39:34");
+        let unnamed = LocalTime {
+            first_sol: None,
+            ..clock
+        };
+        assert_eq!(format_local(&unnamed, 88_775 * 3), "Sol 3 18:00:00");
         assert_eq!(format_time_of_day(88_774), "24:39:34");
         assert_eq!(format_span(45), "45 s");
         assert_eq!(format_span(725), "12 min 05 s");

@@ -14,7 +14,8 @@
 //! - Times (`horizon`, `local_time.offset`, window `cutoff`s) lie within ±1e10 s;
 //!   durations, delays and table/period entries are at most 1e10 s;
 //!   `horizon.start < horizon.end` and the horizon is at most 1e9 s long;
-//!   `local_time.sol_length > 0`.
+//!   `local_time.sol_length > 0`; `local_time.first_sol` is at most 1e6 in
+//!   magnitude.
 //! - Every number is finite; powers and rates are at most 1e6 (W, Mbit/s) in
 //!   magnitude, energies and data volumes at most 1e12 (Wh, Mbit).
 //! - Battery: `capacity > 0`, `min_soc >= 0`, `0 <= initial <= capacity`.
@@ -70,6 +71,8 @@ pub const MAX_CYCLES: i64 = 100_000;
 
 /// Largest magnitude of any time (plan seconds), and of any duration or delay.
 pub(crate) const MAX_TIME: i64 = 10_000_000_000;
+/// Largest magnitude of `local_time.first_sol`.
+pub(crate) const MAX_SOL_NUMBER: i64 = 1_000_000;
 /// Longest allowed horizon, in seconds.
 pub(crate) const MAX_HORIZON_LENGTH: i64 = 1_000_000_000;
 /// Largest magnitude of a power (W) or data rate (Mbit/s).
@@ -713,7 +716,14 @@ impl<'p> Validator<'p> {
     fn local_time(&self) -> Result<(), Error> {
         let lt = self.plan.local_time;
         self.length("local_time.sol_length", lt.sol_length, true)?;
-        self.time("local_time.offset", lt.offset)
+        self.time("local_time.offset", lt.offset)?;
+        match lt.first_sol {
+            Some(n) if n.abs() > MAX_SOL_NUMBER => Err(invalid(
+                "local_time.first_sol",
+                format!("a sol number is at most {MAX_SOL_NUMBER} in magnitude (got {n})"),
+            )),
+            _ => Ok(()),
+        }
     }
 
     fn battery(&mut self) -> Result<(), Error> {

@@ -21,8 +21,9 @@ use crate::gui::state::Mode;
 use crate::gui::theme::{
     BAR_FONT_SIZE, BAR_ROUNDING, BASELINE_HEIGHT, CURRENT_STROKE, CYCLE_LINE_STROKE, GHOST_STROKE,
     LABEL_MIN_WIDTH, LABEL_WIDTH, LANE_GAP, LANE_HEIGHT, MARKER_WIDTH, NEIGHBOUR_STROKE,
-    PROBE_LINE_STROKE, SELECTION_STROKE,
+    PROBE_LINE_STROKE, RULER_HEIGHT, SELECTION_STROKE, SOL_LINE_STROKE, TICK_GAP, TICK_LENGTH,
 };
+use crate::gui::time_axis::ticks;
 
 /// One bar.
 #[derive(Clone, Debug)]
@@ -551,6 +552,58 @@ struct Hovered {
     click: Option<Command>,
 }
 
+/// The timeline part of `rect`: the plots' data area of the last frame (so one
+/// time is one x on the ruler, the bars and the plots), else right of the labels.
+fn timeline_of(rect: Rect, cache: &ViewCache) -> Rect {
+    let (left, right) = cache
+        .plot_x
+        .filter(|(l, r)| *l > rect.left() && *r <= rect.right() + 1.0 && r > l)
+        .unwrap_or((rect.left() + LABEL_WIDTH, rect.right()));
+    Rect::from_min_max(Pos2::new(left, rect.top()), Pos2::new(right, rect.bottom()))
+}
+
+/// The Gantt's time ruler, above its scrolling rows so it stays in view: round
+/// local times of day and labelled sol boundaries (`time_axis::ticks`).
+pub fn ruler_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &ViewCache) {
+    let (rect, _) = ui.allocate_exact_size(
+        egui::vec2(ui.available_width(), RULER_HEIGHT),
+        Sense::hover(),
+    );
+    let timeline = timeline_of(rect, cache);
+    let painter = ui.painter_at(rect);
+    let font = FontId::proportional(BAR_FONT_SIZE);
+    let axis = m.nav.axis;
+    let width = f64::from(timeline.width());
+    for tick in ticks(&axis, width, &m.doc.plan.local_time, TICK_GAP) {
+        let x = axis.x(tick.t, timeline) as f32;
+        let (top, colour) = if tick.sol_start {
+            (rect.top(), m.theme.label)
+        } else {
+            (rect.bottom() - TICK_LENGTH, m.theme.muted)
+        };
+        painter.line_segment(
+            [Pos2::new(x, top), Pos2::new(x, rect.bottom())],
+            Stroke::new(SOL_LINE_STROKE, colour),
+        );
+        if !tick.label.is_empty() {
+            painter.text(
+                Pos2::new(x + 2.0, rect.center().y),
+                Align2::LEFT_CENTER,
+                &tick.label,
+                font.clone(),
+                colour,
+            );
+        }
+    }
+    painter.text(
+        Pos2::new(rect.left() + 2.0, rect.center().y),
+        Align2::LEFT_CENTER,
+        "local time",
+        font,
+        m.theme.muted,
+    );
+}
+
 /// The Gantt chart.
 pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &mut Vec<Command>) {
     let k = m.nav.step;
@@ -619,13 +672,25 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
     };
     response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, "Gantt chart"));
     // Share the plots' data area (last frame) so one time is one x everywhere.
-    let (left, right) = cache
-        .plot_x
-        .filter(|(l, r)| *l > rect.left() && *r <= rect.right() + 1.0 && r > l)
-        .unwrap_or((rect.left() + LABEL_WIDTH, rect.right()));
-    let timeline = Rect::from_min_max(Pos2::new(left, rect.top()), Pos2::new(right, rect.bottom()));
+    let timeline = timeline_of(rect, cache);
     let painter = ui.painter_at(rect);
     let axis = m.nav.axis;
+    // Sol boundaries as lines behind the rows (the ruler above labels them).
+    for tick in ticks(
+        &axis,
+        f64::from(timeline.width()),
+        &m.doc.plan.local_time,
+        TICK_GAP,
+    )
+    .iter()
+    .filter(|t| t.sol_start)
+    {
+        let x = axis.x(tick.t, timeline) as f32;
+        painter.line_segment(
+            [Pos2::new(x, rect.top()), Pos2::new(x, rect.bottom())],
+            Stroke::new(SOL_LINE_STROKE, m.theme.muted.gamma_multiply(0.5)),
+        );
+    }
     let bounds = (
         m.doc.plan.horizon.start as f64,
         m.doc.plan.horizon.end as f64,

@@ -209,7 +209,7 @@ impl Model<'_> {
         self.flex_ready().filter(|_| shown)
     }
 
-    /// Plan time as `t (hh:mm:ss)`.
+    /// Plan time as `Sol 413 14:15:00 (t=600)`.
     pub fn time(&self, t: i64) -> String {
         solscope_engine::format_plan_time(&self.doc.plan.local_time, t)
     }
@@ -330,6 +330,7 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
     }
     egui::CentralPanel::default().show(ui, |ui| {
         axis_ui(ui, m, &mut w.text.range_text, cmds);
+        gantt::ruler_ui(ui, m, w.cache);
         egui::ScrollArea::vertical()
             .auto_shrink([false; 2])
             .show(ui, |ui| {

@@ -5,10 +5,10 @@
 //! the executed and predicted values at the time clicked.
 
 use eframe::egui::{self, Color32, RichText};
-use egui_plot::{HLine, Line, LineStyle, Plot, PlotPoints, VLine};
+use egui_plot::{GridMark, HLine, Line, LineStyle, Plot, PlotPoints, VLine};
 use solscope_engine::{
-    Consumer, MJ_PER_WH, MW_PER_W, ViolationKind, energy_consumers, format_plan_time, format_watts,
-    format_wh, peak_users,
+    Consumer, MJ_PER_WH, MW_PER_W, ViolationKind, energy_consumers, format_time_of_day,
+    format_watts, format_wh, peak_users,
 };
 
 use super::execution::kind_name;
@@ -16,7 +16,8 @@ use super::{Model, ViewCache};
 use crate::gui::commands::Command;
 use crate::gui::execution::ExecutionRun;
 use crate::gui::state::{Mode, StepView};
-use crate::gui::theme::{CYCLE_LINE_STROKE, LABEL_WIDTH, PLOT_HEIGHT};
+use crate::gui::theme::{CYCLE_LINE_STROKE, LABEL_WIDTH, PLOT_HEIGHT, TICK_GAP};
+use crate::gui::time_axis::{TimeAxis, ticks};
 
 /// One line on a plot.
 struct Series<'a> {
@@ -72,10 +73,28 @@ fn plot_ui(
         })
         .collect();
     let local = m.doc.plan.local_time;
+    // The Gantt ruler's ticks: round local times, sol boundaries thicker.
     let plot = Plot::new(id)
+        .x_grid_spacer(move |input| {
+            let shown = TimeAxis::new(input.bounds.0, input.bounds.1);
+            ticks(&shown, width, &local, TICK_GAP)
+                .into_iter()
+                .map(|t| GridMark {
+                    value: t.t,
+                    step_size: t.step,
+                })
+                .collect()
+        })
         .x_axis_formatter(move |mark, _range| {
             let t = mark.value.round() as i64;
-            format_plan_time(&local, t)
+            let tod = local.time_of_day(t);
+            if tod == 0 {
+                format!("Sol {}", local.sol(t))
+            } else if mark.step_size < 60.0 {
+                format_time_of_day(tod)
+            } else {
+                format_time_of_day(tod)[..5].to_string()
+            }
         })
         .height(PLOT_HEIGHT)
         .allow_zoom(false)

@@ -108,8 +108,8 @@ pub fn reason_line(plan: &Plan, problem: &Problem, r: &ReasonRange) -> String {
     format!(
         "{} for starts {}–{}: {detail}",
         r.reason.kind().name(),
-        r.first,
-        r.last
+        at(problem, r.first),
+        at(problem, r.last)
     )
 }
 

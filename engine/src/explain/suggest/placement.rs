@@ -9,7 +9,7 @@ use super::{Candidate, floor3};
 use crate::explain::Explanation;
 use crate::model::{AwakeMode, Plan};
 use crate::scheduler::{Phase2Reason, Schedule};
-use crate::units::{format_local, watts, wh};
+use crate::units::{format_time_of_day, watts, wh};
 
 /// The closest numbers per reason kind over every failing range of starts.
 #[derive(Default)]
@@ -317,8 +317,8 @@ fn extend_operable(
     zones[name]["operable"] = Value::Array(periods);
     Some(Candidate::plan(
         format!(
-            "Allow {name} heating from {} local time",
-            format_local(&problem.clock, preheat_start)
+            "Allow {name} heating from {} local time (every sol)",
+            format_time_of_day(tod)
         ),
         "thermal_zones",
         zones,
