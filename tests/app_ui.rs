@@ -1803,3 +1803,63 @@ fn the_inspector_s_involved_list_is_the_explanation_s_culprits() {
     );
     assert!(h.query_by_label(&text).is_some(), "{text}");
 }
+
+#[test]
+fn a_time_range_is_typed_in_sols_and_local_time() {
+    let mut h = harness(
+        SolscopeApp::with_default_plan().unwrap(),
+        SNAPSHOT_SIZE.into(),
+        &View::default(),
+    )
+    .unwrap();
+    // The fields show the visible range as sol and local time.
+    assert_eq!(
+        h.state().ui.text.range_text,
+        [
+            "Sol 411 18:00:00".to_string(),
+            "Sol 413 18:00:00".to_string()
+        ]
+    );
+    for (label, text) in [("from", "Sol 412 08:00"), ("to", "12:00")] {
+        h.get_by_label(label).focus();
+        h.run_steps(1);
+        h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::A);
+        h.get_by_label(label).type_text(text);
+        h.run_steps(1);
+    }
+    h.get_by_label("Apply range").click();
+    h.run_steps(3);
+    // Sol 412 starts at plan time 23975 (local midnight): 08:00 is 28800 s later,
+    // and the end without a sol is in the start's sol.
+    let axis = h.state().ui.nav.axis;
+    assert_eq!((axis.start, axis.end), (52_775.0, 67_175.0));
+    assert_eq!(
+        h.state().ui.text.range_text,
+        [
+            "Sol 412 08:00:00".to_string(),
+            "Sol 412 12:00:00".to_string()
+        ]
+    );
+    assert!(h.query_by_label("t=52775–67175 s").is_some());
+    // Plan seconds still work, and a bad time says what to type.
+    for (label, text) in [("from", "60000"), ("to", "Sol 412 25:00")] {
+        h.get_by_label(label).focus();
+        h.run_steps(1);
+        h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::A);
+        h.get_by_label(label).type_text(text);
+        h.run_steps(1);
+    }
+    h.get_by_label("Apply range").click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.axis, axis, "nothing applied");
+    assert!(
+        h.state()
+            .ui
+            .messages
+            .error
+            .as_deref()
+            .is_some_and(|e| e.contains("Sol 413 08:00")),
+        "{:?}",
+        h.state().ui.messages.error
+    );
+}

@@ -86,10 +86,11 @@ impl SolscopeApp {
         let axis = TimeAxis::new(doc.plan.horizon.start as f64, doc.plan.horizon.end as f64);
         let steps = analysis.steps();
         let step_view = step_view(&analysis, steps);
+        let ui = UiState::new(steps, axis, &doc.plan.local_time);
         Ok(Self {
             doc,
             analysis,
-            ui: UiState::new(steps, axis),
+            ui,
             persisted: Persisted::default(),
             theme: Theme::new(true),
             step_view,
@@ -466,7 +467,7 @@ impl SolscopeApp {
             Command::SetAxis(axis) => {
                 self.ui.nav.axis = axis;
                 self.ui.nav.axis.clamp(self.bounds());
-                self.ui.sync_range_text();
+                self.ui.sync_range_text(&self.doc.plan.local_time);
             }
             Command::ProbePlot(t) => self.ui.nav.probe = t,
             Command::SetSinceFull(on) => self.ui.nav.since_full = on,

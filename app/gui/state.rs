@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-use solscope_engine::Profiles;
+use solscope_engine::{LocalTime, Profiles, format_local};
 
 use super::document::OutcomeDiff;
 use super::time_axis::TimeAxis;
@@ -179,8 +179,9 @@ pub struct UiState {
 }
 
 impl UiState {
-    /// The state of a freshly opened plan: its last step over `axis`.
-    pub fn new(step: usize, axis: TimeAxis) -> Self {
+    /// The state of a freshly opened plan: its last step over `axis`, times
+    /// shown on `clock`.
+    pub fn new(step: usize, axis: TimeAxis, clock: &LocalTime) -> Self {
         let mut ui = Self {
             nav: Navigation {
                 step,
@@ -197,15 +198,16 @@ impl UiState {
             messages: Messages::default(),
             text: TextBuffers::default(),
         };
-        ui.sync_range_text();
+        ui.sync_range_text(clock);
         ui
     }
 
-    /// Puts the visible range into the range text fields.
-    pub fn sync_range_text(&mut self) {
+    /// Puts the visible range into the range text fields, in sol and local time
+    /// (`Sol 412 09:00:00`; the fields also read plan seconds).
+    pub fn sync_range_text(&mut self, clock: &LocalTime) {
         self.text.range_text = [
-            format!("{:.0}", self.nav.axis.start),
-            format!("{:.0}", self.nav.axis.end),
+            format_local(clock, self.nav.axis.start.round() as i64),
+            format_local(clock, self.nav.axis.end.round() as i64),
         ];
     }
 }

@@ -132,7 +132,7 @@ pub const FIELD_WIDTH: f32 = 200.0;
 /// Width of the activity filter field.
 pub const FILTER_WIDTH: f32 = 140.0;
 /// Width of each time range field.
-pub const RANGE_FIELD_WIDTH: f32 = 80.0;
+pub const RANGE_FIELD_WIDTH: f32 = 120.0;
 /// Inner margin of the banner and error frames.
 pub const MESSAGE_MARGIN: f32 = 4.0;
 /// Height of the thin predicted bar under an executed one (execution mode).

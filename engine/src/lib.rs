@@ -70,6 +70,6 @@ pub use scheduler::{
 pub use timeline::{Interval, IntervalSet};
 pub use units::{
     BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, format_local, format_plan_time, format_span,
-    format_time_of_day, format_watts, format_wh, mbit, watts, wh,
+    format_time_of_day, format_watts, format_wh, mbit, parse_local, watts, wh,
 };
 pub use validate::validate;

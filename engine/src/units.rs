@@ -156,6 +156,54 @@ pub fn format_plan_time(clock: &LocalTime, t: i64) -> String {
     format!("{} (t={t})", format_local(clock, t))
 }
 
+/// Reads a time as [`format_local`] and [`format_plan_time`] write it
+/// (`Sol 413 14:15:00`, `sol 413 14:15`, with or without the `(t=...)`), or as
+/// plan seconds (`600`, `t=600`). A time of day without a sol (`14:15`) is in
+/// sol `sol`, and refused without one. `None` for anything else: hours past the
+/// sol's length, minutes or seconds past 59, or a time out of range.
+pub fn parse_local(clock: &LocalTime, text: &str, sol: Option<i64>) -> Option<i64> {
+    let text = text.trim();
+    // The plan time written after a sol time is the same time: read the sol time.
+    let text = match text.find(" (t=") {
+        Some(i) if text.ends_with(')') => &text[..i],
+        _ => text,
+    };
+    let plain = text.strip_prefix("t=").unwrap_or(text).trim();
+    if let Ok(t) = plain.parse::<i64>() {
+        return Some(t);
+    }
+    let (sol, clock_text) = match text
+        .strip_prefix("Sol ")
+        .or_else(|| text.strip_prefix("sol "))
+    {
+        Some(rest) => {
+            let rest = rest.trim_start();
+            let end = rest.find(' ')?;
+            (rest[..end].parse::<i64>().ok()?, rest[end..].trim())
+        }
+        None => (sol?, text),
+    };
+    let mut parts = clock_text.split(':').map(|p| p.parse::<i64>().ok());
+    let (h, m) = (parts.next()??, parts.next()??);
+    let s = match parts.next() {
+        Some(s) => s?,
+        None => 0,
+    };
+    if parts.next().is_some() || h < 0 || !(0..60).contains(&m) || !(0..60).contains(&s) {
+        return None;
+    }
+    let tod = h * 3600 + m * 60 + s;
+    let len = clock.sol_length.max(1);
+    if tod >= len {
+        return None;
+    }
+    // offset + t = (sol - first_sol) * sol_length + time of day.
+    sol.checked_sub(clock.first_sol.unwrap_or(0))?
+        .checked_mul(len)?
+        .checked_add(tod)?
+        .checked_sub(clock.offset)
+}
+
 /// A length of time for reading: `45 s`, `12 min 05 s`, `3 h 07 min`.
 pub fn format_span(seconds: i64) -> String {
     let sign = if seconds < 0 { "-" } else { "" };
@@ -201,6 +249,51 @@ mod tests {
         assert_eq!(format_span(45), "45 s");
         assert_eq!(format_span(725), "12 min 05 s");
         assert_eq!(format_span(-3600 * 3 - 420 - 9), "-3 h 07 min");
+    }
+
+    #[test]
+    fn sol_times_read_back_as_written() {
+        let clock = LocalTime {
+            sol_length: 88_775,
+            offset: 64_800,
+            first_sol: Some(411),
+        };
+        for t in [
+            -200_000, -1, 0, 1, 23_974, 23_975, 59_080, 177_550, 3_000_000,
+        ] {
+            assert_eq!(parse_local(&clock, &format_local(&clock, t), None), Some(t));
+            assert_eq!(
+                parse_local(&clock, &format_plan_time(&clock, t), None),
+                Some(t)
+            );
+            assert_eq!(parse_local(&clock, &t.to_string(), None), Some(t));
+        }
+        assert_eq!(
+            parse_local(&clock, " sol 412 09:45 ", None),
+            Some(59_080 - 5)
+        );
+        assert_eq!(parse_local(&clock, "t=42", None), Some(42));
+        // A time of day alone is in the sol given.
+        assert_eq!(parse_local(&clock, "09:45:05", Some(412)), Some(59_080));
+        assert_eq!(parse_local(&clock, "09:45:05", None), None);
+        // 24:39:34 is the last second of a Mars sol; 24:39:35 is the next sol.
+        assert!(parse_local(&clock, "Sol 412 24:39:34", None).is_some());
+        for bad in [
+            "Sol 412 24:39:35",
+            "Sol 412 10:60",
+            "Sol 412 10:00:60",
+            "Sol x 10:00",
+            "Sol 412",
+            "1e3",
+            "Sol 412 10:00:00:00",
+            "Sol 412 -1:00",
+        ] {
+            assert_eq!(parse_local(&clock, bad, Some(412)), None, "{bad}");
+        }
+        assert_eq!(
+            parse_local(&clock, "Sol 9223372036854775807 10:00", None),
+            None
+        );
     }
 
     #[test]

@@ -15,7 +15,7 @@ mod montecarlo;
 mod plots;
 
 use eframe::egui::{self, RichText};
-use solscope_engine::{Outcome, RunOutcome, Suggestion, format_local};
+use solscope_engine::{Outcome, RunOutcome, Suggestion, parse_local};
 
 use crate::gui::commands::{Command, UiCommand};
 use crate::gui::document::{Analysis, Document};
@@ -745,7 +745,7 @@ fn axis_ui(
         m.doc.plan.horizon.end as f64,
     );
     ui.horizontal_wrapped(|ui| {
-        ui.label("Time range (plan s)");
+        ui.label("Time range");
         let l0 = ui.label("from");
         let r0 = ui
             .add(egui::TextEdit::singleline(&mut range_text[0]).desired_width(RANGE_FIELD_WIDTH))
@@ -756,13 +756,19 @@ fn axis_ui(
             .labelled_by(l1.id);
         let enter = ui.input(|i| i.key_pressed(egui::Key::Enter));
         if (r0.lost_focus() || r1.lost_focus()) && enter || ui.button("Apply range").clicked() {
-            match (
-                range_text[0].trim().parse::<f64>(),
-                range_text[1].trim().parse::<f64>(),
-            ) {
-                (Ok(a), Ok(b)) if a < b => cmds.push(Command::SetAxis(TimeAxis::new(a, b))),
+            // "Sol 413 08:00" to "12:00": the end's sol defaults to the start's.
+            let clock = &m.doc.plan.local_time;
+            let from = parse_local(clock, &range_text[0], None);
+            let to = parse_local(clock, &range_text[1], from.map(|t| clock.sol(t)));
+            match (from, to) {
+                (Some(a), Some(b)) if a < b => {
+                    cmds.push(Command::SetAxis(TimeAxis::new(a as f64, b as f64)))
+                }
                 _ => cmds.push(Command::ShowError(
-                    "Time range: enter two numbers, start < end (plan seconds)".into(),
+                    "Time range: enter a start before an end, each as a sol and local time \
+                     (Sol 413 08:00, or 12:00 for the end in the start's sol) or in plan \
+                     seconds"
+                        .into(),
                 )),
             }
         }
@@ -780,10 +786,11 @@ fn axis_ui(
             cmds.push(Command::SetAxis(TimeAxis::new(bounds.0, bounds.1)));
         }
         ui.label(format!(
-            "{} – {}",
-            format_local(&m.doc.plan.local_time, axis.start as i64),
-            format_local(&m.doc.plan.local_time, axis.end as i64)
-        ));
+            "t={:.0}–{:.0} s",
+            axis.start.round(),
+            axis.end.round()
+        ))
+        .on_hover_text("The visible range in plan seconds");
     });
 }
 
