@@ -86,6 +86,11 @@ pub struct Theme {
     pub ghost: Color32,
 }
 
+/// Least distance between two labelled value grid lines on a plot (points).
+pub const VALUE_GRID_GAP: f32 = 24.0;
+/// Size of a limit line's label on a plot.
+pub const LIMIT_FONT_SIZE: f32 = 10.0;
+
 /// Height of the Gantt's time ruler (points).
 pub const RULER_HEIGHT: f32 = 16.0;
 /// Least distance between two labelled time ticks (points).

@@ -5,10 +5,13 @@
 //! the executed and predicted values at the time clicked.
 
 use eframe::egui::{self, Color32, RichText};
-use egui_plot::{GridMark, HLine, Line, LineStyle, Plot, PlotPoints, VLine};
+use egui_plot::{
+    GridInput, GridMark, HLine, HoverPosition, Line, LineStyle, Plot, PlotPoint, PlotPoints, Text,
+    VLine,
+};
 use solscope_engine::{
-    Consumer, MJ_PER_WH, MW_PER_W, ViolationKind, energy_consumers, format_time_of_day,
-    format_watts, format_wh, peak_users,
+    Consumer, MJ_PER_WH, MW_PER_W, ViolationKind, energy_consumers, format_local,
+    format_time_of_day, format_watts, format_wh, peak_users,
 };
 
 use super::execution::kind_name;
@@ -16,7 +19,9 @@ use super::{Model, ViewCache};
 use crate::gui::commands::Command;
 use crate::gui::execution::ExecutionRun;
 use crate::gui::state::{Mode, StepView};
-use crate::gui::theme::{CYCLE_LINE_STROKE, LABEL_WIDTH, PLOT_HEIGHT, TICK_GAP};
+use crate::gui::theme::{
+    CYCLE_LINE_STROKE, LABEL_WIDTH, LIMIT_FONT_SIZE, PLOT_HEIGHT, TICK_GAP, VALUE_GRID_GAP,
+};
 use crate::gui::time_axis::{TimeAxis, ticks};
 
 /// One line on a plot.
@@ -51,6 +56,7 @@ fn plot_ui(
     cmds: &mut Vec<Command>,
 ) {
     let limit_color = m.theme.limit;
+    let unit = unit_of(id);
     let axis = m.nav.axis;
     let probe = m.nav.probe;
     let width = cache
@@ -96,12 +102,25 @@ fn plot_ui(
                 format_time_of_day(tod)[..5].to_string()
             }
         })
+        .y_grid_spacer(value_grid)
+        .label_formatter(move |hover| {
+            let (t, value) = match hover {
+                HoverPosition::NearDataPoint { position, .. }
+                | HoverPosition::Elsewhere { position } => (position.x, position.y),
+            };
+            Some(format!(
+                "{}\n{value:.1} {unit}",
+                format_local(&local, t.round() as i64)
+            ))
+        })
         .height(PLOT_HEIGHT)
         .allow_zoom(false)
         .allow_drag(false)
         .allow_scroll(false)
         .allow_double_click_reset(false)
         .include_y(0.0)
+        // Room above the highest limit for its label.
+        .include_y(limits.iter().map(|l| l.1).fold(0.0, f64::max) * LIMIT_HEADROOM)
         .y_axis_label(id)
         .y_axis_min_width(LABEL_WIDTH - 30.0);
     let resp = plot.show(ui, |plot_ui| {
@@ -111,8 +130,28 @@ fn plot_ui(
         for line in lines {
             plot_ui.line(line);
         }
+        let span = plot_ui.plot_bounds().height();
         for &(name, y) in limits {
             plot_ui.hline(HLine::new(name, y).color(limit_color));
+            // The limit's name and value, at the right end of its line: above
+            // it, or below when another limit's label sits just above.
+            let crowded = limits
+                .iter()
+                .any(|&(_, other)| other > y && other - y < span * LIMIT_LABEL_ROOM);
+            let anchor = if crowded {
+                egui::Align2::RIGHT_TOP
+            } else {
+                egui::Align2::RIGHT_BOTTOM
+            };
+            plot_ui.text(
+                Text::new(
+                    name,
+                    PlotPoint::new(axis.end - axis.span() * LIMIT_LABEL_INSET, y),
+                    RichText::new(format!("{name} {y} {unit}")).size(LIMIT_FONT_SIZE),
+                )
+                .anchor(anchor)
+                .color(limit_color),
+            );
         }
         for mark in marks {
             plot_ui.vline(
@@ -184,6 +223,50 @@ pub fn decimate(series: &[[f64; 2]], start: f64, end: f64, width: f64) -> Vec<[f
 const SOC: &str = "State of charge (Wh)";
 const PEAK: &str = "Peak power (W)";
 const DATA: &str = "Data volume (Mbit)";
+
+/// The visible value range reaches this far above the highest limit line.
+const LIMIT_HEADROOM: f64 = 1.12;
+/// A limit label ends this share of the visible time before the right edge
+/// (its last glyph would be clipped at the edge).
+const LIMIT_LABEL_INSET: f64 = 0.004;
+/// Two limit labels closer than this share of the value range go on either
+/// side of their lines.
+const LIMIT_LABEL_ROOM: f64 = 0.12;
+
+/// The unit of the plot with this id.
+fn unit_of(id: &str) -> &'static str {
+    match id {
+        SOC => "Wh",
+        PEAK => "W",
+        _ => "Mbit",
+    }
+}
+
+/// Value grid lines 1, 2 or 5 times a power of ten apart, the finest that
+/// keeps labels [`VALUE_GRID_GAP`] points apart (egui_plot's default steps by
+/// tens, which on a short plot leaves a single label, `0`).
+fn value_grid(input: GridInput) -> Vec<GridMark> {
+    let (lo, hi) = input.bounds;
+    let span = hi - lo;
+    if !(span.is_finite() && span > 0.0) {
+        return Vec::new();
+    }
+    let wanted = span * f64::from(VALUE_GRID_GAP) / f64::from(PLOT_HEIGHT);
+    let ten = 10f64.powf(wanted.log10().floor());
+    let step = [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|k| k * ten)
+        .find(|s| *s >= wanted)
+        .unwrap_or(10.0 * ten);
+    let first = (lo / step).ceil() as i64;
+    let last = (hi / step).floor() as i64;
+    (first..=last)
+        .map(|k| GridMark {
+            value: k as f64 * step,
+            step_size: step,
+        })
+        .collect()
+}
 
 /// The limit lines of the three plots.
 fn limits(m: &Model<'_>) -> [Vec<(&'static str, f64)>; 3] {
@@ -506,7 +589,48 @@ fn merge_by_who(m: &Model<'_>, list: &[Consumer]) -> Vec<(String, i64)> {
 
 #[cfg(test)]
 mod tests {
-    use super::{decimate, value_at};
+    use super::{GridInput, PLOT_HEIGHT, VALUE_GRID_GAP, decimate, value_at, value_grid};
+
+    #[test]
+    fn value_grids_step_by_one_two_or_five_and_keep_labels_apart() {
+        for (lo, hi) in [
+            (0.0, 950.0),
+            (0.0, 2700.0),
+            (-3.0, 0.4),
+            (0.0, 3.3e6),
+            (500.0, 501.0),
+        ] {
+            let marks = value_grid(GridInput {
+                bounds: (lo, hi),
+                base_step_size: 0.0,
+            });
+            assert!(marks.len() >= 2, "{lo}..{hi}: {} marks", marks.len());
+            let step = marks[1].value - marks[0].value;
+            let ten = 10f64.powf(step.log10().floor());
+            let k = (step / ten).round();
+            assert!([1.0, 2.0, 5.0].contains(&k), "{lo}..{hi}: step {step}");
+            let px = step / (hi - lo) * f64::from(PLOT_HEIGHT);
+            assert!(
+                px >= f64::from(VALUE_GRID_GAP) - 1e-9,
+                "{lo}..{hi}: {px} px"
+            );
+            assert!(marks.iter().all(|m| lo <= m.value && m.value <= hi));
+        }
+        // The peak plot of the bundled plan: 0 to about 950 W gets 0, 200, ... 800.
+        let marks = value_grid(GridInput {
+            bounds: (0.0, 950.0),
+            base_step_size: 0.0,
+        });
+        let values: Vec<f64> = marks.iter().map(|m| m.value).collect();
+        assert_eq!(values, [0.0, 200.0, 400.0, 600.0, 800.0]);
+        assert!(
+            value_grid(GridInput {
+                bounds: (1.0, 1.0),
+                base_step_size: 0.0
+            })
+            .is_empty()
+        );
+    }
 
     #[test]
     fn values_between_points_are_linear_and_a_jump_takes_the_later_value() {
