@@ -91,6 +91,16 @@ pub const VALUE_GRID_GAP: f32 = 24.0;
 /// Size of a limit line's label on a plot.
 pub const LIMIT_FONT_SIZE: f32 = 10.0;
 
+/// Opacity of a window bar's fill (a failed, skipped, pending or never-run
+/// activity's window), of its hatching, the hatch spacing and line width.
+pub const WINDOW_FILL: f32 = 0.18;
+/// See [`WINDOW_FILL`].
+pub const WINDOW_HATCH: f32 = 0.55;
+/// See [`WINDOW_FILL`].
+pub const HATCH_GAP: f32 = 6.0;
+/// See [`WINDOW_FILL`].
+pub const HATCH_STROKE: f32 = 1.0;
+
 /// Height of the Gantt's time ruler (points).
 pub const RULER_HEIGHT: f32 = 16.0;
 /// Least distance between two labelled time ticks (points).

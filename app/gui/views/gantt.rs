@@ -20,8 +20,9 @@ use crate::gui::execution::{CycleRun, ExecutionRun};
 use crate::gui::state::Mode;
 use crate::gui::theme::{
     BAR_FONT_SIZE, BAR_ROUNDING, BASELINE_HEIGHT, CURRENT_STROKE, CYCLE_LINE_STROKE, GHOST_STROKE,
-    LABEL_MIN_WIDTH, LABEL_WIDTH, LANE_GAP, LANE_HEIGHT, MARKER_WIDTH, NEIGHBOUR_STROKE,
-    PROBE_LINE_STROKE, RULER_HEIGHT, SELECTION_STROKE, SOL_LINE_STROKE, TICK_GAP, TICK_LENGTH,
+    HATCH_GAP, HATCH_STROKE, LABEL_MIN_WIDTH, LABEL_WIDTH, LANE_GAP, LANE_HEIGHT, MARKER_WIDTH,
+    NEIGHBOUR_STROKE, PROBE_LINE_STROKE, RULER_HEIGHT, SELECTION_STROKE, SOL_LINE_STROKE, TICK_GAP,
+    TICK_LENGTH, WINDOW_FILL, WINDOW_HATCH,
 };
 use crate::gui::time_axis::ticks;
 
@@ -45,6 +46,10 @@ struct Bar {
     /// What it takes in its lane: `[start, end]`, or with the flexibility layer
     /// its whiskers and free slack too.
     extent: (f64, f64),
+    /// Where an activity could have run, not where it ran (a failed, skipped,
+    /// pending or never-run activity's window): drawn hatched and outlined, so
+    /// a window over the whole plan does not read as a bar across the chart.
+    outline: bool,
 }
 
 impl Bar {
@@ -60,6 +65,15 @@ impl Bar {
             marker: false,
             placed: false,
             extent: (start, end),
+            outline: false,
+        }
+    }
+
+    /// A window bar (see `outline`).
+    fn window(start: i64, end: i64, color: Color32, activity: usize, label: String) -> Self {
+        Self {
+            outline: true,
+            ..Self::new(start as f64, end as f64, color, Some(activity), label)
         }
     }
 }
@@ -221,12 +235,13 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
                     Status::Skipped => t.skipped,
                     _ => t.pending,
                 };
-                let (lo, hi) = window_span(plan, act);
-                let bar = Bar::new(lo as f64, hi as f64, color, Some(a), label);
+                let bars = window_spans(plan, act)
+                    .into_iter()
+                    .map(|(lo, hi)| Bar::window(lo, hi, color, a, label.clone()));
                 if status == Status::Pending {
-                    pending.push(bar);
+                    pending.extend(bars);
                 } else {
-                    failed.push(bar);
+                    failed.extend(bars);
                 }
             }
         }
@@ -242,17 +257,18 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
     rows
 }
 
-/// Where an activity that is not placed is drawn: from its first window's start
-/// to that window's end plus its longest duration, or the whole horizon.
-fn window_span(plan: &solscope_engine::Plan, act: &solscope_engine::Activity) -> (i64, i64) {
-    match act.windows.as_ref().and_then(|w| w.first()) {
-        Some(w) => (
-            w.start,
-            w.end
-                .saturating_add(act.duration.max())
-                .min(plan.horizon.end),
-        ),
-        None => (plan.horizon.start, plan.horizon.end),
+/// Where an activity that is not placed is drawn: each window, from its start to
+/// its end plus the longest duration (clipped to the horizon), or the whole
+/// horizon without windows.
+fn window_spans(plan: &solscope_engine::Plan, act: &solscope_engine::Activity) -> Vec<(i64, i64)> {
+    let clip = |(lo, hi): (i64, i64)| (lo.max(plan.horizon.start), hi.min(plan.horizon.end));
+    match &act.windows {
+        Some(windows) => windows
+            .iter()
+            .map(|w| clip((w.start, w.end.saturating_add(act.duration.max()))))
+            .filter(|(lo, hi)| lo < hi)
+            .collect(),
+        None => vec![(plan.horizon.start, plan.horizon.end)],
     }
 }
 
@@ -364,10 +380,11 @@ fn execution_rows(m: &Model<'_>, run: &ExecutionRun) -> Vec<Row> {
         });
         let main = match (r.outcome, r.actual, r.predicted) {
             (RunOutcome::NotRun, _, None) => {
-                let (lo, hi) = window_span(plan, act);
-                let mut bar = Bar::new(lo as f64, hi as f64, t.not_run, Some(a), id.clone());
-                bar.tip = Some(format!("{id}: not run, never placed (its window)"));
-                never.push(bar);
+                for (lo, hi) in window_spans(plan, act) {
+                    let mut bar = Bar::window(lo, hi, t.not_run, a, id.clone());
+                    bar.tip = Some(format!("{id}: not run, never placed (its window)"));
+                    never.push(bar);
+                }
                 continue;
             }
             (RunOutcome::NotRun, _, Some((s, e))) | (_, None, Some((s, e))) => {
@@ -468,16 +485,14 @@ fn cycle_rows(m: &Model<'_>, run: &ExecutionRun, cr: &CycleRun, sched: &Schedule
                     t.skipped
                 };
                 // The windows the cycle gave it (from the cycle's time on).
-                let (lo, hi) = cycle_plan
-                    .and_then(|p| p.activities.get(i).map(|x| window_span(p, x)))
-                    .unwrap_or_else(|| window_span(plan, act));
-                failed.push(Bar::new(
-                    lo as f64,
-                    hi as f64,
-                    color,
-                    Some(a),
-                    act.id.clone(),
-                ));
+                let spans = cycle_plan
+                    .and_then(|p| p.activities.get(i).map(|x| window_spans(p, x)))
+                    .unwrap_or_else(|| window_spans(plan, act));
+                failed.extend(
+                    spans
+                        .into_iter()
+                        .map(|(lo, hi)| Bar::window(lo, hi, color, a, act.id.clone())),
+                );
             }
         }
     }
@@ -550,6 +565,29 @@ pub struct BarDrag {
 struct Hovered {
     text: String,
     click: Option<Command>,
+}
+
+/// A window bar: a faint fill, diagonal hatching and an outline in `color`.
+fn window_bar(painter: &egui::Painter, r: Rect, color: Color32) {
+    painter.rect_filled(r, BAR_ROUNDING, color.gamma_multiply(WINDOW_FILL));
+    let hatch = painter.with_clip_rect(r.intersect(painter.clip_rect()));
+    let stroke = Stroke::new(HATCH_STROKE, color.gamma_multiply(WINDOW_HATCH));
+    // Lines x - y = const, HATCH_GAP apart, over the visible part only.
+    let visible = r.intersect(painter.clip_rect());
+    let mut x = visible.left() - r.height();
+    while x < visible.right() {
+        hatch.line_segment(
+            [Pos2::new(x, r.bottom()), Pos2::new(x + r.height(), r.top())],
+            stroke,
+        );
+        x += HATCH_GAP;
+    }
+    painter.rect_stroke(
+        r,
+        BAR_ROUNDING,
+        Stroke::new(HATCH_STROKE, color),
+        StrokeKind::Inside,
+    );
 }
 
 /// The timeline part of `rect`: the plots' data area of the last frame (so one
@@ -793,7 +831,11 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
                 flush(merged.take());
             }
             let r = Rect::from_min_max(Pos2::new(x0 as f32, y), Pos2::new(x1 as f32, y + h));
-            painter.rect_filled(r, BAR_ROUNDING, bar.color);
+            if bar.outline {
+                window_bar(&painter, r, bar.color);
+            } else {
+                painter.rect_filled(r, BAR_ROUNDING, bar.color);
+            }
             let is_current = bar.activity.is_some() && bar.activity == current;
             let is_selected = bar.activity.is_some() && bar.activity == m.nav.selected;
             if is_current {
@@ -1008,6 +1050,27 @@ mod tests {
     // The tests drive the whole app (test code only: the views themselves never
     // reach up into it).
     use crate::gui::SolscopeApp;
+
+    #[test]
+    fn an_unplaced_activity_is_drawn_over_each_of_its_windows() {
+        let plan = solscope_engine::load_plan(
+            r#"{"format":"solscope.plan/1","horizon":{"start":0,"end":1000},
+                "battery":{"capacity":100.0,"initial":100.0,"min_soc":0.0},
+                "power":{"rtg":100.0,"asleep":10.0,"awake":20.0},
+                "activities":[
+                  {"id":"two","priority":1,"duration":{"min":10,"max":50},
+                   "windows":[{"start":100,"end":200},{"start":900,"end":990}]},
+                  {"id":"none","priority":2,"duration":10}]}"#,
+        )
+        .expect("plan")
+        .plan;
+        // Start to end plus the longest duration, clipped to the horizon.
+        assert_eq!(
+            window_spans(&plan, &plan.activities[0]),
+            [(100, 250), (900, 1000)]
+        );
+        assert_eq!(window_spans(&plan, &plan.activities[1]), [(0, 1000)]);
+    }
 
     fn model(app: &SolscopeApp) -> Model<'_> {
         Model {
