@@ -176,8 +176,8 @@ fn plot_ui(
 
 /// The part of `series` (sorted by time) that `[start, end]` shows at `width`
 /// pixels, with every pixel column holding more than two points replaced by one
-/// vertical stroke from its lowest to its highest value (ordered to continue from
-/// the previous point). Dense step segments otherwise make a path that turns back
+/// vertical stroke through its lowest and highest values, starting and ending at
+/// the values the column starts and ends with. Dense step segments otherwise make a path that turns back
 /// on itself within a pixel, which the line tessellator draws as spikes and shading;
 /// the envelope is what the eye sees at that zoom anyway, and it bounds the work
 /// per frame by the width instead of the plan size.
@@ -206,13 +206,18 @@ pub fn decimate(series: &[[f64; 2]], start: f64, end: f64, width: f64) -> Vec<[f
         } else {
             let lo = group.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
             let hi = group.iter().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
+            // From the value the column starts with, to the nearer extreme, the
+            // farther one, and the value it ends with: the stroke into the next
+            // column leaves from where the series really is, so a step function
+            // stays flat between columns instead of slanting.
             let x = group[0][0];
-            let prev = out.last().map_or(group[0][1], |p| p[1]);
-            if (prev - lo).abs() <= (prev - hi).abs() {
-                out.extend([[x, lo], [x, hi]]);
+            let (first, last) = (group[0][1], group[group.len() - 1][1]);
+            let (a, b) = if (first - lo).abs() <= (first - hi).abs() {
+                (lo, hi)
             } else {
-                out.extend([[x, hi], [x, lo]]);
-            }
+                (hi, lo)
+            };
+            out.extend([[x, first], [x, a], [x, b], [x, last]]);
         }
         i = j;
     }
@@ -658,7 +663,14 @@ mod tests {
         }
         let (start, end, width) = (20_000.0, 80_000.0, 300.0);
         let out = decimate(&series, start, end, width);
-        assert!(out.len() <= 2 * (width as usize + 3), "{}", out.len());
+        assert!(out.len() <= 4 * (width as usize + 3), "{}", out.len());
+        // Between columns the line is flat (the series holds its value): no
+        // slanted strokes at any zoom.
+        for w in out.windows(2) {
+            if w[0][0] != w[1][0] {
+                assert_eq!(w[0][1], w[1][1], "slanted: {w:?}");
+            }
+        }
         assert!(out.windows(2).all(|w| w[0][0] <= w[1][0]), "time order");
         let spp = (end - start) / width;
         for c in 0..width as usize {
