@@ -205,7 +205,7 @@ impl SolscopeApp {
             self.derived.valid_for(&self.analysis, self.revision, a);
         }
         self.reap_worker();
-        if self.verifying().is_some() || self.execution.busy() || self.flex.busy() {
+        if self.workers_busy() {
             // Poll the worker until its result is in.
             ui.ctx()
                 .request_repaint_after(std::time::Duration::from_millis(50));
@@ -754,6 +754,12 @@ impl SolscopeApp {
     /// The activity whose suggestions a worker is verifying, if any.
     pub fn verifying(&self) -> Option<usize> {
         self.derived.verifying()
+    }
+
+    /// Whether a worker (suggestions, execution, flexible schedule) is still
+    /// running: the frame loop polls until none is.
+    pub fn workers_busy(&self) -> bool {
+        self.verifying().is_some() || self.execution.busy() || self.flex.busy()
     }
 
     /// The explanation of activity `a` if it did not schedule (computed once per
