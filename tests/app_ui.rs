@@ -1863,3 +1863,28 @@ fn a_time_range_is_typed_in_sols_and_local_time() {
         h.state().ui.messages.error
     );
 }
+
+#[test]
+fn hovering_a_bar_says_what_it_is_when_and_for_how_long() {
+    let mut h = default_plan_over(55_000.0, 72_000.0);
+    let meda = index(h.state(), "meda_412_1200");
+    let at = bar_point(&h, meda, 0);
+    h.hover_at(at);
+    // Tooltips show once the pointer rests (egui's tooltip delay).
+    h.run_steps(60);
+    let tip = h
+        .query_by_label_contains("meda_412_1200 — MEDA")
+        .and_then(|n| n.accesskit_node().value())
+        .expect("a tooltip at the bar");
+    assert!(
+        tip.contains(
+            "\nscheduled Sol 412 12:00:05 (t=67180) – Sol 412 12:30:05 (t=68980) (30 min)\nholds meda\n"
+        ),
+        "who, when, how long, what it holds: {tip}"
+    );
+    // The general hint is for places where no bar is.
+    assert!(
+        h.query_by_label_contains("Click a bar to inspect it")
+            .is_none()
+    );
+}

@@ -10,7 +10,7 @@
 use eframe::egui::{
     self, Align2, Color32, FontId, Pos2, Rect, RichText, Sense, Stroke, StrokeKind,
 };
-use solscope_engine::{GeneratedKind, Outcome, RunOutcome, Schedule};
+use solscope_engine::{FailurePhase, GeneratedKind, Outcome, RunOutcome, Schedule, format_span};
 
 use super::execution::{trigger_text, violation_text};
 use super::flex::{self, Slack};
@@ -567,6 +567,52 @@ struct Hovered {
     click: Option<Command>,
 }
 
+/// What hovering activity `a`'s bar says in schedule mode: who it is, what
+/// happened to it by the step shown and when, its duration and unit resources,
+/// and for a failure the one-line reason.
+fn activity_tip(m: &Model<'_>, a: usize, bar: &Bar) -> String {
+    let act = &m.doc.plan.activities[a];
+    let span = format!("{} – {}", m.time(bar.start as i64), m.time(bar.end as i64));
+    let k = m.nav.step;
+    let what = match m.status(a, k) {
+        Status::Scheduled(s, e) => format!("scheduled {span} ({})", format_span(e - s)),
+        Status::Failed => {
+            let why = match m.analysis.step(a).map(|s| &s.outcome) {
+                Some(Outcome::Failed(FailurePhase::Dependency { on })) => format!(
+                    "its dependency {} was not placed",
+                    m.doc.plan.activities[*on].id
+                ),
+                Some(Outcome::Failed(FailurePhase::ValidIntervals)) => {
+                    "no start satisfies its constraints together".to_string()
+                }
+                _ => "every valid start breaks a power, energy or sleep limit".to_string(),
+            };
+            format!("failed: {why}\nwindow {span}")
+        }
+        Status::Skipped => {
+            format!("skipped: another member of its group was placed\nwindow {span}")
+        }
+        Status::Pending => format!("pending (its step is after step {k})\nwindow {span}"),
+    };
+    let mut out = format!("{}\n{what}", m.label(a));
+    if !matches!(m.status(a, k), Status::Scheduled(..)) {
+        let d = &act.duration;
+        out.push_str(&if d.min() == d.max() {
+            format!("\nlasts {}", format_span(d.max()))
+        } else {
+            format!(
+                "\nlasts {} to {}",
+                format_span(d.min()),
+                format_span(d.max())
+            )
+        });
+    }
+    if !act.resources.is_empty() {
+        out.push_str(&format!("\nholds {}", act.resources.join(", ")));
+    }
+    out
+}
+
 /// A window bar: a faint fill, diagonal hatching and an outline in `color`.
 fn window_bar(painter: &egui::Painter, r: Rect, color: Color32) {
     painter.rect_filled(r, BAR_ROUNDING, color.gamma_multiply(WINDOW_FILL));
@@ -698,15 +744,12 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
     // No hover text while a bar is dragged or a question is asked (it would
     // cover the popup's buttons).
     let quiet = cache.drag.is_some() || m.messages.pin.is_some() || m.messages.confirm.is_some();
-    let response = if quiet {
-        response
-    } else if m.flex_layer().is_some() {
-        response.on_hover_text(
-            "Click a bar to inspect it; drag a scheduled bar to try another start; drag \
-             elsewhere to pan; Ctrl+wheel to zoom",
-        )
+    // Shown where no bar is under the pointer (a bar shows its own tooltip).
+    let hint = if m.flex_layer().is_some() {
+        "Click a bar to inspect it; drag a scheduled bar to try another start; drag \
+         elsewhere to pan; Ctrl+wheel to zoom"
     } else {
-        response.on_hover_text("Click a bar to inspect it; drag to pan; Ctrl+wheel to zoom")
+        "Click a bar to inspect it; drag to pan; Ctrl+wheel to zoom"
     };
     response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, "Gantt chart"));
     // Share the plots' data area (last frame) so one time is one x everywhere.
@@ -883,13 +926,14 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
                     (None, Some(c)) => Some(Command::SetCycle(c)),
                     (None, None) => None,
                 };
-                let mut text = bar.tip.clone().unwrap_or_else(|| {
-                    format!(
+                let mut text = bar.tip.clone().unwrap_or_else(|| match bar.activity {
+                    Some(a) if run.is_none() && row.steps => activity_tip(m, a, bar),
+                    _ => format!(
                         "{} {}–{}",
                         bar.label,
                         m.time(bar.start as i64),
                         m.time(bar.end as i64)
-                    )
+                    ),
                 });
                 let fa = flex_layer
                     .filter(|_| bar.placed)
@@ -931,13 +975,19 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
         };
         painter.vline(x, timeline.y_range(), Stroke::new(PROBE_LINE_STROKE, color));
     }
-    if let Some(h) = hovered.filter(|_| !quiet) {
-        response.clone().on_hover_text_at_pointer(h.text);
-        if response.clicked() {
-            if let Some(c) = h.click {
-                cmds.push(c);
+    match hovered.filter(|_| !quiet) {
+        Some(h) => {
+            response.clone().on_hover_text_at_pointer(h.text);
+            if response.clicked() {
+                if let Some(c) = h.click {
+                    cmds.push(c);
+                }
             }
         }
+        None if !quiet => {
+            response.clone().on_hover_text(hint);
+        }
+        None => {}
     }
     // With the flexibility layer, dragging a placed bar tries another start.
     if response.drag_started() {
