@@ -1804,6 +1804,17 @@ fn the_inspector_s_involved_list_is_the_explanation_s_culprits() {
     assert!(h.query_by_label(&text).is_some(), "{text}");
 }
 
+/// Replaces the text of the time range's "from" and "to" fields.
+fn type_range(h: &mut H, from: &str, to: &str) {
+    for (label, text) in [("from", from), ("to", to)] {
+        h.get_by_label(label).focus();
+        h.run_steps(1);
+        h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::A);
+        h.get_by_label(label).type_text(text);
+        h.run_steps(1);
+    }
+}
+
 #[test]
 fn a_time_range_is_typed_in_sols_and_local_time() {
     let mut h = harness(
@@ -1820,13 +1831,7 @@ fn a_time_range_is_typed_in_sols_and_local_time() {
             "Sol 413 18:00:00".to_string()
         ]
     );
-    for (label, text) in [("from", "Sol 412 08:00"), ("to", "12:00")] {
-        h.get_by_label(label).focus();
-        h.run_steps(1);
-        h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::A);
-        h.get_by_label(label).type_text(text);
-        h.run_steps(1);
-    }
+    type_range(&mut h, "Sol 412 08:00", "12:00");
     h.get_by_label("Apply range").click();
     h.run_steps(3);
     // Sol 412 starts at plan time 23975 (local midnight): 08:00 is 28800 s later,
@@ -1842,13 +1847,7 @@ fn a_time_range_is_typed_in_sols_and_local_time() {
     );
     assert!(h.query_by_label("t=52775–67175 s").is_some());
     // Plan seconds still work, and a bad time says what to type.
-    for (label, text) in [("from", "60000"), ("to", "Sol 412 25:00")] {
-        h.get_by_label(label).focus();
-        h.run_steps(1);
-        h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::A);
-        h.get_by_label(label).type_text(text);
-        h.run_steps(1);
-    }
+    type_range(&mut h, "60000", "Sol 412 25:00");
     h.get_by_label("Apply range").click();
     h.run_steps(3);
     assert_eq!(h.state().ui.nav.axis, axis, "nothing applied");

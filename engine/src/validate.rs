@@ -90,6 +90,18 @@ pub fn validate(plan: &Plan) -> Result<Vec<Warning>, Error> {
     Ok(v.warnings)
 }
 
+/// The plan's object-valued sections, in the model's field order.
+const ROOT_OBJECTS: [&str; 8] = [
+    "horizon",
+    "local_time",
+    "battery",
+    "power",
+    "sleep",
+    "data",
+    "handover",
+    "execution",
+];
+
 /// Rejects JSON shapes that serde's derived impls would quietly accept although the
 /// format does not allow them: an array where an object is expected (serde reads
 /// `"horizon": [0, 10]` as a struct by field position) and an object where a
@@ -101,16 +113,7 @@ pub(crate) fn check_json_shape(doc: &Value) -> Result<(), Error> {
         return Ok(());
     };
     // In the field order of the model (Value maps are sorted by key).
-    for key in [
-        "horizon",
-        "local_time",
-        "battery",
-        "power",
-        "sleep",
-        "data",
-        "handover",
-        "execution",
-    ] {
+    for key in ROOT_OBJECTS {
         if let Some(value) = root.get(key) {
             object(value, key)?;
         }
@@ -163,11 +166,15 @@ enum Ctx {
     Named(bool),
     /// A state (`false`) or zone (`true`) definition: not an array.
     Def(bool),
+    /// An activity: not an array.
+    Activity,
+    /// An effect: not an array.
+    Effect,
     /// Not an array and not an object (`awake`, `at`).
     Scalar,
 }
 
-/// What an array's elements may be.
+/// What an array's elements may be (the contexts an array holds).
 #[derive(Clone, Copy)]
 enum Elem {
     /// Anything.
@@ -178,6 +185,17 @@ enum Elem {
     Activity,
     /// Effects.
     Effect,
+}
+
+impl Elem {
+    fn ctx(self) -> Ctx {
+        match self {
+            Elem::Any => Ctx::Any,
+            Elem::NoArray => Ctx::NoArray,
+            Elem::Activity => Ctx::Activity,
+            Elem::Effect => Ctx::Effect,
+        }
+    }
 }
 
 /// The walk of [`shape_may_fail`]: fails (with a message nobody reads) where the
@@ -228,97 +246,29 @@ impl<'de> serde::de::Visitor<'de> for Walk {
             Ctx::Any => Elem::Any,
             _ => return Err(suspect()),
         };
-        while seq.next_element_seed(Elements(elem))?.is_some() {}
+        while seq.next_element_seed(Walk(elem.ctx()))?.is_some() {}
         Ok(())
-    }
-
-    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
-        while let Some(key) = map.next_key_seed(KeyName)? {
-            let k = key;
-            let ctx = match (self.0, k) {
-                (Ctx::Scalar, _) => return Err(suspect()),
-                (Ctx::Root, Some("activities")) => Some(Ctx::ArrayOf(Elem::Activity)),
-                (Ctx::Root, Some("states")) => Some(Ctx::Named(false)),
-                (Ctx::Root, Some("thermal_zones")) => Some(Ctx::Named(true)),
-                (
-                    Ctx::Root,
-                    Some(
-                        "horizon" | "local_time" | "battery" | "power" | "sleep" | "data"
-                        | "handover" | "execution",
-                    ),
-                ) => Some(Ctx::NoArray),
-                (Ctx::Named(zones), _) => Some(Ctx::Def(zones)),
-                (Ctx::Def(true), Some("preheat" | "operable")) => Some(Ctx::ArrayOf(Elem::NoArray)),
-                _ => None,
-            };
-            map.next_value_seed(Walk(ctx.unwrap_or(Ctx::Any)))?;
-        }
-        Ok(())
-    }
-}
-
-/// An array element of this kind: activities and effects are objects whose
-/// fields are walked in their own context.
-struct Elements(Elem);
-
-impl<'de> serde::de::DeserializeSeed<'de> for Elements {
-    type Value = ();
-
-    fn deserialize<D: serde::Deserializer<'de>>(self, de: D) -> Result<(), D::Error> {
-        match self.0 {
-            Elem::Any => Walk(Ctx::Any).deserialize(de),
-            Elem::NoArray => Walk(Ctx::NoArray).deserialize(de),
-            Elem::Activity => de.deserialize_any(Fields(Elem::Activity)),
-            Elem::Effect => de.deserialize_any(Fields(Elem::Effect)),
-        }
-    }
-}
-
-/// The fields of an activity or an effect.
-struct Fields(Elem);
-
-impl<'de> serde::de::Visitor<'de> for Fields {
-    type Value = ();
-
-    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("an object")
-    }
-
-    fn visit_bool<E>(self, _: bool) -> Result<(), E> {
-        Ok(())
-    }
-    fn visit_i64<E>(self, _: i64) -> Result<(), E> {
-        Ok(())
-    }
-    fn visit_u64<E>(self, _: u64) -> Result<(), E> {
-        Ok(())
-    }
-    fn visit_f64<E>(self, _: f64) -> Result<(), E> {
-        Ok(())
-    }
-    fn visit_str<E>(self, _: &str) -> Result<(), E> {
-        Ok(())
-    }
-    fn visit_unit<E>(self) -> Result<(), E> {
-        Ok(())
-    }
-
-    fn visit_seq<A: serde::de::SeqAccess<'de>>(self, _: A) -> Result<(), A::Error> {
-        Err(suspect())
     }
 
     fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
         while let Some(key) = map.next_key_seed(KeyName)? {
             let ctx = match (self.0, key) {
-                (Elem::Activity, Some("duration_model")) => Some(Ctx::NoArray),
-                (Elem::Activity, Some("windows" | "after" | "requires")) => {
-                    Some(Ctx::ArrayOf(Elem::NoArray))
+                (Ctx::Scalar, _) => return Err(suspect()),
+                (Ctx::Root, Some("activities")) => Ctx::ArrayOf(Elem::Activity),
+                (Ctx::Root, Some("states")) => Ctx::Named(false),
+                (Ctx::Root, Some("thermal_zones")) => Ctx::Named(true),
+                (Ctx::Root, Some(k)) if ROOT_OBJECTS.contains(&k) => Ctx::NoArray,
+                (Ctx::Named(zones), _) => Ctx::Def(zones),
+                (Ctx::Def(true), Some("preheat" | "operable")) => Ctx::ArrayOf(Elem::NoArray),
+                (Ctx::Activity, Some("duration_model")) => Ctx::NoArray,
+                (Ctx::Activity, Some("windows" | "after" | "requires")) => {
+                    Ctx::ArrayOf(Elem::NoArray)
                 }
-                (Elem::Activity, Some("effects")) => Some(Ctx::ArrayOf(Elem::Effect)),
-                (Elem::Activity, Some("awake")) | (Elem::Effect, Some("at")) => Some(Ctx::Scalar),
-                _ => None,
+                (Ctx::Activity, Some("effects")) => Ctx::ArrayOf(Elem::Effect),
+                (Ctx::Activity, Some("awake")) | (Ctx::Effect, Some("at")) => Ctx::Scalar,
+                _ => Ctx::Any,
             };
-            map.next_value_seed(Walk(ctx.unwrap_or(Ctx::Any)))?;
+            map.next_value_seed(Walk(ctx))?;
         }
         Ok(())
     }
@@ -328,18 +278,11 @@ impl<'de> serde::de::Visitor<'de> for Fields {
 /// others: borrowed from the input when it has no escapes).
 struct KeyName;
 
+/// The keys it looks at besides [`ROOT_OBJECTS`].
 const KEYS: &[&str] = &[
     "activities",
     "states",
     "thermal_zones",
-    "horizon",
-    "local_time",
-    "battery",
-    "power",
-    "sleep",
-    "data",
-    "handover",
-    "execution",
     "preheat",
     "operable",
     "duration_model",
@@ -367,7 +310,7 @@ impl<'de> serde::de::Visitor<'de> for KeyName {
     }
 
     fn visit_str<E>(self, v: &str) -> Result<Self::Value, E> {
-        Ok(KEYS.iter().find(|k| **k == v).copied())
+        Ok(ROOT_OBJECTS.iter().chain(KEYS).find(|k| **k == v).copied())
     }
 }
 
