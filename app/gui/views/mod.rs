@@ -747,13 +747,16 @@ fn axis_ui(
     ui.horizontal_wrapped(|ui| {
         ui.label("Time range");
         let l0 = ui.label("from");
+        // The plan seconds of the range shown, on hover (the fields read either).
         let r0 = ui
             .add(egui::TextEdit::singleline(&mut range_text[0]).desired_width(RANGE_FIELD_WIDTH))
-            .labelled_by(l0.id);
+            .labelled_by(l0.id)
+            .on_hover_text(format!("t={:.0} s", axis.start.round()));
         let l1 = ui.label("to");
         let r1 = ui
             .add(egui::TextEdit::singleline(&mut range_text[1]).desired_width(RANGE_FIELD_WIDTH))
-            .labelled_by(l1.id);
+            .labelled_by(l1.id)
+            .on_hover_text(format!("t={:.0} s", axis.end.round()));
         let enter = ui.input(|i| i.key_pressed(egui::Key::Enter));
         if (r0.lost_focus() || r1.lost_focus()) && enter || ui.button("Apply range").clicked() {
             // "Sol 413 08:00" to "12:00": the end's sol defaults to the start's.
@@ -785,12 +788,6 @@ fn axis_ui(
         if ui.button("Whole plan").clicked() {
             cmds.push(Command::SetAxis(TimeAxis::new(bounds.0, bounds.1)));
         }
-        ui.label(format!(
-            "t={:.0}–{:.0} s",
-            axis.start.round(),
-            axis.end.round()
-        ))
-        .on_hover_text("The visible range in plan seconds");
     });
 }
 
