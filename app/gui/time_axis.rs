@@ -38,6 +38,21 @@ pub struct Tick {
     pub step: f64,
 }
 
+/// The label of a tick at plan time `t` on a grid of `step` seconds: `Sol 412`
+/// at local midnight, else the time of day, `14:00`, with seconds (`14:05:30`)
+/// when the step is under a minute. The ruler and the plots' axes both label so.
+pub fn tick_label(clock: &LocalTime, t: i64, step: f64) -> String {
+    let tod = clock.time_of_day(t);
+    let text = format_time_of_day(tod);
+    if tod == 0 {
+        format!("Sol {}", clock.sol(t))
+    } else if step < 60.0 {
+        text
+    } else {
+        text[..5].to_string()
+    }
+}
+
 /// The ticks of `axis` shown `width` pixels wide, at least `min_gap` pixels
 /// apart: the finest round local-time step that keeps them apart, and every sol
 /// boundary (labelled every sol, or every few sols when they are too close).
@@ -59,7 +74,7 @@ pub fn ticks(axis: &TimeAxis, width: f64, clock: &LocalTime, min_gap: f64) -> Ve
             out.push(Tick {
                 t: midnight as f64,
                 label: if number.rem_euclid(label_every) == 0 {
-                    format!("Sol {number}")
+                    tick_label(clock, midnight, sol as f64)
                 } else {
                     String::new()
                 },
@@ -74,14 +89,10 @@ pub fn ticks(axis: &TimeAxis, width: f64, clock: &LocalTime, min_gap: f64) -> Ve
             while tod < sol && midnight + tod <= hi {
                 // The last step of a sol is shorter: skip a tick crowding midnight.
                 if (sol - tod) as f64 / per_px >= min_gap / 2.0 {
-                    let label = if step < 60 {
-                        format_time_of_day(tod)
-                    } else {
-                        format_time_of_day(tod)[..5].to_string()
-                    };
+                    let t = midnight + tod;
                     out.push(Tick {
-                        t: (midnight + tod) as f64,
-                        label,
+                        t: t as f64,
+                        label: tick_label(clock, t, step as f64),
                         sol_start: false,
                         step: step as f64,
                     });

@@ -10,8 +10,8 @@ use egui_plot::{
     VLine,
 };
 use solscope_engine::{
-    Consumer, MJ_PER_WH, MW_PER_W, ViolationKind, energy_consumers, format_local,
-    format_time_of_day, format_watts, format_wh, peak_users,
+    Consumer, MJ_PER_WH, MW_PER_W, ViolationKind, energy_consumers, format_local, format_watts,
+    format_wh, peak_users,
 };
 
 use super::execution::kind_name;
@@ -22,7 +22,7 @@ use crate::gui::state::{Mode, StepView};
 use crate::gui::theme::{
     CYCLE_LINE_STROKE, LABEL_WIDTH, LIMIT_FONT_SIZE, PLOT_HEIGHT, TICK_GAP, VALUE_GRID_GAP,
 };
-use crate::gui::time_axis::{TimeAxis, ticks};
+use crate::gui::time_axis::{TimeAxis, tick_label, ticks};
 
 /// One line on a plot.
 struct Series<'a> {
@@ -92,15 +92,7 @@ fn plot_ui(
                 .collect()
         })
         .x_axis_formatter(move |mark, _range| {
-            let t = mark.value.round() as i64;
-            let tod = local.time_of_day(t);
-            if tod == 0 {
-                format!("Sol {}", local.sol(t))
-            } else if mark.step_size < 60.0 {
-                format_time_of_day(tod)
-            } else {
-                format_time_of_day(tod)[..5].to_string()
-            }
+            tick_label(&local, mark.value.round() as i64, mark.step_size)
         })
         .y_grid_spacer(value_grid)
         .label_formatter(move |hover| {

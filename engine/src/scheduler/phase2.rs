@@ -593,15 +593,7 @@ impl State<'_> {
             return (None, tries);
         };
         let mut cells = cells(cand, self.critical_points(a, d, lo, hi));
-        let dist = |c: &(i64, i64)| {
-            if c.0 > preferred {
-                c.0 - preferred
-            } else if c.1 < preferred {
-                preferred - c.1
-            } else {
-                0
-            }
-        };
+        let dist = |c: &(i64, i64)| distance(c.0, c.1, preferred);
         cells.sort_by_key(|c| (dist(c), c.0));
         let mut best: Option<(i64, i64)> = None; // (distance, start)
         for cell in cells {
@@ -687,15 +679,7 @@ impl State<'_> {
             let j = ivs.partition_point(|iv| iv.lo <= hi);
             (i < j).then(|| (ivs[i].lo.max(lo), ivs[j - 1].hi.min(hi)))
         };
-        let dist = |lo: i64, hi: i64| {
-            if lo > preferred {
-                lo - preferred
-            } else if hi < preferred {
-                preferred - hi
-            } else {
-                0
-            }
-        };
+        let dist = |lo: i64, hi: i64| distance(lo, hi, preferred);
         let rate = self.soc.rate().points();
         let splits = |lo: i64, hi: i64| {
             energy.is_some()
@@ -862,6 +846,18 @@ impl State<'_> {
             }
         }
         tries
+    }
+}
+
+/// How far the starts `[lo, hi]` are from `preferred` at their nearest (0 when
+/// they include it): the order both searches look at cells and spans in.
+fn distance(lo: i64, hi: i64, preferred: i64) -> i64 {
+    if lo > preferred {
+        lo - preferred
+    } else if hi < preferred {
+        preferred - hi
+    } else {
+        0
     }
 }
 
