@@ -278,6 +278,8 @@ pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
             }
         }
         Some(Phase::Placement) => {
+            // Energy reasons at one time blame the same consumers: ranked once.
+            let mut energy_at: std::collections::HashSet<i64> = std::collections::HashSet::new();
             for r in &ex.reasons {
                 let kind = Blame::Reason(r.reason.kind());
                 match r.reason {
@@ -296,10 +298,12 @@ pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
                             Phase2Reason::MinSoc { at, .. } => at,
                             _ => problem.handover_time.unwrap_or(problem.h1),
                         };
+                        if !energy_at.insert(t) {
+                            continue;
+                        }
                         let from = last_full_before(state, t).unwrap_or(problem.h0);
                         let mut users: Vec<(i64, usize)> = state
-                            .placed_overlapping(from, t)
-                            .into_iter()
+                            .placed_overlapping_unordered(from, t)
                             .filter_map(|x| state.placed[x].map(|(s, e)| (x, s, e)))
                             .map(|(x, s, e)| {
                                 (

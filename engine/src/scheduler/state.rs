@@ -226,15 +226,7 @@ impl<'p> State<'p> {
     /// The placed activities whose `[start, end)` overlaps `[lo, hi)`, in activity
     /// order (those starting at most the longest placed duration before `lo`).
     pub fn placed_overlapping(&self, lo: i64, hi: i64) -> Vec<usize> {
-        if hi <= lo {
-            return Vec::new();
-        }
-        let mut out: Vec<usize> = self
-            .by_start
-            .range((lo.saturating_sub(self.longest), 0)..(hi, 0))
-            .map(|&(_, x)| x)
-            .filter(|&x| self.placed[x].is_some_and(|(s, e)| s < hi && lo < e))
-            .collect();
+        let mut out: Vec<usize> = self.placed_overlapping_unordered(lo, hi).collect();
         out.sort_unstable();
         debug_assert_eq!(
             out,
@@ -244,6 +236,23 @@ impl<'p> State<'p> {
             "placed overlap index"
         );
         out
+    }
+
+    /// [`State::placed_overlapping`] in start order.
+    pub fn placed_overlapping_unordered(
+        &self,
+        lo: i64,
+        hi: i64,
+    ) -> impl Iterator<Item = usize> + '_ {
+        let range = if hi <= lo {
+            self.by_start.range((0, 0)..(0, 0))
+        } else {
+            self.by_start
+                .range((lo.saturating_sub(self.longest), 0)..(hi, 0))
+        };
+        range
+            .map(|&(_, x)| x)
+            .filter(move |&x| self.placed[x].is_some_and(|(s, e)| s < hi && lo < e))
     }
 
     /// Applies a placement decided at `step`.
