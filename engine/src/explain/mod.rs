@@ -11,7 +11,9 @@
 
 mod conflicts;
 mod culprits;
+mod floors;
 mod replay;
+mod spending;
 mod suggest;
 mod text;
 

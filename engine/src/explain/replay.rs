@@ -9,6 +9,8 @@
 //! probe a target keeps its placement (the witness) and is looked at again only at
 //! the first step that could disturb it ([`next_check`]).
 
+use super::floors::Floors;
+use super::spending::Spending;
 use crate::scheduler::{
     Detail, Evaluated, FailurePhase, Outcome, Problem, Schedule, Scope, State, Step, Try, run_step,
 };
@@ -122,6 +124,11 @@ struct RunEffects {
     /// activity has an effect on it or requires it, ascending.
     effect_steps: Vec<Vec<usize>>,
     touch_steps: Vec<Vec<usize>>,
+    /// The charge each placing step changes, by step and by the time its
+    /// changes start at (the footprint's start).
+    spending: Spending,
+    /// The lowest levels after each placing step.
+    floors: Floors,
 }
 
 impl RunEffects {
@@ -138,6 +145,8 @@ impl RunEffects {
             leaves: 0,
             effect_steps: Vec::new(),
             touch_steps: Vec::new(),
+            spending: Spending::new([]),
+            floors: Floors::empty(),
             reach: {
                 let preheat = problem
                     .zones
@@ -158,6 +167,13 @@ impl RunEffects {
         out.data.push(0);
         out.handover.push(0);
         let mut state = State::new(problem);
+        let placing = sched
+            .steps
+            .iter()
+            .filter(|s| s.outcome.placement().is_some())
+            .count();
+        out.floors = Floors::grid(&state, placing);
+        let mut spent = Vec::new();
         for step in &sched.steps {
             let (mut e, mut d, mut h) = (0, 0, 0);
             let mut applied = None;
@@ -184,9 +200,11 @@ impl RunEffects {
                     }
                 }
             }
-            if applied.is_some() {
+            if let Some(p) = &applied {
                 let act = &problem.acts[step.activity];
                 let j = out.applied.len();
+                spent.push((j, p.lo, e));
+                out.floors.record(&state, j);
                 for e in &act.effects {
                     push_step(&mut out.effect_steps, e.state, j);
                     push_step(&mut out.touch_steps, e.state, j);
@@ -201,6 +219,8 @@ impl RunEffects {
             out.data.push(last(&out.data).saturating_add(d));
             out.handover.push(last(&out.handover).saturating_add(h));
         }
+        out.spending = Spending::new(spent);
+        out.floors.finish();
         out.leaves = out.applied.len().next_power_of_two();
         out.tree = vec![(i64::MAX, i64::MIN); 2 * out.leaves];
         for (j, p) in out.applied.iter().enumerate() {
@@ -267,6 +287,50 @@ impl RunEffects {
         by_effect.chain(by_touch).fold(to, usize::min).min(to)
     }
 
+    /// The first step after `k` at which the witness `ev` (passing against the
+    /// state after step `k`, draining `drain`) can stop passing on the state of
+    /// charge, by two rules: the lowest levels after each step ([`Floors`]),
+    /// and the local budget ([`State::soc_budget`]): the first step by which
+    /// the steps changing the rate before the budget's end have spent it, or
+    /// those changing it before the handover time the handover margin, or
+    /// after which some level is below the minimum without the witness (the
+    /// budget's argument needs every level at or above it).
+    fn soc_due(
+        &self,
+        state: &State<'_>,
+        ev: &Evaluated,
+        drain: &[(i64, i64, i64)],
+        k: usize,
+    ) -> usize {
+        let problem = state.problem;
+        let never = usize::MAX;
+        let act = &problem.acts[ev.placement.act];
+        let handover = problem
+            .handover_soc
+            .filter(|_| !act.mandatory && problem.handover_time.is_some());
+        let (lo, _) = ev.footprint(problem);
+        let floors = self
+            .floors
+            .first_below(k, lo, problem.min_soc, ev.energy, handover)
+            .unwrap_or(never);
+        let local = state.soc_budget(ev, drain).map_or(0, |b| {
+            let mut due = self.floors.first_unsure(k, problem.min_soc);
+            due = due.min(
+                self.spending
+                    .first_over(k, b.until, b.budget)
+                    .unwrap_or(never),
+            );
+            if let Some((t, margin)) = b.handover {
+                if margin < 0 {
+                    return 0;
+                }
+                due = due.min(self.spending.first_over(k, t, margin).unwrap_or(never));
+            }
+            due
+        });
+        floors.max(local)
+    }
+
     /// The first step after `k` whose running total exceeds the total at `k` by
     /// more than `budget` (`len` when none).
     fn exhausted(sums: &[i128], k: usize, budget: i128) -> usize {
@@ -278,10 +342,14 @@ impl RunEffects {
 /// A placement known to fit a probe target after step `k`, and the first later
 /// step that could change that.
 struct Witness {
-    start: i64,
-    duration: i64,
+    /// The passing evaluation.
+    ev: Evaluated,
+    /// Its charge drain.
+    drain: Vec<(i64, i64, i64)>,
     /// The step it is due to be looked at again (`usize::MAX`: not before its own).
     due: usize,
+    /// Whether only its energy margin can have changed by then.
+    soc_only: bool,
 }
 
 /// Whether two activities share a state through effects on one side and effects or
@@ -311,17 +379,19 @@ fn next_check(
     fx: &RunEffects,
     th: &Thresholds,
     ev: &Evaluated,
+    drain: &[(i64, i64, i64)],
     k: usize,
     until: usize,
-) -> usize {
+) -> Due {
     let problem = state.problem;
     let a = ev.placement.act;
     let act = &problem.acts[a];
     let (s, d) = (ev.placement.start, ev.placement.duration);
-    let mut due = until.min(RunEffects::exhausted(&fx.energy, k, ev.margin));
+    // Everything but the state of charge.
+    let mut other = until;
     if let (Some(cap), true) = (problem.data_cap, act.data > 0) {
         let margin = cap + state.data.check(&[(s, s + d, act.data)], None).min;
-        due = due.min(RunEffects::exhausted(&fx.data, k, margin));
+        other = other.min(RunEffects::exhausted(&fx.data, k, margin));
     }
     if let (false, Some(ht), Some(max)) =
         (act.mandatory, problem.handover_time, problem.handover_data)
@@ -329,21 +399,21 @@ fn next_check(
         let margin = max
             - state.produced
             - i128::from(act.data.max(0)) * overlap((s, s + d), (problem.h0, ht));
-        due = due.min(RunEffects::exhausted(&fx.handover, k, margin));
+        other = other.min(RunEffects::exhausted(&fx.handover, k, margin));
     }
     for &t in th.deps.iter().chain(&th.reqs) {
         if t > k {
-            due = due.min(t);
+            other = other.min(t);
         }
     }
     if let Some(steps) = act.group.and_then(|g| fx.group_steps.get(g)) {
         if let Some(&j) = steps.iter().find(|&&j| j > k) {
-            due = due.min(j);
+            other = other.min(j);
         }
     }
     let (lo, hi) = ev.footprint(problem);
     let (lo, hi) = (lo.saturating_sub(fx.reach), hi.saturating_add(fx.reach));
-    let end = due.min(fx.applied.len());
+    let end = other.min(fx.applied.len());
     let first = fx
         .first_meeting(k + 1, end, lo, hi)
         .min(fx.first_sharing(problem, a, k + 1, end));
@@ -358,7 +428,30 @@ fn next_check(
             .unwrap_or(end),
         "disturbing step index"
     );
-    if first < end { first } else { due }
+    if first < end {
+        other = first;
+    }
+    // The state of charge: every later placement counted against the margin,
+    // or (when that runs out first) those near enough in time against the
+    // local budget.
+    let mut soc = RunEffects::exhausted(&fx.energy, k, ev.margin);
+    if soc < other {
+        soc = soc.max(fx.soc_due(state, ev, drain, k));
+    }
+    Due {
+        at: soc.min(other),
+        soc_only: soc < other,
+    }
+}
+
+/// When a witness is to be looked at again ([`next_check`]).
+struct Due {
+    /// The step.
+    at: usize,
+    /// Whether only the state of charge can have changed by then (nothing
+    /// placed near it, no shared state, no scope or group change, data within
+    /// its margins): a recheck of the energy margin decides then.
+    soc_only: bool,
 }
 
 /// Appends step `j` to the list of state `s`.
@@ -414,8 +507,9 @@ pub(super) fn failure_probes(
         for (i, w) in witness.iter().enumerate() {
             if let Some(w) = w.as_ref().filter(|w| w.due > k && k < step_of[targets[i]]) {
                 let scope = thresholds[i].scope_at(k);
+                let p = &w.ev.placement;
                 debug_assert!(
-                    state.fits(targets[i], w.start, w.duration, &scope),
+                    state.fits(targets[i], p.start, p.duration, &scope),
                     "a skipped witness stopped fitting"
                 );
             }
@@ -439,13 +533,29 @@ pub(super) fn failure_probes(
             let grouped = problem.acts[a]
                 .group
                 .is_some_and(|g| state.group_member[g].is_some());
-            let kept = witness[i].as_ref().filter(|_| !grouped).and_then(|w| {
-                state
-                    .fitting(a, w.start, w.duration, &scope)
-                    .or_else(|| elsewhere(&state, &scope, a, w.duration))
+            // A witness rechecked on energy alone keeps its drain (its retired
+            // awake periods are indices into an older state: not rebuilt).
+            let kept = witness[i].take().filter(|_| !grouped).and_then(|w| {
+                let p = &w.ev.placement;
+                if w.soc_only {
+                    let again = state.still_passing(&w.ev, &w.drain);
+                    debug_assert_eq!(
+                        again.as_ref().map(|e| e.margin),
+                        state
+                            .fitting(a, p.start, p.duration, &scope)
+                            .map(|e| e.margin),
+                        "a witness rechecked on energy alone"
+                    );
+                    if let Some(ev) = again {
+                        return Some((ev, Some(w.drain)));
+                    }
+                } else if let Some(ev) = state.fitting(a, p.start, p.duration, &scope) {
+                    return Some((ev, None));
+                }
+                elsewhere(&state, &scope, a, p.duration).map(|ev| (ev, None))
             });
-            let ev = match kept {
-                Some(ev) => ev,
+            let (ev, drain) = match kept {
+                Some(kept) => kept,
                 None => {
                     // Whether it fails does not depend on the span phase 1 covers
                     // (phase 2 only looks inside the windows), so probe within the
@@ -457,7 +567,7 @@ pub(super) fn failure_probes(
                     // once per target, records its tries.
                     let probe = run_step(&state, a, step_of[a], &scope, Detail::Outcome);
                     match probe.found {
-                        Some(ev) => sturdier_witness(&state, &scope, &probe.step, ev),
+                        Some(ev) => (sturdier_witness(&state, &scope, &probe.step, ev), None),
                         None => {
                             let detail = if probe.step.outcome
                                 == Outcome::Failed(FailurePhase::ValidIntervals)
@@ -475,14 +585,17 @@ pub(super) fn failure_probes(
                     }
                 }
             };
-            let next = next_check(&state, &fx, &thresholds[i], &ev, k, until);
+            let drain = drain.unwrap_or_else(|| state.drain_of(&ev.placement));
+            let next = next_check(&state, &fx, &thresholds[i], &ev, &drain, k, until);
+            let due = if next.at < until { next.at } else { usize::MAX };
             witness[i] = Some(Witness {
-                start: ev.placement.start,
-                duration: ev.placement.duration,
-                due: if next < until { next } else { usize::MAX },
+                ev,
+                drain,
+                due,
+                soc_only: next.soc_only,
             });
-            if next < until {
-                queue.push(Reverse((next, i)));
+            if next.at < until {
+                queue.push(Reverse((next.at, i)));
             }
         }
         state.replay(&sched.steps[k]);

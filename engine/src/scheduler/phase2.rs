@@ -32,6 +32,23 @@ const SPAN_MIN_SECONDS: i64 = if cfg!(debug_assertions) { 2 } else { 64 };
 /// See [`SPAN_MIN_SECONDS`].
 const SPAN_LEAF_BREAKPOINTS: usize = if cfg!(debug_assertions) { 1 } else { 8 };
 
+/// The room a passing placement leaves on energy, local in time (see
+/// [`State::soc_budget`] and `RateTimeline::local_budget`): while the other
+/// placements starting before `until` change at most `budget` charge, and
+/// every state of charge stays above the minimum without the placement, it
+/// still passes the state-of-charge minimum; and while those starting before
+/// the handover time change at most the handover margin, it still passes the
+/// handover minimum.
+#[derive(Clone, Copy, Debug)]
+pub struct SocBudget {
+    /// Charge (mJ, absolute) the placements counted may change.
+    pub budget: i128,
+    /// Placements starting at or after this time are not counted.
+    pub until: i64,
+    /// `(handover time, margin)` when the handover minimum applies.
+    pub handover: Option<(i64, i128)>,
+}
+
 /// A candidate that passed the structural and peak checks, with its energy margin.
 #[derive(Clone, Debug)]
 pub struct Evaluated {
@@ -257,13 +274,157 @@ impl State<'_> {
         soc: bool,
     ) -> Result<Evaluated, Phase2Reason> {
         let problem = self.problem;
-        let act = &problem.acts[a];
-        let e = s + d;
         let Generated {
             retire,
             new_awake,
             preheats,
         } = self.structure(a, s, d)?;
+        let pieces = self.load_pieces(a, s, d, &retire, new_awake, &preheats);
+        // Peak power.
+        if let Some(max) = problem.max_peak {
+            if let Some((v, at)) = self.peak_max.filter(|(v, _)| *v > max) {
+                return Err(Phase2Reason::MaxPeakPower { at, peak_mw: v });
+            }
+            for &(x, y, _, dp) in &pieces {
+                if let Some((v, at)) = self.peak.max_on(x, y) {
+                    if v + dp > max {
+                        return Err(Phase2Reason::MaxPeakPower {
+                            at,
+                            peak_mw: v + dp,
+                        });
+                    }
+                }
+            }
+        }
+        // Energy.
+        let drain: Vec<(i64, i64, i64)> = pieces.iter().map(|p| (p.0, p.1, p.2)).collect();
+        let energy = drain
+            .iter()
+            .map(|&(x, y, r)| i128::from(r).abs() * i128::from(y - x))
+            .sum();
+        let placement = Placement {
+            act: a,
+            start: s,
+            duration: d,
+            retire,
+            new_awake,
+            preheats,
+        };
+        if !soc {
+            return Ok(Evaluated {
+                placement,
+                margin: i128::MAX,
+                soc_reason: None,
+                energy,
+            });
+        }
+        let (margin, soc_reason) = self.soc_margin(a, &drain);
+        Ok(Evaluated {
+            placement,
+            margin,
+            soc_reason,
+            energy,
+        })
+    }
+
+    /// The energy margin of a placement of activity `a` draining `drain` more
+    /// (`min(lowest soc - min_soc, handover soc - handover min)`), and the
+    /// energy reason when it is negative.
+    fn soc_margin(&self, a: usize, drain: &[(i64, i64, i64)]) -> (i128, Option<Phase2Reason>) {
+        let problem = self.problem;
+        let handover = match (
+            problem.acts[a].mandatory,
+            problem.handover_time,
+            problem.handover_soc,
+        ) {
+            (false, Some(t), Some(min)) => Some((t, min)),
+            _ => None,
+        };
+        let check = self.soc.check(drain, handover.map(|h| h.0));
+        let mut margin = check.min - problem.min_soc;
+        let mut soc_reason = (margin < 0).then(|| Phase2Reason::MinSoc {
+            at: check.min_at,
+            soc_mj: clamp_i64(check.min),
+        });
+        if let (Some((_, min)), Some(level)) = (handover, check.at_probe) {
+            let hm = level - min;
+            if hm < 0 && soc_reason.is_none() {
+                soc_reason = Some(Phase2Reason::HandoverSoc {
+                    soc_mj: clamp_i64(level),
+                });
+            }
+            margin = margin.min(hm);
+        }
+        (margin, soc_reason)
+    }
+
+    /// The charge drain `(from, to, mW)` of placement `p` in this state.
+    pub fn drain_of(&self, p: &Placement) -> Vec<(i64, i64, i64)> {
+        self.load_pieces(
+            p.act,
+            p.start,
+            p.duration,
+            &p.retire,
+            p.new_awake,
+            &p.preheats,
+        )
+        .into_iter()
+        .map(|(x, y, energy, _)| (x, y, energy))
+        .collect()
+    }
+
+    /// `ev` (a passing evaluation against an earlier state that drained
+    /// `drain`) against this state, when nothing placed since can have changed
+    /// anything but the state of charge: its new margin when it still passes.
+    pub fn still_passing(&self, ev: &Evaluated, drain: &[(i64, i64, i64)]) -> Option<Evaluated> {
+        let (margin, _) = self.soc_margin(ev.placement.act, drain);
+        (margin >= 0).then(|| Evaluated {
+            margin,
+            ..ev.clone()
+        })
+    }
+
+    /// For the explainer's witnesses: how much other placements may change
+    /// the state of charge, and where, before the passing evaluation `ev`
+    /// (of this state, draining `drain`) can stop passing on energy
+    /// ([`SocBudget`]). `None` when
+    /// no local budget exists (the drain is never absorbed, or no room).
+    pub fn soc_budget(&self, ev: &Evaluated, drain: &[(i64, i64, i64)]) -> Option<SocBudget> {
+        let problem = self.problem;
+        let p = &ev.placement;
+        let (budget, until) = self.soc.local_budget(drain, problem.min_soc)?;
+        let handover = match (
+            problem.acts[p.act].mandatory,
+            problem.handover_time,
+            problem.handover_soc,
+        ) {
+            (false, Some(t), Some(min)) => {
+                Some((t, self.soc.check(drain, Some(t)).at_probe? - min))
+            }
+            _ => None,
+        };
+        Some(SocBudget {
+            budget,
+            until,
+            handover,
+        })
+    }
+
+    /// The load pieces `(from, to, extra drain, extra peak)` (mW) that placing
+    /// activity `a` at `s` for `d` adds, with the awake period it creates
+    /// (absorbing `retire`) and its preheats: sorted, disjoint, non-zero.
+    pub(crate) fn load_pieces(
+        &self,
+        a: usize,
+        s: i64,
+        d: i64,
+        retire: &[usize],
+        new_awake: Option<(i64, i64)>,
+        preheats: &[(usize, i64, i64)],
+    ) -> Vec<(i64, i64, i64, i64)> {
+        let problem = self.problem;
+        let act = &problem.acts[a];
+        let e = s + d;
         // Load pieces: (t, +energy, +peak) boundary events.
         let mut events: Vec<(i64, i64, i64)> = Vec::new();
         let mut piece = |x: i64, y: i64, energy: i64, peak: i64| {
@@ -305,69 +466,7 @@ impl State<'_> {
                 }
             }
         }
-        // Peak power.
-        if let Some(max) = problem.max_peak {
-            if let Some((v, at)) = self.peak_max.filter(|(v, _)| *v > max) {
-                return Err(Phase2Reason::MaxPeakPower { at, peak_mw: v });
-            }
-            for &(x, y, _, dp) in &pieces {
-                if let Some((v, at)) = self.peak.max_on(x, y) {
-                    if v + dp > max {
-                        return Err(Phase2Reason::MaxPeakPower {
-                            at,
-                            peak_mw: v + dp,
-                        });
-                    }
-                }
-            }
-        }
-        // Energy.
-        let drain: Vec<(i64, i64, i64)> = pieces.iter().map(|p| (p.0, p.1, p.2)).collect();
-        let energy = drain
-            .iter()
-            .map(|&(x, y, r)| i128::from(r).abs() * i128::from(y - x))
-            .sum();
-        let handover = match (act.mandatory, problem.handover_time, problem.handover_soc) {
-            (false, Some(t), Some(min)) => Some((t, min)),
-            _ => None,
-        };
-        let placement = Placement {
-            act: a,
-            start: s,
-            duration: d,
-            retire,
-            new_awake,
-            preheats,
-        };
-        if !soc {
-            return Ok(Evaluated {
-                placement,
-                margin: i128::MAX,
-                soc_reason: None,
-                energy,
-            });
-        }
-        let check = self.soc.check(&drain, handover.map(|h| h.0));
-        let mut margin = check.min - problem.min_soc;
-        let mut soc_reason = (margin < 0).then(|| Phase2Reason::MinSoc {
-            at: check.min_at,
-            soc_mj: clamp_i64(check.min),
-        });
-        if let (Some((_, min)), Some(level)) = (handover, check.at_probe) {
-            let hm = level - min;
-            if hm < 0 && soc_reason.is_none() {
-                soc_reason = Some(Phase2Reason::HandoverSoc {
-                    soc_mj: clamp_i64(level),
-                });
-            }
-            margin = margin.min(hm);
-        }
-        Ok(Evaluated {
-            placement,
-            margin,
-            soc_reason,
-            energy,
-        })
+        pieces
     }
 
     /// The first manual sleep overlapping `[a, b)`.

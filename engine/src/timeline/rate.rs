@@ -19,6 +19,15 @@ pub struct LevelCheck {
     pub at_probe: Option<i128>,
 }
 
+/// What [`Levels::drained`] found under a drain.
+struct Drained {
+    min: i128,
+    min_at: i64,
+    level: i128,
+    i: usize,
+    at_probe: Option<i128>,
+}
+
 /// A capped integrator of a piecewise-constant rate over `[start, end]`.
 ///
 /// The rate changes with every placement, but many placements are made before the
@@ -264,6 +273,30 @@ impl RateTimeline {
         floor: i128,
     ) -> Option<(i64, i64)> {
         self.levels().surely_at_least(lo, hi, energy, floor)
+    }
+
+    /// The lowest level from time `t` (clamped to the domain) to the end.
+    pub fn lowest_from(&self, t: i64) -> i128 {
+        self.levels().lowest_from(t)
+    }
+
+    /// For the explainer's witnesses, with `drain` added (sorted, disjoint
+    /// pieces) and the lowest level allowed `floor`: `(budget, until)` such that
+    /// whatever other rate changes of at most `budget` total charge (absolute)
+    /// are made before `until` (and any after it), the drained levels stay at
+    /// or above `floor` from the drain's start to `until`, and from `until` on
+    /// the drain's effect is gone (the levels equal those without it). `None`
+    /// when the drain is not absorbed before the domain ends, or leaves no room.
+    ///
+    /// Why: a capped integrator moves by at most the charge changed (so do the
+    /// drained levels, and the deficit at the drain's end by at most twice
+    /// that), and after the drain the deficit shrinks by exactly the charge the
+    /// unchanged trajectory loses to the cap, which the other changes reduce by
+    /// at most what they change. So with changes of `c <= budget` the deficit,
+    /// at most `deficit + 2c`, is absorbed once `deficit + 3 budget` is lost,
+    /// which happens by `until`.
+    pub fn local_budget(&self, drain: &[(i64, i64, i64)], floor: i128) -> Option<(i128, i64)> {
+        self.levels().local_budget(drain, floor)
     }
 
     /// Lowest level, and level at `probe`, if `drain` (sorted, disjoint `[a, b)`
@@ -531,44 +564,96 @@ impl Levels {
         (from <= to).then_some((from, to))
     }
 
-    /// Lowest level, and level at `probe`, if `drain` (sorted, disjoint `[a, b)`
-    /// pieces with a rate subtracted from the timeline's rate) were added.
-    fn check(&self, drain: &[(i64, i64, i64)], probe: Option<i64>) -> LevelCheck {
-        let n = self.rates.len();
-        let (start, end) = (self.times[0], self.times[n]);
-        // Usually every piece is inside the domain already: no copy then.
-        let clean = drain
+    /// `drain` clipped to the domain, without empty pieces (usually every
+    /// piece is inside already: no copy then).
+    fn clipped<'d>(&self, drain: &'d [(i64, i64, i64)]) -> std::borrow::Cow<'d, [(i64, i64, i64)]> {
+        let (start, end) = (self.times[0], self.times[self.rates.len()]);
+        if drain
             .iter()
-            .all(|&(a, b, r)| start <= a && b <= end && a < b && r != 0);
-        let clipped: Vec<(i64, i64, i64)>;
-        let pieces: &[(i64, i64, i64)] = if clean {
-            drain
-        } else {
-            clipped = drain
-                .iter()
-                .map(|&(a, b, r)| (a.max(start), b.min(end), r))
-                .filter(|&(a, b, r)| a < b && r != 0)
-                .collect();
-            &clipped
-        };
-        let (Some(first), Some(last)) = (pieces.first(), pieces.last()) else {
-            let (min, idx) = self.prefix_min[n];
-            return LevelCheck {
-                min,
-                min_at: self.times[idx],
-                at_probe: probe.map(|p| self.level_at(p)),
-            };
-        };
-        let (lo, hi) = (first.0, last.1);
-        let mut at_probe = probe.filter(|&p| p < lo).map(|p| self.level_at(p));
+            .all(|&(a, b, r)| start <= a && b <= end && a < b && r != 0)
+        {
+            return std::borrow::Cow::Borrowed(drain);
+        }
+        drain
+            .iter()
+            .map(|&(a, b, r)| (a.max(start), b.min(end), r))
+            .filter(|&(a, b, r)| a < b && r != 0)
+            .collect()
+    }
 
-        // Before the drain: unchanged.
+    /// See [`RateTimeline::lowest_from`].
+    fn lowest_from(&self, t: i64) -> i128 {
+        let i = self.index(t);
+        let here = self.level_and_waste_in(i, t).0;
+        self.suffix_min.get(i + 1).map_or(here, |m| here.min(m.0))
+    }
+
+    /// See [`RateTimeline::local_budget`].
+    fn local_budget(&self, drain: &[(i64, i64, i64)], floor: i128) -> Option<(i128, i64)> {
+        let n = self.rates.len();
+        let pieces = self.clipped(drain);
+        let hi = pieces.last()?.1;
+        let under = self.drained(&pieces, None, false);
+        let mut i = under.i;
+        while i + 1 < n && self.times[i + 1] <= hi {
+            i += 1;
+        }
+        let (e_hi, w_hi) = self.level_and_waste_in(i, hi);
+        let deficit = e_hi - under.level;
+        if deficit < 0 {
+            return None;
+        }
+        // Breakpoints after `hi`, and the first by which the unchanged
+        // trajectory has lost `x` more to the cap since `hi`.
+        let first = if self.times[n] <= hi { n + 1 } else { i + 1 };
+        let lost = |x: i128| first + self.wasted[first..].partition_point(|&w| w - w_hi < x);
+        let absorbed = lost(deficit);
+        if absorbed > n {
+            return None;
+        }
+        // The drained levels up to where the deficit is absorbed, exactly.
+        let mut low = under.min;
+        if let Some((u, _)) = self.uncapped.query(first, absorbed) {
+            low = low.min(u - w_hi - deficit);
+        }
+        let budget = (low - floor) / 4;
+        if budget <= 0 {
+            return None;
+        }
+        let until = lost(deficit + 3 * budget);
+        if until > n {
+            return None;
+        }
+        // From there to `until` the levels are unchanged, and every level
+        // there is above `uncapped - w_hi - deficit - 3 budget`: less than that
+        // is lost to the cap before `until`.
+        if let Some((u, _)) = self.uncapped.query(absorbed, until) {
+            low = low.min(u - w_hi - deficit - 3 * budget);
+        }
+        Some((budget.min(low - floor), self.times[until])).filter(|b| b.0 >= 0)
+    }
+
+    /// The walk under a drain (sorted, disjoint, clipped, non-empty pieces):
+    /// the lowest level from the drain's start on (from the domain start with
+    /// `with_before`), the level at its end and the segment the walk ended in,
+    /// and the level at `probe` if it falls before the drain's end.
+    fn drained(
+        &self,
+        pieces: &[(i64, i64, i64)],
+        probe: Option<i64>,
+        with_before: bool,
+    ) -> Drained {
+        let (lo, hi) = (pieces[0].0, pieces[pieces.len() - 1].1);
+        let mut at_probe = probe.filter(|&p| p < lo).map(|p| self.level_at(p));
         let i_lo = self.index(lo);
-        let (mut min, idx) = self.prefix_min[i_lo];
-        let mut min_at = self.times[idx];
         let mut level = self.level_and_waste_in(i_lo, lo).0;
-        if level < min {
-            (min, min_at) = (level, lo);
+        let (mut min, mut min_at) = (level, lo);
+        if with_before {
+            // Before the drain: unchanged.
+            let (m, idx) = self.prefix_min[i_lo];
+            if m <= min {
+                (min, min_at) = (m, self.times[idx]);
+            }
         }
 
         // Under the drain: simulate over the merged breakpoints.
@@ -595,6 +680,36 @@ impl Levels {
             }
             t = next;
         }
+        Drained {
+            min,
+            min_at,
+            level,
+            i,
+            at_probe,
+        }
+    }
+
+    /// Lowest level, and level at `probe`, if `drain` (sorted, disjoint `[a, b)`
+    /// pieces with a rate subtracted from the timeline's rate) were added.
+    fn check(&self, drain: &[(i64, i64, i64)], probe: Option<i64>) -> LevelCheck {
+        let n = self.rates.len();
+        let pieces = self.clipped(drain);
+        let Some(last) = pieces.last() else {
+            let (min, idx) = self.prefix_min[n];
+            return LevelCheck {
+                min,
+                min_at: self.times[idx],
+                at_probe: probe.map(|p| self.level_at(p)),
+            };
+        };
+        let hi = last.1;
+        let Drained {
+            mut min,
+            mut min_at,
+            mut level,
+            mut i,
+            mut at_probe,
+        } = self.drained(&pieces, probe, true);
 
         // After the drain the rates are the same, and the deficit only shrinks by the
         // charge the unchanged trajectory loses to the cap: with W the cumulative
@@ -662,7 +777,13 @@ impl Levels {
             }
         }
         if at_probe.is_none() {
-            at_probe = probe.map(|p| if p >= end { level } else { self.level_at(p) });
+            at_probe = probe.map(|p| {
+                if p >= self.times[n] {
+                    level
+                } else {
+                    self.level_at(p)
+                }
+            });
         }
         LevelCheck {
             min,
