@@ -217,8 +217,9 @@ pub fn explain_each(
             let step = &sched.steps[step_of[a] - 1];
             let mut ex = from_probe(sched, a, step, k, record, &tries);
             ex.culprits = culprits::culprits(state, &ex);
-            found.borrow_mut()[i] = Some(ex);
+            ex
         },
+        |i, ex| found.borrow_mut()[i] = Some(ex),
         |k| {
             progress(k, total);
             flush(each, &mut kept);

@@ -469,23 +469,25 @@ fn overlap(a: (i64, i64), b: (i64, i64)) -> i128 {
     i128::from((a.1.min(b.1) - a.0.max(b.0)).max(0))
 }
 
-/// Calls `on_failure(i, k, record, state)` for each target `i` that fails, with its
-/// failure step `k`, the probe's step record there and the state after step `k`.
+/// For each target `i` that fails, with its failure step `k`, the probe's step
+/// record there and its tries and the state after step `k`: `build`s a value
+/// (in parallel with the other targets probed at the same step) and hands it to
+/// `on_failure(i, value)`, in order of the failure step, then of `i`.
 /// Targets that schedule at their own step (scheduled activities) get no call.
 ///
 /// Each target is looked at only at the steps that can change its answer: after a
 /// passing probe it keeps the placement found (its witness) and is due again at the
 /// first later step that could disturb it ([`next_check`]); then a quick check of
 /// the witness, and a search only when the witness stopped fitting.
-pub(super) fn failure_probes(
+pub(super) fn failure_probes<T: Send>(
     sched: &Schedule,
     targets: &[usize],
-    mut on_failure: impl FnMut(usize, usize, Step, Vec<Try>, &State<'_>),
+    build: impl Fn(usize, usize, Step, Vec<Try>, &State<'_>) -> T + Sync,
+    mut on_failure: impl FnMut(usize, T),
     mut stepped: impl FnMut(usize),
 ) {
     use std::cmp::Reverse;
     let problem = &sched.problem;
-    let step_of = &problem.step_of;
     let fx = RunEffects::new(sched);
     let inclusion = Inclusion::new(problem);
     let thresholds: Vec<Thresholds> = targets.iter().map(|&a| inclusion.thresholds(a)).collect();
@@ -505,7 +507,10 @@ pub(super) fn failure_probes(
         // Debug builds (the tests) check every skip against a full check.
         #[cfg(debug_assertions)]
         for (i, w) in witness.iter().enumerate() {
-            if let Some(w) = w.as_ref().filter(|w| w.due > k && k < step_of[targets[i]]) {
+            if let Some(w) = w
+                .as_ref()
+                .filter(|w| w.due > k && k < problem.step_of[targets[i]])
+            {
                 let scope = thresholds[i].scope_at(k);
                 let p = &w.ev.placement;
                 debug_assert!(
@@ -514,6 +519,10 @@ pub(super) fn failure_probes(
                 );
             }
         }
+        // The targets due at this step, probed in parallel against the same
+        // state; their results are taken in target order, so the output does
+        // not depend on the thread count.
+        let mut batch: Vec<(usize, Option<Witness>)> = Vec::new();
         while let Some(&Reverse((due, i))) = queue.peek() {
             if due > k {
                 break;
@@ -522,85 +531,126 @@ pub(super) fn failure_probes(
             if witness[i].as_ref().is_some_and(|w| w.due != due) {
                 continue; // stale entry (not expected: a target is queued once)
             }
+            batch.push((i, witness[i].take()));
+        }
+        let probe = |(i, w): (usize, Option<Witness>)| {
             let a = targets[i];
-            let until = step_of[a];
-            let scope = thresholds[i].scope_at(k);
-            // A witness that still fits answers the probe without a search (the same
-            // duration as before: a longer one could have become possible, but a
-            // probe only asks whether the activity fails). A group member placed
-            // since skips the activity, which no placement check sees; an unplaced
-            // dependency fails the witness's phase-1 check.
-            let grouped = problem.acts[a]
-                .group
-                .is_some_and(|g| state.group_member[g].is_some());
-            // A witness rechecked on energy alone keeps its drain (its retired
-            // awake periods are indices into an older state: not rebuilt).
-            let kept = witness[i].take().filter(|_| !grouped).and_then(|w| {
-                let p = &w.ev.placement;
-                if w.soc_only {
-                    let again = state.still_passing(&w.ev, &w.drain);
-                    debug_assert_eq!(
-                        again.as_ref().map(|e| e.margin),
-                        state
-                            .fitting(a, p.start, p.duration, &scope)
-                            .map(|e| e.margin),
-                        "a witness rechecked on energy alone"
-                    );
-                    if let Some(ev) = again {
-                        return Some((ev, Some(w.drain)));
-                    }
-                } else if let Some(ev) = state.fitting(a, p.start, p.duration, &scope) {
-                    return Some((ev, None));
-                }
-                elsewhere(&state, &scope, a, p.duration).map(|ev| (ev, None))
-            });
-            let (ev, drain) = match kept {
-                Some(kept) => kept,
-                None => {
-                    // Whether it fails does not depend on the span phase 1 covers
-                    // (phase 2 only looks inside the windows), so probe within the
-                    // window span, and redo the failing probe over the whole horizon
-                    // only when the relaxations need it (starts outside the windows).
-                    // The search asks for the outcome first: a probe that finds
-                    // a placement needs no tries, and the outcome-only search
-                    // skips what a bound proves to fail; only the failing probe,
-                    // once per target, records its tries.
-                    let probe = run_step(&state, a, step_of[a], &scope, Detail::Outcome);
-                    match probe.found {
-                        Some(ev) => (sturdier_witness(&state, &scope, &probe.step, ev), None),
-                        None => {
-                            let detail = if probe.step.outcome
-                                == Outcome::Failed(FailurePhase::ValidIntervals)
-                            {
-                                Detail::Horizon
-                            } else {
-                                Detail::Trace
-                            };
-                            let failed = run_step(&state, a, step_of[a], &scope, detail);
-                            debug_assert!(failed.found.is_none(), "outcome-only probe");
-                            on_failure(i, k, failed.step, failed.tries, &state);
-                            witness[i] = None;
-                            continue;
-                        }
-                    }
-                }
+            let probed = match probe_target(&state, &fx, &thresholds[i], a, w, k) {
+                Probed::Kept(w) => Ok(w),
+                Probed::Failed(step, tries) => Err(build(i, k, step, tries, &state)),
             };
-            let drain = drain.unwrap_or_else(|| state.drain_of(&ev.placement));
-            let next = next_check(&state, &fx, &thresholds[i], &ev, &drain, k, until);
-            let due = if next.at < until { next.at } else { usize::MAX };
-            witness[i] = Some(Witness {
-                ev,
-                drain,
-                due,
-                soc_only: next.soc_only,
-            });
-            if next.at < until {
-                queue.push(Reverse((next.at, i)));
+            (i, probed)
+        };
+        let results: Vec<(usize, Result<Witness, T>)> = if batch.len() > 1 {
+            use rayon::prelude::*;
+            batch.into_par_iter().with_min_len(4).map(probe).collect()
+        } else {
+            batch.into_iter().map(probe).collect()
+        };
+        for (i, probed) in results {
+            match probed {
+                Ok(w) => {
+                    if w.due != usize::MAX {
+                        queue.push(Reverse((w.due, i)));
+                    }
+                    witness[i] = Some(w);
+                }
+                Err(value) => on_failure(i, value),
             }
         }
         state.replay(&sched.steps[k]);
         stepped(k + 1);
     }
+}
+
+/// What probing one target at a step gave.
+enum Probed {
+    /// It still fits: its witness, due again at `due` (`usize::MAX`: not
+    /// before its own step).
+    Kept(Witness),
+    /// It fails here: the failing probe's record and tries.
+    Failed(Step, Vec<Try>),
+}
+
+/// Probes target activity `a` (thresholds `th`) against the state after step
+/// `k`, starting from its witness `w`, if any.
+///
+/// A witness that still fits answers the probe without a search (the same
+/// duration as before: a longer one could have become possible, but a probe
+/// only asks whether the activity fails). A group member placed since skips
+/// the activity, which no placement check sees; an unplaced dependency fails
+/// the witness's phase-1 check. A witness rechecked on energy alone keeps its
+/// drain (its retired awake periods are indices into an older state: not
+/// rebuilt).
+fn probe_target(
+    state: &State<'_>,
+    fx: &RunEffects,
+    th: &Thresholds,
+    a: usize,
+    w: Option<Witness>,
+    k: usize,
+) -> Probed {
+    let problem = state.problem;
+    let until = problem.step_of[a];
+    let scope = th.scope_at(k);
+    let grouped = problem.acts[a]
+        .group
+        .is_some_and(|g| state.group_member[g].is_some());
+    let kept = w.filter(|_| !grouped).and_then(|w| {
+        let p = &w.ev.placement;
+        if w.soc_only {
+            let again = state.still_passing(&w.ev, &w.drain);
+            debug_assert_eq!(
+                again.as_ref().map(|e| e.margin),
+                state
+                    .fitting(a, p.start, p.duration, &scope)
+                    .map(|e| e.margin),
+                "a witness rechecked on energy alone"
+            );
+            if let Some(ev) = again {
+                return Some((ev, Some(w.drain)));
+            }
+        } else if let Some(ev) = state.fitting(a, p.start, p.duration, &scope) {
+            return Some((ev, None));
+        }
+        elsewhere(state, &scope, a, p.duration).map(|ev| (ev, None))
+    });
+    let (ev, drain) = match kept {
+        Some(kept) => kept,
+        None => {
+            // Whether it fails does not depend on the span phase 1 covers
+            // (phase 2 only looks inside the windows), so probe within the
+            // window span, and redo the failing probe over the whole horizon
+            // only when the relaxations need it (starts outside the windows).
+            // The search asks for the outcome first: a probe that finds a
+            // placement needs no tries, and the outcome-only search skips what
+            // a bound proves to fail; only the failing probe, once per target,
+            // records its tries.
+            let probe = run_step(state, a, until, &scope, Detail::Outcome);
+            match probe.found {
+                Some(ev) => (sturdier_witness(state, &scope, &probe.step, ev), None),
+                None => {
+                    let detail =
+                        if probe.step.outcome == Outcome::Failed(FailurePhase::ValidIntervals) {
+                            Detail::Horizon
+                        } else {
+                            Detail::Trace
+                        };
+                    let failed = run_step(state, a, until, &scope, detail);
+                    debug_assert!(failed.found.is_none(), "outcome-only probe");
+                    return Probed::Failed(failed.step, failed.tries);
+                }
+            }
+        }
+    };
+    let drain = drain.unwrap_or_else(|| state.drain_of(&ev.placement));
+    let next = next_check(state, fx, th, &ev, &drain, k, until);
+    Probed::Kept(Witness {
+        ev,
+        drain,
+        due: if next.at < until { next.at } else { usize::MAX },
+        soc_only: next.soc_only,
+    })
 }
 
 /// A witness that later placements are less likely to disturb than the
