@@ -1120,7 +1120,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn opening_at_start_up_falls_back_to_the_default_plan_with_the_error() {
+    fn opening_at_start_up_falls_back_to_the_default_plan_and_repairs_the_file() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
         let good = root.join("assets/examples/pitfall.json");
         let app = SolscopeApp::open_or_default(Some(&good)).expect("app");
@@ -1133,8 +1133,19 @@ mod tests {
             app.doc.plan,
             SolscopeApp::with_default_plan().expect("default").doc.plan
         );
+        // The file is in the repair view, with its error.
+        let repair = app.ui.messages.repair.expect("repair view");
+        assert_eq!(repair.path.as_deref(), Some(bad.as_path()));
+        assert!(
+            repair.errors[0].path.ends_with("windows[0].end"),
+            "{repair:?}"
+        );
+        assert!(app.ui.text.repair_text.contains("\"end\""));
+        // A file that cannot be read has no text to repair: the error.
+        let app = SolscopeApp::open_or_default(Some(&root.join("no-such-plan.json"))).expect("app");
+        assert!(app.ui.messages.repair.is_none());
         let err = app.ui.messages.error.expect("error shown");
-        assert!(err.contains("windows[0].end"), "{err}");
+        assert!(err.starts_with("Could not open"), "{err}");
     }
 
     #[test]

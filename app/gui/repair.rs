@@ -320,7 +320,8 @@ mod tests {
         let cut = &TEXT[..TEXT.find("\"end\": 1").expect("end") + 6];
         assert_eq!(
             &cut[locate(cut, "activities[0].windows[0]").expect("value")],
-            r#"{ "start": 5, "end""#
+            r#"{ "start": 5, "end":"#,
+            "to the end of the text"
         );
         let deep = "[".repeat(100_000);
         assert_eq!(locate(&deep, "activities[0]"), Some(0..deep.len()));

@@ -143,6 +143,15 @@ impl Kind {
     }
 }
 
+/// How a field is named for assistive technology (and the tests).
+#[derive(Clone, Copy, Debug)]
+enum Name<'s> {
+    /// By this text (nothing visible says all of it).
+    Text(&'s str),
+    /// By the visible label beside it.
+    Label(egui::Id),
+}
+
 /// How a picker offers its options.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Pick {
@@ -186,7 +195,7 @@ impl Ed<'_, '_> {
         shown: &str,
         width: f32,
     ) -> Option<String> {
-        self.line_hint(ui, field, name, (shown, ""), width)
+        self.line_hint(ui, field, Name::Text(name), (shown, ""), width)
     }
 
     /// [`Ed::line`] with `hint` shown in the field while it is empty.
@@ -194,7 +203,7 @@ impl Ed<'_, '_> {
         &mut self,
         ui: &mut egui::Ui,
         field: &str,
-        name: &str,
+        name: Name<'_>,
         (shown, hint): (&str, &str),
         width: f32,
     ) -> Option<String> {
@@ -210,7 +219,10 @@ impl Ed<'_, '_> {
         if entry.1.is_some() {
             edit = edit.text_color(self.m.theme.error);
         }
-        let resp = ui.add(edit).accessible_name(name);
+        let resp = match name {
+            Name::Text(name) => ui.add(edit).accessible_name(name),
+            Name::Label(id) => ui.add(edit).labelled_by(id),
+        };
         if !resp.lost_focus() {
             return None;
         }
@@ -290,12 +302,13 @@ impl Ed<'_, '_> {
         current: Option<&Value>,
         optional: bool,
     ) -> Option<Option<Value>> {
-        ui.label(label);
+        let label = ui.label(label).id;
         let shown = kind.show(self.clock(), current);
         let typed = ui
             .horizontal(|ui| {
                 let hint = if optional { "none" } else { "" };
-                let typed = self.line_hint(ui, field, label, (&shown, hint), kind.width());
+                let typed =
+                    self.line_hint(ui, field, Name::Label(label), (&shown, hint), kind.width());
                 if let Some(note) = kind.note(current) {
                     ui.label(RichText::new(note).color(self.m.theme.muted));
                 }
@@ -570,8 +583,8 @@ fn identity_rows(
     act: &Activity,
     obj: &Value,
 ) {
-    ui.label("Id");
-    let typed = ed.line(ui, "id", "Id", &act.id, FIELD_WIDTH);
+    let label = ui.label("Id").id;
+    let typed = ed.line_hint(ui, "id", Name::Label(label), (&act.id, ""), FIELD_WIDTH);
     ui.end_row();
     if let Some(new) = typed.map(|t| t.trim().to_string()) {
         // The edit format changes one target: a rename is an edit of the
@@ -735,7 +748,13 @@ fn windows_ui(ui: &mut egui::Ui, ed: &mut Ed<'_, '_>, act: &Activity) {
                         "cutoff" => "none",
                         _ => "",
                     };
-                    let typed = ed.line_hint(ui, &field, &name, (&shown, hint), TIME_FIELD_WIDTH);
+                    let typed = ed.line_hint(
+                        ui,
+                        &field,
+                        Name::Text(&name),
+                        (&shown, hint),
+                        TIME_FIELD_WIDTH,
+                    );
                     ui.end_row();
                     if let Some(text) = typed {
                         let near = current.clone().or(Some(json!(w.start)));
