@@ -296,8 +296,6 @@ pub struct TextBuffers {
     pub campaign_seed_text: String,
     /// The typed path when no file dialog could be shown.
     pub path_text: String,
-    /// The editor's search among the activities to depend on.
-    pub dependency_search: String,
     /// Repair view: the plan text being repaired.
     pub repair_text: String,
     /// Repair view: the value at the path of the error looked at, as edited.
@@ -317,7 +315,6 @@ impl Default for TextBuffers {
             campaign_runs_text: DEFAULT_CAMPAIGN_RUNS.to_string(),
             campaign_seed_text: "1".into(),
             path_text: String::new(),
-            dependency_search: String::new(),
             repair_text: String::new(),
             repair_value: String::new(),
             repair_cursor: None,
