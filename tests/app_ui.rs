@@ -113,71 +113,324 @@ fn applying_a_suggestion_makes_it_schedule_and_undo_restores() {
     assert!(h.state().analysis.placement(a).is_none());
 }
 
-#[test]
-fn editing_a_window_reruns_and_updates_the_banner() {
-    let mut h = tutorial_with_selected("sky_flats_mast_busy");
-    let a = index(h.state(), "sky_flats_mast_busy");
-    h.get_by_label("windows").scroll_to_me();
-    h.run_steps(2);
-    h.get_by_label("windows").focus();
-    h.run_steps(2);
-    h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::A);
-    h.get_by_label("windows")
-        .type_text(r#"[{"start": 36000, "end": 38700}]"#);
-    h.run_steps(2);
+/// Scrolls the widget labelled `label` into view (the scroll is animated:
+/// a click lands where it is once it stops).
+fn show(h: &mut egui_kittest::Harness<'static, SolscopeApp>, label: &str) {
+    h.get_by_label(label).scroll_to_me();
+    h.run_steps(30);
+}
+
+/// Clicks the widget labelled `label`, scrolled into view first.
+fn click(h: &mut egui_kittest::Harness<'static, SolscopeApp>, label: &str) {
+    show(h, label);
+    h.get_by_label(label).click();
+    h.run_steps(3);
+}
+
+/// Types `text` into the editor field labelled `label` and presses Enter.
+fn commit(h: &mut egui_kittest::Harness<'static, SolscopeApp>, label: &str, text: &str) {
+    show(h, label);
+    type_into(h, label, text);
     h.key_press(eframe::egui::Key::Enter);
     h.run_steps(3);
+}
+
+#[test]
+fn editing_a_window_s_start_in_sol_time_reruns_and_updates_the_banner() {
+    let mut h = tutorial_with_selected("sky_flats_mast_busy");
+    let a = index(h.state(), "sky_flats_mast_busy");
+    assert!(h.state().analysis.placement(a).is_none());
+    let revision = h.state().revision;
+    // The field shows the start in sol and local time.
+    let shown = h.get_by_label("Window 1 start").value();
+    assert_eq!(shown.as_deref(), Some("Sol 0 10:30:00"), "37800 s");
+    commit(&mut h, "Window 1 start", "Sol 0 10:00");
+    let w = h.state().doc.plan.activities[a].windows.clone().unwrap();
+    assert_eq!((w[0].start, w[0].end), (36000, 38700));
+    assert_eq!(h.state().revision, revision + 1, "rescheduled once");
     assert!(
         h.state().analysis.placement(a).is_some(),
-        "the widened window fits: editor {:?}, error {:?}",
-        h.state()
-            .ui
-            .text
-            .editor
-            .get("activity:sky_flats_mast_busy/windows"),
+        "the widened window fits: error {:?}",
         h.state().ui.messages.error
     );
     assert!(h.state().doc.dirty);
     assert!(
-        h.query_by_label_contains("Set windows of activity:sky_flats_mast_busy")
+        h.query_by_label_contains("Set window 1 start of sky_flats_mast_busy")
             .is_some()
     );
+    // A time of day alone stays in the window's sol.
+    commit(&mut h, "Window 1 end", "10:50");
+    let w = h.state().doc.plan.activities[a].windows.clone().unwrap();
+    assert_eq!(w[0].end, 39000);
 }
 
 #[test]
 fn a_bad_value_is_shown_and_never_applied() {
     let mut h = tutorial_with_selected("sky_flats_mast_busy");
     let before = h.state().doc.plan.clone();
-    h.get_by_label("priority").scroll_to_me();
-    h.run_steps(2);
-    h.get_by_label("priority").focus();
-    h.run_steps(2);
-    h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::A);
-    h.get_by_label("priority").type_text("\"high\"");
-    h.key_press(eframe::egui::Key::Enter);
-    h.run_steps(3);
+    commit(&mut h, "Priority", "high");
     assert_eq!(h.state().doc.plan, before, "nothing applied");
     assert!(
-        h.query_by_label_contains("invalid type").is_some(),
+        h.query_by_label_contains("\"high\" is not a whole number")
+            .is_some(),
         "the error is shown next to the field"
+    );
+    commit(&mut h, "Window 1 start", "Sol 0 27:00");
+    assert_eq!(h.state().doc.plan, before, "nothing applied");
+    assert!(h.query_by_label_contains("is not a time").is_some());
+}
+
+#[test]
+fn a_window_ending_before_its_start_shows_the_error_and_changes_nothing() {
+    let view = View {
+        select: Some("drill_core_413".into()),
+        ..View::default()
+    };
+    let mut h = harness(
+        SolscopeApp::with_default_plan().unwrap(),
+        SNAPSHOT_SIZE.into(),
+        &view,
+    )
+    .unwrap();
+    let before = h.state().doc.plan.clone();
+    commit(&mut h, "Window 1 end", "Sol 413 09:00");
+    assert_eq!(h.state().doc.plan, before, "nothing applied");
+    assert!(h.get_by_label("Undo").accesskit_node().is_disabled());
+    let err = h.get_by_label_contains("must be >= start").rect();
+    let field = h.get_by_label("Window 1 end").rect();
+    assert!(
+        err.right() <= SNAPSHOT_SIZE[0],
+        "the message ends inside the window: {err:?}"
+    );
+    assert!(err.left() < field.left(), "under the window: {err:?}");
+    // Escape puts the plan's value back.
+    h.get_by_label("Window 1 end").focus();
+    h.run_steps(2);
+    h.key_press(eframe::egui::Key::Escape);
+    h.run_steps(2);
+    assert_eq!(
+        h.get_by_label("Window 1 end").value().as_deref(),
+        Some("Sol 413 11:30:00")
     );
 }
 
 #[test]
-fn opening_a_bad_file_keeps_the_plan_and_shows_the_error() {
+fn the_mandatory_checkbox_toggles_and_undo_restores() {
+    let mut h = tutorial_with_selected("meda_night");
+    let a = index(h.state(), "meda_night");
+    assert!(!h.state().doc.plan.activities[a].mandatory);
+    click(&mut h, "Mandatory");
+    assert!(h.state().doc.plan.activities[a].mandatory);
+    assert!(
+        h.query_by_label_contains("Set mandatory of meda_night")
+            .is_some()
+    );
+    h.get_by_label("Undo").click();
+    h.run_steps(3);
+    assert!(!h.state().doc.plan.activities[a].mandatory);
+    assert_eq!(h.state().ui.nav.selected, Some(a), "still selected");
+}
+
+#[test]
+fn a_dependency_is_added_from_the_searchable_picker() {
+    let mut h = tutorial_with_selected("libs_raster_low_battery");
+    let a = index(h.state(), "libs_raster_low_battery");
+    assert!(h.state().doc.plan.activities[a].after.is_empty());
+    click(&mut h, "Add dependency");
+    type_into(&mut h, "Search Add dependency", "navcam");
+    // Only the matching activities are offered.
+    assert!(h.query_by_label("zcam_pano").is_none());
+    h.get_by_label("navcam_post_drive").click();
+    h.run_steps(3);
+    let after = &h.state().doc.plan.activities[a].after;
+    assert_eq!(after.len(), 1);
+    assert_eq!(after[0].activity, "navcam_post_drive");
+    assert!(h.query_by_label("after navcam_post_drive").is_some());
+    // Its delay is a field of its own.
+    commit(&mut h, "Dependency on navcam_post_drive max delay", "600");
+    assert_eq!(
+        h.state().doc.plan.activities[a].after[0].max_delay,
+        Some(600)
+    );
+}
+
+#[test]
+fn activities_are_added_duplicated_and_deleted_with_undo() {
+    let mut h = tutorial_with_selected("zcam_pano");
+    let before = h.state().doc.plan.clone();
+    let n = before.activities.len();
+    let ids = |h: &egui_kittest::Harness<'static, SolscopeApp>| -> Vec<String> {
+        h.state()
+            .doc
+            .plan
+            .activities
+            .iter()
+            .map(|a| a.id.clone())
+            .collect()
+    };
+    h.get_by_label("Duplicate activity").click();
+    h.run_steps(3);
+    assert_eq!(h.state().doc.plan.activities.len(), n + 1);
+    let copy = index(h.state(), "zcam_pano_copy");
+    assert_eq!(copy, index(h.state(), "zcam_pano") + 1, "right after it");
+    assert_eq!(
+        h.state().ui.nav.selected,
+        Some(copy),
+        "the copy is selected"
+    );
+    h.get_by_label("Add activity").click();
+    h.run_steps(3);
+    assert_eq!(ids(&h)[copy + 1], "new_activity");
+    assert_eq!(h.state().ui.nav.selected, Some(copy + 1));
+    // Deleting arm_stow drops watson's dependent's entry with it.
+    let stow = index(h.state(), "arm_stow");
+    h.state_mut().push(Command::Select(Some(stow)));
+    h.run_steps(2);
+    h.get_by_label("Delete activity").click();
+    h.run_steps(3);
+    assert!(!ids(&h).contains(&"arm_stow".to_string()));
+    assert!(h.state().ui.nav.selected.is_none());
+    assert!(
+        h.query_by_label_contains("Delete arm_stow (and the dependencies of drive on it)")
+            .is_some()
+    );
+    for _ in 0..3 {
+        h.get_by_label("Undo").click();
+        h.run_steps(3);
+    }
+    assert_eq!(h.state().doc.plan, before, "undo restores every step");
+    assert!(h.get_by_label("Undo").accesskit_node().is_disabled());
+}
+
+#[test]
+fn a_structured_edit_that_changes_nothing_is_not_recorded() {
+    let mut h = tutorial_with_selected("sky_flats_mast_busy");
+    // The start it has, in plan seconds instead of sol time.
+    commit(&mut h, "Window 1 start", "37800");
+    assert!(!h.state().doc.dirty);
+    assert!(h.get_by_label("Undo").accesskit_node().is_disabled());
+    assert!(h.query_by_label_contains("the plan is unchanged").is_some());
+    // Finishing without typing is no edit at all.
+    h.state_mut().push(Command::DismissBanner);
+    h.get_by_label("Priority").focus();
+    h.run_steps(2);
+    h.key_press(eframe::egui::Key::Enter);
+    h.run_steps(3);
+    assert!(h.state().ui.messages.banner.is_none());
+}
+
+/// The tutorial plan broken in four places, as a planner's file.
+fn broken_tutorial() -> String {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/tutorial-plan.json"
+    ))
+    .unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["battery"]["initial"] = serde_json::json!(1000.0);
+    v["activities"][0]["windows"] = serde_json::json!([{ "start": 5000, "end": 4000 }]);
+    v["activities"][1]["energy_rate"] = serde_json::json!(-3);
+    v["activities"][2]["after"] = serde_json::json!([{ "activity": "nobody" }]);
+    serde_json::to_string_pretty(&v).unwrap()
+}
+
+const BROKEN_PATHS: [&str; 4] = [
+    "battery.initial",
+    "activities[0].windows[0].end",
+    "activities[1].energy_rate",
+    "activities[2].after[0].activity",
+];
+
+/// Jumps to the error at `path` and puts `value` there.
+fn replace_at(h: &mut egui_kittest::Harness<'static, SolscopeApp>, path: &str, value: &str) {
+    h.get_by_label(path).click();
+    h.run_steps(3);
+    type_into(h, "Value at this path", value);
+    h.get_by_label("Replace and re-check").click();
+    h.run_steps(3);
+}
+
+#[test]
+fn an_invalid_file_opens_in_the_repair_view_listing_every_error() {
     let mut h = harness(tutorial(), SNAPSHOT_SIZE.into(), &View::default()).unwrap();
     let before = h.state().doc.plan.clone();
-    let bad = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/malformed/window-end-before-start.json"
-    );
-    h.state_mut().push(Command::Open(bad.into()));
+    let path = scratch_file("repair", "broken.json", &broken_tutorial());
+    h.state_mut().push(Command::Open(path.clone()));
     h.run_steps(3);
+    assert_eq!(h.state().doc.plan, before, "the open plan stays");
+    assert!(h.query_by_label("Repair broken.json").is_some());
+    assert!(h.query_by_label("Errors (4)").is_some());
+    for p in BROKEN_PATHS {
+        assert!(h.query_by_label(p).is_some(), "{p} is listed");
+    }
+    assert!(h.query_by_label_contains("must be >= 0 (got -3)").is_some());
+    // The first error is looked at: its value is there to edit.
+    assert_eq!(
+        h.get_by_label("Value at this path").value().as_deref(),
+        Some("1000.0")
+    );
+    h.get_by_label("activities[1].energy_rate").click();
+    h.run_steps(3);
+    assert_eq!(
+        h.get_by_label("Value at this path").value().as_deref(),
+        Some("-3")
+    );
+    replace_at(&mut h, "activities[1].energy_rate", "3");
+    assert!(h.query_by_label("Errors (3)").is_some());
+    assert_eq!(
+        h.state().doc.plan,
+        before,
+        "not open until every error is fixed"
+    );
+    replace_at(&mut h, "battery.initial", "800.0");
+    replace_at(&mut h, "activities[0].windows[0].end", "5000");
+    replace_at(&mut h, "activities[2].after[0].activity", "\"uhf_pass_am\"");
+    // Fixed: it is the plan now, unsaved (its file still holds the broken text).
+    assert!(h.state().ui.messages.repair.is_none());
+    let plan = &h.state().doc.plan;
+    assert_eq!(plan.activities[1].energy_rate, 3.0);
+    assert_eq!(plan.battery.initial, 800.0);
+    assert_eq!(h.state().doc.path.as_deref(), Some(path.as_path()));
+    assert!(h.state().doc.dirty);
+    assert!(h.query_by_label_contains("(unsaved)").is_some());
+    assert_eq!(
+        h.state().persisted.recent.first(),
+        Some(&std::path::absolute(&path).unwrap())
+    );
+}
+
+#[test]
+fn the_repair_view_goes_back_to_the_open_plan_and_the_text_can_be_fixed_whole() {
+    let mut h = harness(tutorial(), SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    let before = h.state().doc.plan.clone();
+    let path = scratch_file("repair-back", "broken.json", &broken_tutorial());
+    h.state_mut().push(Command::Open(path.clone()));
+    h.run_steps(3);
+    // Keys are the text's: no undo or stepping of the plan behind.
+    h.key_press(eframe::egui::Key::ArrowLeft);
+    h.run_steps(2);
+    assert_eq!(h.state().ui.nav.step, h.state().analysis.steps());
+    h.get_by_label("Back to the open plan").click();
+    h.run_steps(3);
+    assert!(h.state().ui.messages.repair.is_none());
     assert_eq!(h.state().doc.plan, before);
-    assert!(h.query_by_label_contains("Could not open").is_some());
+    assert!(h.query_by_label("Errors (4)").is_none());
+    assert!(!h.state().doc.dirty);
+    // A file that is not even JSON: the one error, and the whole text to fix.
+    let path = scratch_file(
+        "repair-back",
+        "cut.json",
+        "{\"format\": \"solscope.plan/1\",",
+    );
+    h.state_mut().push(Command::Open(path));
+    h.run_steps(3);
+    assert!(h.query_by_label("Errors (1)").is_some());
+    type_into(&mut h, "Plan text", &broken_tutorial().replace("-3", "3"));
+    h.get_by_label("Re-check").click();
+    h.run_steps(3);
     assert!(
-        h.query_by_label_contains("windows[0].end").is_some(),
-        "the path-named error is shown"
+        h.query_by_label("Errors (3)").is_some(),
+        "the text's own errors now"
     );
 }
 
@@ -1483,8 +1736,8 @@ fn drill_core_windows(text: &str) -> Hs {
         &view,
     )
     .unwrap();
-    h.get_by_label("windows").scroll_to_me();
-    h.run_steps(2);
+    click(&mut h, "Advanced (JSON)");
+    show(&mut h, "windows");
     type_into(&mut h, "windows", text);
     h.key_press(eframe::egui::Key::Enter);
     h.run_steps(3);

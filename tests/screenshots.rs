@@ -251,6 +251,53 @@ fn dragging_a_bar_previews_the_shift() {
     h.snapshot_options("flex_drag_preview", &snapshot_options());
 }
 
+/// The structured editor of drill_core_413, scrolled to its windows, with a
+/// window end before its start typed in: the reason in red under the
+/// fields, nothing applied.
+#[test]
+fn structured_editor_with_a_bad_window() {
+    use egui_kittest::kittest::Queryable;
+    let view = View {
+        select: Some("drill_core_413".into()),
+        ..View::default()
+    };
+    let mut h = harness(app(), SNAPSHOT_SIZE.into(), &view).expect("harness");
+    h.get_by_label("Window 1 end").scroll_to_me();
+    h.run_steps(30);
+    h.get_by_label("Window 1 end").focus();
+    h.run_steps(2);
+    h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::A);
+    h.get_by_label("Window 1 end").type_text("Sol 413 09:00");
+    h.key_press(eframe::egui::Key::Enter);
+    h.run_steps(4);
+    h.get_by_label("Window 1 start").scroll_to_me();
+    h.run_steps(30);
+    h.snapshot_options("editor_structured", &snapshot_options());
+}
+
+/// The default plan's file broken in four places, opened: the repair view
+/// lists every error and shows the third at its place in the text.
+#[test]
+fn repair_view_of_a_broken_plan() {
+    use egui_kittest::kittest::Queryable;
+    let mut v: serde_json::Value =
+        serde_json::from_str(solscope::gui::DEFAULT_PLAN).expect("default plan");
+    v["battery"]["initial"] = json!(2600.0);
+    v["activities"][0]["windows"] = json!([{ "start": 5000, "end": 4000 }]);
+    v["activities"][1]["energy_rate"] = json!(-3.0);
+    v["activities"][2]["after"] = json!([{ "activity": "nobody" }]);
+    let dir = std::env::temp_dir().join(format!("solscope-shots-repair-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("sols-412-413.json");
+    std::fs::write(&path, serde_json::to_string_pretty(&v).expect("json")).expect("file");
+    let mut app = app();
+    app.apply(Command::Open(path));
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).expect("harness");
+    h.get_by_label("activities[1].energy_rate").click();
+    h.run_steps(30);
+    h.snapshot_options("repair_view", &snapshot_options());
+}
+
 #[test]
 fn the_screenshot_command_is_quiet_without_xdg_runtime_dir() {
     let out = std::env::temp_dir().join(format!("solscope-quiet-{}.png", std::process::id()));

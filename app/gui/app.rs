@@ -11,9 +11,13 @@ use super::commands::{Command, UiCommand};
 use super::derived::{
     CampaignCache, DerivedCache, ExecKey, ExecutionCache, FlexCache, FlexResult, step_view,
 };
-use super::document::{Analysis, Document, OutcomeDiff, pin_window};
+use super::document::{
+    ActivitiesEdit, Analysis, Document, OutcomeDiff, add_activity, delete_activity,
+    duplicate_activity, pin_window,
+};
 use super::execution::{ActualsSource, CycleRun, ExecutionRun};
 use super::montecarlo::{CampaignResult, MAX_RUNS, Progress, Stopped};
+use super::repair::{self, Repair};
 pub use super::state::Dialog;
 use super::state::{
     LAST_STEP, Mode, Navigation, PathPrompt, Pending, Persisted, PinOffer, StepView, UiState,
@@ -154,7 +158,11 @@ impl SolscopeApp {
         });
         self.theme = Theme::new(!self.persisted.light);
         let mut cmds = std::mem::take(&mut self.commands);
-        views::shortcuts(ui, &mut cmds);
+        if self.ui.messages.repair.is_none() {
+            // The repair view edits text: no undo, stepping or saving of the
+            // plan behind it.
+            views::shortcuts(ui, &mut cmds);
+        }
         views::dropped_files(ui, &mut cmds);
         // Take what the execution workers finished (in any mode, so they are
         // not polled for longer than they run).
@@ -515,6 +523,7 @@ impl SolscopeApp {
             Command::SetDark(dark) => self.persisted.light = !dark,
             Command::GroupByResource(on) => self.persisted.by_resource = on,
             Command::SetFilter(f) => self.ui.nav.filter = f,
+            Command::RepairJump(i) => self.repair_jump(i),
             Command::ShowError(e) => self.ui.messages.error = Some(e),
             Command::OfferPin { activity, start } => {
                 self.ui.messages.pin = Some(PinOffer { activity, start });
@@ -634,6 +643,51 @@ impl SolscopeApp {
                 if self.doc.redo() {
                     self.reanalyse(before, "Redo");
                 }
+            }
+            UiCommand::AddActivity => match add_activity(&self.doc.plan, self.ui.nav.selected) {
+                Ok(edit) => self.edit_activities(edit),
+                Err(e) => self.ui.messages.error = Some(e),
+            },
+            UiCommand::DuplicateActivity => {
+                if let Some(edit) = self
+                    .ui
+                    .nav
+                    .selected
+                    .and_then(|a| duplicate_activity(&self.doc.plan, a))
+                {
+                    self.edit_activities(edit);
+                }
+            }
+            UiCommand::DeleteActivity => {
+                if let Some(edit) = self
+                    .ui
+                    .nav
+                    .selected
+                    .and_then(|a| delete_activity(&self.doc.plan, a))
+                {
+                    self.edit_activities(edit);
+                }
+            }
+            UiCommand::RecheckRepair => self.recheck_repair(),
+            UiCommand::ReplaceAtError => {
+                let text = &mut self.ui.text.repair_text;
+                let at = self
+                    .ui
+                    .messages
+                    .repair
+                    .as_ref()
+                    .and_then(|r| r.errors.get(r.selected?))
+                    .and_then(|e| repair::locate(text, &e.path));
+                if let Some(span) = at {
+                    text.replace_range(span, &self.ui.text.repair_value);
+                }
+                self.recheck_repair();
+            }
+            UiCommand::CancelRepair => {
+                self.ui.messages.repair = None;
+                self.ui.text.repair_text.clear();
+                self.ui.text.repair_value.clear();
+                self.ui.text.repair_cursor = None;
             }
             UiCommand::FirstStep => self.apply(self.set_step_command(0)),
             UiCommand::PreviousStep => {
@@ -829,6 +883,15 @@ impl SolscopeApp {
     fn reanalyse(&mut self, before: Plan, description: &str) {
         match self.analysis.rerun(&self.doc.plan) {
             Ok(analysis) => {
+                self.ui.nav.selected = self.ui.nav.selected.and_then(|a| {
+                    // The same activity by id (an activity added, deleted or
+                    // undone moves the others); by place when its id changed.
+                    let acts = &self.doc.plan.activities;
+                    let id = &before.activities.get(a)?.id;
+                    acts.iter()
+                        .position(|x| &x.id == id)
+                        .or_else(|| (acts.len() == before.activities.len()).then_some(a))
+                });
                 let old = std::mem::replace(&mut self.analysis, analysis);
                 self.ui.messages.banner = Some(OutcomeDiff::between(
                     description,
@@ -858,18 +921,117 @@ impl SolscopeApp {
             }
         };
         match Self::from_text(&text, Some(path.to_path_buf())) {
-            Ok(mut fresh) => {
-                fresh.persisted = std::mem::take(&mut self.persisted);
-                fresh.background = self.background;
-                // The mode stays; the actuals were for the other plan.
-                fresh.ui.nav.mode = self.ui.nav.mode;
-                fresh.persisted.remember(path);
-                *self = fresh;
-            }
+            Ok(fresh) => self.become_(fresh),
             Err(e) => {
-                // Keep the current plan; say what is wrong with the file.
-                self.ui.messages.error = Some(format!("Could not open {}: {e}", path.display()));
+                // Keep the current plan; repair the file's text in the repair
+                // view (every error listed), or say what is wrong when there
+                // is nothing to repair in it.
+                let repair = Repair::new(Some(path.to_path_buf()), &text);
+                if repair.errors.is_empty() {
+                    self.ui.messages.error =
+                        Some(format!("Could not open {}: {e}", path.display()));
+                    return;
+                }
+                self.ui.messages.repair = Some(repair);
+                self.ui.messages.error = None;
+                self.ui.text.repair_text = text;
+                self.repair_jump(0);
             }
+        }
+    }
+
+    /// Takes `fresh` (a plan just opened) as the app, keeping the settings,
+    /// the mode and how derived values are computed; its file goes first in
+    /// Recent.
+    fn become_(&mut self, mut fresh: Self) {
+        fresh.persisted = std::mem::take(&mut self.persisted);
+        fresh.background = self.background;
+        // The mode stays; the actuals were for the other plan.
+        fresh.ui.nav.mode = self.ui.nav.mode;
+        if let Some(p) = fresh.doc.path.clone() {
+            fresh.persisted.remember(&p);
+        }
+        *self = fresh;
+    }
+
+    /// Repair view: checks the text again; with no error left it opens as the
+    /// plan (unsaved: its file still holds the broken text), else the first
+    /// error is looked at.
+    fn recheck_repair(&mut self) {
+        let Some(repair) = self.ui.messages.repair.as_mut() else {
+            return;
+        };
+        repair.errors = repair::check(&self.ui.text.repair_text);
+        repair.checks += 1;
+        repair.selected = None;
+        if !repair.errors.is_empty() {
+            self.repair_jump(0);
+            return;
+        }
+        let path = repair.path.clone();
+        match Self::from_text(&self.ui.text.repair_text, path) {
+            Ok(mut fresh) => {
+                fresh.doc.mark_unsaved();
+                self.become_(fresh);
+            }
+            // It validates, yet does not schedule: said in the repair view.
+            Err(e) => {
+                if let Some(repair) = self.ui.messages.repair.as_mut() {
+                    repair.errors = vec![repair::PlanError {
+                        path: "$".into(),
+                        reason: e.to_string(),
+                    }];
+                }
+            }
+        }
+    }
+
+    /// Repair view: looks at error `i`, its value put in the value field and
+    /// selected in the text.
+    fn repair_jump(&mut self, i: usize) {
+        let Some(repair) = self.ui.messages.repair.as_mut() else {
+            return;
+        };
+        let Some(err) = repair.errors.get(i) else {
+            return;
+        };
+        repair.selected = Some(i);
+        let text = &self.ui.text.repair_text;
+        let span = repair::locate(text, &err.path);
+        self.ui.text.repair_value = span
+            .as_ref()
+            .and_then(|s| text.get(s.clone()))
+            .unwrap_or("")
+            .to_string();
+        self.ui.text.repair_cursor = span.map(|s| repair::char_range(text, &s));
+    }
+
+    /// Applies a change of the list of activities as a plan edit (validated,
+    /// rescheduled, undoable) and selects what it names.
+    fn edit_activities(&mut self, edit: ActivitiesEdit) {
+        let ActivitiesEdit {
+            activities,
+            select,
+            description,
+        } = edit;
+        let value = match serde_json::to_value(&activities) {
+            Ok(v) => v,
+            Err(e) => {
+                self.ui.messages.error = Some(format!("{description}: not applied: {e}"));
+                return;
+            }
+        };
+        let mut set = serde_json::Map::new();
+        set.insert("activities".into(), value);
+        let revision = self.revision;
+        self.apply(Command::Edit {
+            target: "plan".into(),
+            set,
+            description,
+        });
+        if self.revision != revision {
+            self.ui.nav.selected =
+                select.and_then(|id| self.doc.plan.activities.iter().position(|a| a.id == id));
         }
     }
 
@@ -958,7 +1120,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn opening_at_start_up_falls_back_to_the_default_plan_with_the_error() {
+    fn opening_at_start_up_falls_back_to_the_default_plan_and_repairs_the_file() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
         let good = root.join("assets/examples/pitfall.json");
         let app = SolscopeApp::open_or_default(Some(&good)).expect("app");
@@ -971,8 +1133,19 @@ mod tests {
             app.doc.plan,
             SolscopeApp::with_default_plan().expect("default").doc.plan
         );
+        // The file is in the repair view, with its error.
+        let repair = app.ui.messages.repair.expect("repair view");
+        assert_eq!(repair.path.as_deref(), Some(bad.as_path()));
+        assert!(
+            repair.errors[0].path.ends_with("windows[0].end"),
+            "{repair:?}"
+        );
+        assert!(app.ui.text.repair_text.contains("\"end\""));
+        // A file that cannot be read has no text to repair: the error.
+        let app = SolscopeApp::open_or_default(Some(&root.join("no-such-plan.json"))).expect("app");
+        assert!(app.ui.messages.repair.is_none());
         let err = app.ui.messages.error.expect("error shown");
-        assert!(err.contains("windows[0].end"), "{err}");
+        assert!(err.starts_with("Could not open"), "{err}");
     }
 
     #[test]

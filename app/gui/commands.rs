@@ -37,6 +37,21 @@ pub enum UiCommand {
     Undo,
     /// Redo the last undone edit.
     Redo,
+    /// Add a new activity after the selected one (at the end when none is),
+    /// and select it.
+    AddActivity,
+    /// Add a copy of the selected activity under a new id after it, and select
+    /// it.
+    DuplicateActivity,
+    /// Delete the selected activity (and the dependencies on it).
+    DeleteActivity,
+    /// Repair view: check the plan text again; once it has no error it opens.
+    RecheckRepair,
+    /// Repair view: put the value typed for the error looked at in place of the
+    /// text at its path, then check again.
+    ReplaceAtError,
+    /// Repair view: leave it; the plan open before stays.
+    CancelRepair,
     /// Show the state before step 1.
     FirstStep,
     /// Show the previous step.
@@ -116,6 +131,12 @@ impl UiCommand {
             Self::Quit => "Quit",
             Self::Undo => "Undo",
             Self::Redo => "Redo",
+            Self::AddActivity => "Add activity",
+            Self::DuplicateActivity => "Duplicate activity",
+            Self::DeleteActivity => "Delete activity",
+            Self::RecheckRepair => "Re-check",
+            Self::ReplaceAtError => "Replace and re-check",
+            Self::CancelRepair => "Back to the open plan",
             Self::FirstStep => "|< First",
             Self::PreviousStep => "< Previous",
             Self::NextStep => "Next >",
@@ -164,6 +185,12 @@ impl UiCommand {
             Self::PreviousCycle => plain(Key::PageUp),
             Self::NextCycle => plain(Key::PageDown),
             Self::ToggleFlex => plain(Key::F),
+            Self::AddActivity
+            | Self::DuplicateActivity
+            | Self::DeleteActivity
+            | Self::RecheckRepair
+            | Self::ReplaceAtError
+            | Self::CancelRepair => None,
             Self::SaveAs
             | Self::ExportSchedule
             | Self::ExportScheduleCsv
@@ -205,6 +232,9 @@ pub enum Command {
         /// For the banner and undo.
         description: String,
     },
+    /// Repair view: look at error `i` (its value at its path is shown to be
+    /// edited, and selected in the plan text).
+    RepairJump(usize),
     /// Open a plan file (guarded when there are unsaved changes).
     Open(PathBuf),
     /// Save the plan to this file (the host sends it once a file is chosen).

@@ -142,6 +142,13 @@ impl Document {
         self.dirty = false;
     }
 
+    /// The plan differs from its file (repaired from the file's text): unsaved
+    /// until saved.
+    pub fn mark_unsaved(&mut self) {
+        self.saved = None;
+        self.dirty = true;
+    }
+
     /// Unsaved unless the plan is the version last loaded or saved.
     fn refresh_dirty(&mut self) {
         self.dirty = self.saved != Some(self.version);
@@ -266,6 +273,110 @@ pub fn pin_window(
     (window, dropped)
 }
 
+/// An id no activity of `plan` has: `base`, else `base_2`, `base_3`, ...
+fn unused_id(plan: &Plan, base: &str) -> String {
+    let taken = |id: &str| plan.activities.iter().any(|a| a.id == id);
+    if !taken(base) {
+        return base.to_string();
+    }
+    (2..)
+        .map(|n| format!("{base}_{n}"))
+        .find(|id| !taken(id))
+        .unwrap_or_else(|| base.to_string())
+}
+
+/// A change of the plan's list of activities: the new list, the id to select
+/// once it is applied, and what it did (the banner and undo).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ActivitiesEdit {
+    /// The activities after the change.
+    pub activities: Vec<solscope_engine::Activity>,
+    /// The activity to select (none after a delete).
+    pub select: Option<String>,
+    /// What it did.
+    pub description: String,
+}
+
+/// A new activity after activity `after` (with its priority, so it comes next
+/// in step order), or at the end (after every priority) when `None`: a
+/// `new_activity` of 10 minutes over the whole horizon.
+pub fn add_activity(plan: &Plan, after: Option<usize>) -> Result<ActivitiesEdit, String> {
+    let id = unused_id(plan, "new_activity");
+    let (at, priority) = match after.and_then(|a| plan.activities.get(a).map(|x| (a, x))) {
+        Some((a, x)) => (a + 1, x.priority),
+        None => (
+            plan.activities.len(),
+            plan.activities
+                .iter()
+                .map(|a| a.priority)
+                .max()
+                .map_or(1, |p| p.saturating_add(1)),
+        ),
+    };
+    let new: solscope_engine::Activity = serde_json::from_value(serde_json::json!({
+        "id": id, "priority": priority, "duration": 600
+    }))
+    .map_err(|e| format!("Add activity: {e}"))?;
+    let mut activities = plan.activities.clone();
+    activities.insert(at, new);
+    Ok(ActivitiesEdit {
+        activities,
+        description: format!("Add activity {id}"),
+        select: Some(id),
+    })
+}
+
+/// A copy of activity `a` right after it, under a new id (`ID_copy`); the
+/// name, when it has one, says it is a copy.
+pub fn duplicate_activity(plan: &Plan, a: usize) -> Option<ActivitiesEdit> {
+    let original = plan.activities.get(a)?;
+    let mut copy = original.clone();
+    copy.id = unused_id(plan, &format!("{}_copy", original.id));
+    copy.name = original.name.as_ref().map(|n| format!("{n} (copy)"));
+    let id = copy.id.clone();
+    let mut activities = plan.activities.clone();
+    activities.insert(a + 1, copy);
+    Some(ActivitiesEdit {
+        activities,
+        description: format!("Duplicate {} as {id}", original.id),
+        select: Some(id),
+    })
+}
+
+/// Activity `a` deleted, with the `after` entries of the others that name it
+/// (else the plan would not validate); the description names them.
+pub fn delete_activity(plan: &Plan, a: usize) -> Option<ActivitiesEdit> {
+    let gone = plan.activities.get(a)?;
+    let mut dependents = Vec::new();
+    let activities = plan
+        .activities
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| i != a)
+        .map(|(_, x)| {
+            let mut x = x.clone();
+            let before = x.after.len();
+            x.after.retain(|d| d.activity != gone.id);
+            if x.after.len() != before {
+                dependents.push(x.id.clone());
+            }
+            x
+        })
+        .collect();
+    let mut description = format!("Delete {}", gone.id);
+    if !dependents.is_empty() {
+        description.push_str(&format!(
+            " (and the dependencies of {} on it)",
+            dependents.join(", ")
+        ));
+    }
+    Some(ActivitiesEdit {
+        activities,
+        select: None,
+        description,
+    })
+}
+
 /// What an edit changed in the outcome, by activity id.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct OutcomeDiff {
@@ -378,6 +489,54 @@ mod tests {
             ]
         }))
         .expect("activity")
+    }
+
+    fn pitfall() -> Plan {
+        solscope_engine::load_plan(include_str!("../../assets/examples/pitfall.json"))
+            .expect("pitfall")
+            .plan
+    }
+
+    #[test]
+    fn activities_are_added_duplicated_and_deleted_with_fresh_ids() {
+        let plan = pitfall();
+        let ids = |e: &ActivitiesEdit| -> Vec<String> {
+            e.activities.iter().map(|a| a.id.clone()).collect()
+        };
+        let added = add_activity(&plan, Some(0)).expect("added");
+        assert_eq!(ids(&added), ["A", "new_activity", "B"]);
+        assert_eq!(added.activities[1].priority, plan.activities[0].priority);
+        assert_eq!(added.select.as_deref(), Some("new_activity"));
+        let mut twice = plan.clone();
+        twice.activities = added.activities.clone();
+        let again = add_activity(&twice, None).expect("added");
+        assert_eq!(again.activities[3].id, "new_activity_2");
+        assert_eq!(again.activities[3].priority, 3, "after every priority");
+        let copy = duplicate_activity(&plan, 1).expect("copied");
+        assert_eq!(ids(&copy), ["A", "B", "B_copy"]);
+        assert_eq!(
+            copy.activities[2],
+            solscope_engine::Activity {
+                id: "B_copy".into(),
+                ..plan.activities[1].clone()
+            }
+        );
+        // B depends on A in no plan here: make it, then delete A.
+        let mut dep = plan.clone();
+        dep.activities[1].after = vec![solscope_engine::Dependency {
+            activity: "A".into(),
+            meets: false,
+            min_delay: None,
+            max_delay: None,
+        }];
+        let deleted = delete_activity(&dep, 0).expect("deleted");
+        assert_eq!(ids(&deleted), ["B"]);
+        assert!(deleted.activities[0].after.is_empty());
+        assert_eq!(
+            deleted.description,
+            "Delete A (and the dependencies of B on it)"
+        );
+        assert!(delete_activity(&plan, 5).is_none());
     }
 
     #[test]

@@ -9,7 +9,7 @@
 //! saved by the eframe host ([`SolscopeHost`]).
 //!
 //! Modules, lowest first (each uses only those before it):
-//! `time_axis`, `theme` → `document` → `state`, `commands` → `execution`,
+//! `time_axis`, `theme` → `document`, `repair` → `state`, `commands` → `execution`,
 //! `export` → `montecarlo` → `derived` → `views` → `app` → `host`.
 
 pub mod app;
@@ -20,6 +20,7 @@ pub mod execution;
 pub mod export;
 pub mod host;
 pub mod montecarlo;
+pub mod repair;
 pub mod state;
 pub mod theme;
 pub mod time_axis;

@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use solscope_engine::{LocalTime, Profiles, format_local};
 
 use super::document::OutcomeDiff;
+use super::repair::Repair;
 use super::time_axis::TimeAxis;
 
 /// What survives restarts (saved through eframe storage).
@@ -260,6 +261,9 @@ pub struct Messages {
     /// What to do once the plan is saved ("Save and open", "Save and quit" on
     /// a plan without a file: after the save dialog).
     pub after_save: Option<Pending>,
+    /// A plan file that did not load, being repaired (its text is
+    /// [`TextBuffers::repair_text`]); the plan open stays until it loads.
+    pub repair: Option<Repair>,
 }
 
 /// An activity dragged on the Gantt to a start outside its slack, offered to be
@@ -292,6 +296,13 @@ pub struct TextBuffers {
     pub campaign_seed_text: String,
     /// The typed path when no file dialog could be shown.
     pub path_text: String,
+    /// Repair view: the plan text being repaired.
+    pub repair_text: String,
+    /// Repair view: the value at the path of the error looked at, as edited.
+    pub repair_value: String,
+    /// Repair view: the chars of the plan text to select and scroll to (set
+    /// by a jump to an error, taken by the text view).
+    pub repair_cursor: Option<std::ops::Range<usize>>,
 }
 
 impl Default for TextBuffers {
@@ -304,6 +315,9 @@ impl Default for TextBuffers {
             campaign_runs_text: DEFAULT_CAMPAIGN_RUNS.to_string(),
             campaign_seed_text: "1".into(),
             path_text: String::new(),
+            repair_text: String::new(),
+            repair_value: String::new(),
+            repair_cursor: None,
         }
     }
 }

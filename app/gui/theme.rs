@@ -84,6 +84,8 @@ pub struct Theme {
     pub neighbour: Color32,
     /// Flexibility: the ghost of a dragged bar.
     pub ghost: Color32,
+    /// Repair view: behind the text at the path of the error looked at.
+    pub error_mark: Color32,
 }
 
 /// Least distance between two labelled value grid lines on a plot (points).
@@ -193,6 +195,20 @@ pub const WHISKER_TICK: f32 = 8.0;
 pub const NEIGHBOUR_STROKE: f32 = 1.5;
 /// Outline width of the ghost of a dragged bar.
 pub const GHOST_STROKE: f32 = 1.5;
+/// Repair view: default width of the list of errors.
+pub const REPAIR_LIST_WIDTH: f32 = 420.0;
+/// Repair view: most height of the value field before it scrolls.
+pub const REPAIR_VALUE_HEIGHT: f32 = 160.0;
+/// Editor: width of a field holding a sol and local time.
+pub const TIME_FIELD_WIDTH: f32 = 118.0;
+/// Editor: width of the combo boxes of a state requirement or effect.
+pub const COMBO_WIDTH: f32 = 82.0;
+/// Editor: width of a field holding a number.
+pub const NUMBER_FIELD_WIDTH: f32 = 90.0;
+/// Editor: width of the search field and list of the activity picker.
+pub const PICKER_WIDTH: f32 = 240.0;
+/// Editor: most height of the activity picker's list.
+pub const PICKER_HEIGHT: f32 = 220.0;
 
 impl Theme {
     /// The palette for dark or light mode.
@@ -226,6 +242,7 @@ impl Theme {
                 whisker: Color32::from_gray(200),
                 neighbour: Color32::from_rgb(255, 120, 210),
                 ghost: Color32::from_rgba_unmultiplied(255, 255, 255, 40),
+                error_mark: Color32::from_rgba_unmultiplied(255, 110, 100, 70),
             }
         } else {
             Self {
@@ -256,6 +273,7 @@ impl Theme {
                 whisker: Color32::from_gray(60),
                 neighbour: Color32::from_rgb(200, 40, 150),
                 ghost: Color32::from_rgba_unmultiplied(0, 0, 0, 35),
+                error_mark: Color32::from_rgba_unmultiplied(190, 30, 20, 50),
             }
         }
     }

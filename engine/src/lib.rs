@@ -47,7 +47,8 @@ pub use flex::{
 };
 pub use generate::{Profile, generate_plan, generate_plan_with};
 pub use load::{
-    LoadedPlan, MAX_PLAN_BYTES, load_plan, load_plan_file, load_plan_limited, read_plan_text,
+    LoadedPlan, MAX_PLAN_BYTES, load_plan, load_plan_file, load_plan_limited, plan_errors,
+    read_plan_text,
 };
 pub use model::{
     Activity, AwakeMode, Battery, CycleStart, Data, Dependency, Duration, DurationModel, EffectAt,
@@ -72,4 +73,4 @@ pub use units::{
     BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, format_local, format_plan_time, format_span,
     format_time_of_day, format_watts, format_wh, mbit, parse_local, watts, wh,
 };
-pub use validate::validate;
+pub use validate::{validate, validate_all};

@@ -5,6 +5,8 @@
 //! [`Error::Invalid`] whose `path` names the offending value exactly as
 //! `serde_path_to_error` would (`activities[3].windows[0].end`) and whose `reason`
 //! quotes the offending numbers (`must be >= start (got 120 < 300)`).
+//! [`validate_all`] walks the same checks and goes on after an error, for a
+//! view that lists every error of a plan (the app's repair view).
 //!
 //! # Errors
 //!
@@ -85,9 +87,30 @@ pub fn validate(plan: &Plan) -> Result<Vec<Warning>, Error> {
     let mut v = Validator {
         plan,
         warnings: Vec::new(),
+        errors: None,
     };
     v.plan()?;
     Ok(v.warnings)
+}
+
+/// Every semantic error of a parsed plan, in document order (empty when it is
+/// valid): what [`validate`] checks, going on after an error. Each check that
+/// fails reports once and the checks that do not depend on it still run (the
+/// rest of a window after its `start` failed does not; the next window does),
+/// so the first error is the one [`validate`] returns. The checks that need a
+/// valid horizon (the execution section's cycle count) are left out while the
+/// horizon is invalid.
+pub fn validate_all(plan: &Plan) -> Vec<Error> {
+    let mut v = Validator {
+        plan,
+        warnings: Vec::new(),
+        errors: Some(Vec::new()),
+    };
+    // In collecting mode every check's error is kept, so `plan` itself passes.
+    let last = v.plan().err();
+    let mut errors = v.errors.unwrap_or_default();
+    errors.extend(last);
+    errors
 }
 
 /// The plan's object-valued sections, in the model's field order.
@@ -482,9 +505,24 @@ fn at_name(at: EffectAt) -> &'static str {
 struct Validator<'p> {
     plan: &'p Plan,
     warnings: Vec<Warning>,
+    /// `Some` when collecting every error ([`validate_all`]): a failed check is
+    /// kept here and the next one runs; `None` stops at the first.
+    errors: Option<Vec<Error>>,
 }
 
 impl<'p> Validator<'p> {
+    /// Runs one check that the following ones do not depend on: its error
+    /// stops the walk, or, when collecting, is kept and the walk goes on.
+    fn part(&mut self, check: impl FnOnce(&mut Self) -> Result<(), Error>) -> Result<(), Error> {
+        match (check(self), &mut self.errors) {
+            (Err(e), Some(errors)) => {
+                errors.push(e);
+                Ok(())
+            }
+            (result, _) => result,
+        }
+    }
+
     fn warn(&mut self, path: impl Display, message: impl Into<String>) {
         self.warnings.push(Warning {
             path: path.to_string(),
@@ -613,22 +651,33 @@ impl<'p> Validator<'p> {
 
     fn plan(&mut self) -> Result<(), Error> {
         let plan = self.plan;
-        if plan.format != PLAN_FORMAT {
-            return Err(invalid(
-                "format",
-                format!("must be \"{PLAN_FORMAT}\" (got \"{}\")", plan.format),
-            ));
-        }
-        self.horizon()?;
+        self.part(|_| {
+            if plan.format != PLAN_FORMAT {
+                return Err(invalid(
+                    "format",
+                    format!("must be \"{PLAN_FORMAT}\" (got \"{}\")", plan.format),
+                ));
+            }
+            Ok(())
+        })?;
+        let mut horizon_valid = true;
+        self.part(|v| {
+            let r = v.horizon();
+            horizon_valid = r.is_ok();
+            r
+        })?;
         self.local_time()?;
         self.battery()?;
         self.power()?;
         self.sleep()?;
         self.data()?;
         self.handover()?;
-        self.execution()?;
+        if horizon_valid {
+            // Counts cycles over the horizon: only over a valid one.
+            self.part(|v| v.execution())?;
+        }
         for (name, def) in &plan.states {
-            self.state(name, def)?;
+            self.part(|v| v.state(name, def))?;
         }
         for (name, zone) in &plan.thermal_zones {
             self.zone(name, zone)?;
@@ -656,128 +705,145 @@ impl<'p> Validator<'p> {
         Ok(())
     }
 
-    fn local_time(&self) -> Result<(), Error> {
+    fn local_time(&mut self) -> Result<(), Error> {
         let lt = self.plan.local_time;
-        self.length("local_time.sol_length", lt.sol_length, true)?;
-        self.time("local_time.offset", lt.offset)?;
-        match lt.first_sol {
+        self.part(|v| v.length("local_time.sol_length", lt.sol_length, true))?;
+        self.part(|v| v.time("local_time.offset", lt.offset))?;
+        self.part(|_| match lt.first_sol {
             Some(n) if n.abs() > MAX_SOL_NUMBER => Err(invalid(
                 "local_time.first_sol",
                 format!("a sol number is at most {MAX_SOL_NUMBER} in magnitude (got {n})"),
             )),
             _ => Ok(()),
-        }
+        })
     }
 
     fn battery(&mut self) -> Result<(), Error> {
         let b = self.plan.battery;
-        self.number(
-            "battery.capacity",
-            b.capacity,
-            Quantity::Energy,
-            Sign::Positive,
-            Toward::Down,
-        )?;
-        self.number(
-            "battery.initial",
-            b.initial,
-            Quantity::Energy,
-            Sign::NonNegative,
-            Toward::Down,
-        )?;
-        if b.initial > b.capacity {
-            return Err(invalid(
+        self.part(|v| {
+            v.number(
+                "battery.capacity",
+                b.capacity,
+                Quantity::Energy,
+                Sign::Positive,
+                Toward::Down,
+            )
+        })?;
+        self.part(|v| {
+            v.number(
                 "battery.initial",
-                format!(
-                    "must be <= capacity (got {} > {})",
-                    short(b.initial),
-                    short(b.capacity)
-                ),
-            ));
-        }
-        self.number(
-            "battery.min_soc",
-            b.min_soc,
-            Quantity::Energy,
-            Sign::NonNegative,
-            Toward::Up,
-        )
+                b.initial,
+                Quantity::Energy,
+                Sign::NonNegative,
+                Toward::Down,
+            )?;
+            if b.initial > b.capacity {
+                return Err(invalid(
+                    "battery.initial",
+                    format!(
+                        "must be <= capacity (got {} > {})",
+                        short(b.initial),
+                        short(b.capacity)
+                    ),
+                ));
+            }
+            Ok(())
+        })?;
+        self.part(|v| {
+            v.number(
+                "battery.min_soc",
+                b.min_soc,
+                Quantity::Energy,
+                Sign::NonNegative,
+                Toward::Up,
+            )
+        })
     }
 
     fn power(&mut self) -> Result<(), Error> {
         let p = self.plan.power;
-        self.number(
-            "power.rtg",
-            p.rtg,
-            Quantity::Power,
-            Sign::NonNegative,
-            Toward::Down,
-        )?;
-        self.number(
-            "power.asleep",
-            p.asleep,
-            Quantity::Power,
-            Sign::NonNegative,
-            Toward::Up,
-        )?;
-        self.number(
-            "power.awake",
-            p.awake,
-            Quantity::Power,
-            Sign::NonNegative,
-            Toward::Up,
-        )?;
-        if let Some(max_peak) = p.max_peak {
-            self.number(
-                "power.max_peak",
-                max_peak,
+        self.part(|v| {
+            v.number(
+                "power.rtg",
+                p.rtg,
                 Quantity::Power,
                 Sign::NonNegative,
                 Toward::Down,
-            )?;
+            )
+        })?;
+        self.part(|v| {
+            v.number(
+                "power.asleep",
+                p.asleep,
+                Quantity::Power,
+                Sign::NonNegative,
+                Toward::Up,
+            )
+        })?;
+        self.part(|v| {
+            v.number(
+                "power.awake",
+                p.awake,
+                Quantity::Power,
+                Sign::NonNegative,
+                Toward::Up,
+            )
+        })?;
+        if let Some(max_peak) = p.max_peak {
+            self.part(|v| {
+                v.number(
+                    "power.max_peak",
+                    max_peak,
+                    Quantity::Power,
+                    Sign::NonNegative,
+                    Toward::Down,
+                )
+            })?;
         }
         Ok(())
     }
 
-    fn sleep(&self) -> Result<(), Error> {
+    fn sleep(&mut self) -> Result<(), Error> {
         let s = self.plan.sleep;
-        self.length("sleep.wakeup_duration", s.wakeup_duration, false)?;
-        self.length("sleep.shutdown_duration", s.shutdown_duration, false)?;
-        self.length("sleep.min_awake", s.min_awake, false)?;
-        self.length("sleep.min_sleep", s.min_sleep, false)
+        self.part(|v| v.length("sleep.wakeup_duration", s.wakeup_duration, false))?;
+        self.part(|v| v.length("sleep.shutdown_duration", s.shutdown_duration, false))?;
+        self.part(|v| v.length("sleep.min_awake", s.min_awake, false))?;
+        self.part(|v| v.length("sleep.min_sleep", s.min_sleep, false))
     }
 
     fn data(&mut self) -> Result<(), Error> {
         let d = self.plan.data;
         if let Some(capacity) = d.capacity {
-            self.number(
-                "data.capacity",
-                capacity,
+            self.part(|v| {
+                v.number(
+                    "data.capacity",
+                    capacity,
+                    Quantity::DataVolume,
+                    Sign::NonNegative,
+                    Toward::Down,
+                )
+            })?;
+        }
+        self.part(|v| {
+            v.number(
+                "data.initial",
+                d.initial,
                 Quantity::DataVolume,
                 Sign::NonNegative,
-                Toward::Down,
-            )?;
-        }
-        self.number(
-            "data.initial",
-            d.initial,
-            Quantity::DataVolume,
-            Sign::NonNegative,
-            Toward::Up,
-        )?;
-        if let Some(capacity) = d.capacity
-            && d.initial > capacity
-        {
-            return Err(invalid(
+                Toward::Up,
+            )
+        })?;
+        self.part(|_| match d.capacity {
+            Some(capacity) if d.initial > capacity => Err(invalid(
                 "data.initial",
                 format!(
                     "must be <= capacity (got {} > {})",
                     short(d.initial),
                     short(capacity)
                 ),
-            ));
-        }
-        Ok(())
+            )),
+            _ => Ok(()),
+        })
     }
 
     fn handover(&mut self) -> Result<(), Error> {
@@ -785,32 +851,39 @@ impl<'p> Validator<'p> {
             return Ok(());
         };
         let hz = self.plan.horizon;
-        if h.time < hz.start || h.time > hz.end {
-            return Err(invalid(
-                "handover.time",
-                format!(
-                    "must be inside the horizon [{}, {}] (got {})",
-                    hz.start, hz.end, h.time
-                ),
-            ));
-        }
+        self.part(|_| {
+            if h.time < hz.start || h.time > hz.end {
+                return Err(invalid(
+                    "handover.time",
+                    format!(
+                        "must be inside the horizon [{}, {}] (got {})",
+                        hz.start, hz.end, h.time
+                    ),
+                ));
+            }
+            Ok(())
+        })?;
         if let Some(min_soc) = h.min_soc {
-            self.number(
-                "handover.min_soc",
-                min_soc,
-                Quantity::Energy,
-                Sign::NonNegative,
-                Toward::Up,
-            )?;
+            self.part(|v| {
+                v.number(
+                    "handover.min_soc",
+                    min_soc,
+                    Quantity::Energy,
+                    Sign::NonNegative,
+                    Toward::Up,
+                )
+            })?;
         }
         if let Some(max) = h.max_data_volume {
-            self.number(
-                "handover.max_data_volume",
-                max,
-                Quantity::DataVolume,
-                Sign::NonNegative,
-                Toward::Down,
-            )?;
+            self.part(|v| {
+                v.number(
+                    "handover.max_data_volume",
+                    max,
+                    Quantity::DataVolume,
+                    Sign::NonNegative,
+                    Toward::Down,
+                )
+            })?;
         }
         Ok(())
     }
@@ -847,6 +920,38 @@ impl<'p> Validator<'p> {
 
     fn zone(&mut self, name: &str, zone: &ThermalZone) -> Result<(), Error> {
         let base = format!("thermal_zones.{name}");
+        self.part(|v| v.preheat_table(&base, zone))?;
+        self.part(|v| {
+            v.number(
+                format_args!("{base}.preheat_power"),
+                zone.preheat_power,
+                Quantity::Power,
+                Sign::NonNegative,
+                Toward::Up,
+            )
+        })?;
+        self.part(|v| {
+            v.number(
+                format_args!("{base}.maintenance_power"),
+                zone.maintenance_power,
+                Quantity::Power,
+                Sign::NonNegative,
+                Toward::Up,
+            )
+        })?;
+        for (i, period) in zone.operable.iter().flatten().enumerate() {
+            let path = format!("{base}.operable[{i}]");
+            self.part(|v| {
+                v.time_of_day(format_args!("{path}.from"), period.from)?;
+                v.time_of_day(format_args!("{path}.to"), period.to)
+            })?;
+        }
+        Ok(())
+    }
+
+    /// A zone's preheat table: rows with distinct `from`s in the sol, one of
+    /// them 0.
+    fn preheat_table(&self, base: &str, zone: &ThermalZone) -> Result<(), Error> {
         if zone.preheat.is_empty() {
             return Err(invalid(
                 format!("{base}.preheat"),
@@ -873,25 +978,6 @@ impl<'p> Validator<'p> {
                 format!("{base}.preheat"),
                 "must have an entry with from 0",
             ));
-        }
-        self.number(
-            format_args!("{base}.preheat_power"),
-            zone.preheat_power,
-            Quantity::Power,
-            Sign::NonNegative,
-            Toward::Up,
-        )?;
-        self.number(
-            format_args!("{base}.maintenance_power"),
-            zone.maintenance_power,
-            Quantity::Power,
-            Sign::NonNegative,
-            Toward::Up,
-        )?;
-        for (i, period) in zone.operable.iter().flatten().enumerate() {
-            let path = format!("{base}.operable[{i}]");
-            self.time_of_day(format_args!("{path}.from"), period.from)?;
-            self.time_of_day(format_args!("{path}.to"), period.to)?;
         }
         Ok(())
     }
@@ -951,15 +1037,18 @@ impl<'p> Validator<'p> {
         let id = a.id.as_str();
 
         // id
-        self.non_empty(format_args!("{base}.id"), id)?;
-        if let Some(&f) = ctx.first.get(id)
-            && f != i
-        {
-            return Err(invalid(
-                format!("{base}.id"),
-                format!("duplicate id \"{id}\" (first at activities[{f}])"),
-            ));
-        }
+        self.part(|v| {
+            v.non_empty(format_args!("{base}.id"), id)?;
+            if let Some(&f) = ctx.first.get(id)
+                && f != i
+            {
+                return Err(invalid(
+                    format!("{base}.id"),
+                    format!("duplicate id \"{id}\" (first at activities[{f}])"),
+                ));
+            }
+            Ok(())
+        })?;
 
         // step-order warning: optional before mandatory
         if !a.mandatory {
@@ -986,10 +1075,13 @@ impl<'p> Validator<'p> {
             }
         }
 
-        self.duration(&base, a.duration)?;
-        if let Some(m) = a.duration_model {
-            self.duration_model(&base, a.duration, m)?;
-        }
+        self.part(|v| {
+            v.duration(&base, a.duration)?;
+            if let Some(m) = a.duration_model {
+                v.duration_model(&base, a.duration, m)?;
+            }
+            Ok(())
+        })?;
         if a.windows.as_ref().is_some_and(Vec::is_empty) {
             self.warn(
                 format_args!("{base}.windows"),
@@ -1000,108 +1092,125 @@ impl<'p> Validator<'p> {
             );
         }
         for (w, window) in a.windows.iter().flatten().enumerate() {
-            self.window(format_args!("{base}.windows[{w}]"), window)?;
+            self.part(|v| v.window(format_args!("{base}.windows[{w}]"), window))?;
         }
-        unique_names(format_args!("{base}.resources"), &a.resources, "resource")?;
-        self.number(
-            format_args!("{base}.energy_rate"),
-            a.energy_rate,
-            Quantity::Power,
-            Sign::NonNegative,
-            Toward::Up,
-        )?;
-        self.number(
-            format_args!("{base}.peak_power"),
-            a.peak_power,
-            Quantity::Power,
-            Sign::NonNegative,
-            Toward::Up,
-        )?;
-        self.number(
-            format_args!("{base}.data_rate"),
-            a.data_rate,
-            Quantity::DataRate,
-            Sign::Any,
-            Toward::Up,
-        )?;
+        self.part(|_| unique_names(format_args!("{base}.resources"), &a.resources, "resource"))?;
+        self.part(|v| {
+            v.number(
+                format_args!("{base}.energy_rate"),
+                a.energy_rate,
+                Quantity::Power,
+                Sign::NonNegative,
+                Toward::Up,
+            )
+        })?;
+        self.part(|v| {
+            v.number(
+                format_args!("{base}.peak_power"),
+                a.peak_power,
+                Quantity::Power,
+                Sign::NonNegative,
+                Toward::Up,
+            )
+        })?;
+        self.part(|v| {
+            v.number(
+                format_args!("{base}.data_rate"),
+                a.data_rate,
+                Quantity::DataRate,
+                Sign::Any,
+                Toward::Up,
+            )
+        })?;
 
         // thermal zones
         for (z, zone) in a.thermal_zones.iter().enumerate() {
-            if !self.plan.thermal_zones.contains_key(zone) {
-                return Err(invalid(
-                    format!("{base}.thermal_zones[{z}]"),
-                    format!(
-                        "unknown thermal zone \"{zone}\" ({})",
-                        known(self.plan.thermal_zones.keys(), "thermal zones")
-                    ),
-                ));
-            }
+            self.part(|v| {
+                if !v.plan.thermal_zones.contains_key(zone) {
+                    return Err(invalid(
+                        format!("{base}.thermal_zones[{z}]"),
+                        format!(
+                            "unknown thermal zone \"{zone}\" ({})",
+                            known(v.plan.thermal_zones.keys(), "thermal zones")
+                        ),
+                    ));
+                }
+                Ok(())
+            })?;
         }
-        unique_names(
-            format_args!("{base}.thermal_zones"),
-            &a.thermal_zones,
-            "thermal zone",
-        )?;
+        self.part(|_| {
+            unique_names(
+                format_args!("{base}.thermal_zones"),
+                &a.thermal_zones,
+                "thermal zone",
+            )
+        })?;
 
         // dependencies
         for (d, dep) in a.after.iter().enumerate() {
-            self.dependency(format_args!("{base}.after[{d}]"), i, a, dep, ctx)?;
+            self.part(|v| v.dependency(format_args!("{base}.after[{d}]"), i, a, dep, ctx))?;
         }
 
         // requirements
         let mut required: HashMap<&str, usize> = HashMap::new();
         for (r, req) in a.requires.iter().enumerate() {
             let path = format!("{base}.requires[{r}]");
-            let def = self.state_value(&path, &req.state, &req.value)?;
-            if let Some(f) = required.insert(req.state.as_str(), r) {
-                return Err(invalid(
-                    path,
-                    format!(
-                        "duplicate requirement on state \"{}\" (first at {base}.requires[{f}]); \
-                         at most one per state",
-                        req.state
-                    ),
-                ));
-            }
-            let by_other = ctx
-                .setters
-                .get(&(req.state.as_str(), req.value.as_str()))
-                .is_some_and(|who| who.iter().any(|&j| j != i));
-            if def.initial != req.value && !by_other {
-                self.warn(
-                    path,
-                    format!(
-                        "state \"{}\" is never \"{}\": it is not the initial value and no \
-                         other activity has an effect setting it, so \"{id}\" can never be \
-                         scheduled",
-                        req.state, req.value
-                    ),
-                );
-            }
+            self.part(|v| {
+                let def = v.state_value(&path, &req.state, &req.value)?;
+                if let Some(f) = required.insert(req.state.as_str(), r) {
+                    return Err(invalid(
+                        path,
+                        format!(
+                            "duplicate requirement on state \"{}\" (first at {base}.requires[{f}]); \
+                             at most one per state",
+                            req.state
+                        ),
+                    ));
+                }
+                let by_other = ctx
+                    .setters
+                    .get(&(req.state.as_str(), req.value.as_str()))
+                    .is_some_and(|who| who.iter().any(|&j| j != i));
+                if def.initial != req.value && !by_other {
+                    v.warn(
+                        path,
+                        format!(
+                            "state \"{}\" is never \"{}\": it is not the initial value and no \
+                             other activity has an effect setting it, so \"{id}\" can never be \
+                             scheduled",
+                            req.state, req.value
+                        ),
+                    );
+                }
+                Ok(())
+            })?;
         }
 
         // effects
         let mut effected: BTreeMap<(&str, EffectAt), usize> = BTreeMap::new();
         for (e, eff) in a.effects.iter().enumerate() {
             let path = format!("{base}.effects[{e}]");
-            self.state_value(&path, &eff.state, &eff.value)?;
-            if let Some(f) = effected.insert((eff.state.as_str(), eff.at), e) {
-                return Err(invalid(
-                    path,
-                    format!(
-                        "duplicate effect on state \"{}\" at \"{}\" (first at {base}.effects[{f}])",
-                        eff.state,
-                        at_name(eff.at)
-                    ),
-                ));
-            }
+            self.part(|v| {
+                v.state_value(&path, &eff.state, &eff.value)?;
+                if let Some(f) = effected.insert((eff.state.as_str(), eff.at), e) {
+                    return Err(invalid(
+                        path,
+                        format!(
+                            "duplicate effect on state \"{}\" at \"{}\" (first at {base}.effects[{f}])",
+                            eff.state,
+                            at_name(eff.at)
+                        ),
+                    ));
+                }
+                Ok(())
+            })?;
         }
 
         if let Some(kind) = &a.comm_kind {
-            self.non_empty(format_args!("{base}.comm_kind"), kind)?;
+            self.part(|v| v.non_empty(format_args!("{base}.comm_kind"), kind))?;
         }
         if let Some(group) = &a.group {
-            self.non_empty(format_args!("{base}.group"), group)?;
+            self.part(|v| v.non_empty(format_args!("{base}.group"), group))?;
         }
         Ok(())
     }
@@ -1387,12 +1496,95 @@ mod tests {
         parse(v)
     }
 
-    /// The error of a plan, as `(path, reason)`.
+    /// The error of a plan, as `(path, reason)`; `validate_all` leads with it.
     fn err(plan: &Plan) -> (String, String) {
+        let all = validate_all(plan);
         match validate(plan) {
-            Err(Error::Invalid { path, reason }) => (path, reason),
+            Err(Error::Invalid { path, reason }) => {
+                assert_eq!(
+                    all.first().map(ToString::to_string),
+                    Some(format!("{path}: {reason}")),
+                    "validate_all starts with validate's error"
+                );
+                (path, reason)
+            }
             other => panic!("expected an Invalid error, got {other:?}"),
         }
+    }
+
+    fn paths(errors: &[Error]) -> Vec<String> {
+        errors
+            .iter()
+            .map(|e| match e {
+                Error::Invalid { path, .. } => path.clone(),
+                other => panic!("expected Invalid errors, got {other:?}"),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn validate_all_lists_every_error_in_document_order() {
+        assert!(validate_all(&parse(base_json())).is_empty());
+        let plan = with(|v| {
+            v["battery"]["initial"] = json!(2000.0);
+            v["battery"]["min_soc"] = json!(-1.0);
+            v["power"]["rtg"] = json!(-5.0);
+            v["states"]["drill"]["initial"] = json!("lost");
+            v["thermal_zones"]["arm"]["preheat_power"] = json!(-1.0);
+            v["activities"][0]["windows"] = json!([
+                { "start": 300, "end": 120 },
+                { "start": 400, "end": 500, "preferred": 900 }
+            ]);
+            v["activities"][0]["energy_rate"] = json!(-40.0);
+            v["activities"][0]["thermal_zones"] = json!(["mast"]);
+            v["activities"][1]["after"] = json!([{ "activity": "nobody" }]);
+            v["activities"][1]["requires"] = json!([{ "state": "drill", "value": "gone" }]);
+            v["activities"][2]["id"] = json!("unstow");
+            v["activities"][2]["duration"] = json!(0);
+        });
+        let all = validate_all(&plan);
+        assert_eq!(
+            paths(&all),
+            [
+                "battery.initial",
+                "battery.min_soc",
+                "power.rtg",
+                "states.drill.initial",
+                "thermal_zones.arm.preheat_power",
+                "activities[0].windows[0].end",
+                "activities[0].windows[1].preferred",
+                "activities[0].energy_rate",
+                "activities[0].thermal_zones[0]",
+                "activities[1].after[0].activity",
+                "activities[1].requires[0].value",
+                "activities[2].id",
+                "activities[2].duration",
+            ]
+        );
+        assert_eq!(
+            all[0].to_string(),
+            validate(&plan).expect_err("invalid").to_string()
+        );
+        assert!(
+            all[5]
+                .to_string()
+                .contains("must be >= start (got 120 < 300)")
+        );
+    }
+
+    #[test]
+    fn validate_all_skips_what_needs_a_valid_horizon() {
+        // An inverted horizon of extreme times: no cycle count (it would
+        // overflow), every other check still runs.
+        let plan = with(|v| {
+            v["horizon"] = json!({ "start": i64::MAX, "end": i64::MIN });
+            v["execution"] = json!({ "replan_period": 1 });
+            v["sleep"]["min_sleep"] = json!(-1);
+        });
+        let all = paths(&validate_all(&plan));
+        assert_eq!(all[..2], ["horizon.start", "sleep.min_sleep"]);
+        assert!(!all.iter().any(|p| p.starts_with("execution")), "{all:?}");
+        assert!(all.len() > 2, "the activities are still checked: {all:?}");
     }
 
     fn assert_err(edit: impl FnOnce(&mut Value), path: &str, fragment: &str) {

@@ -6,8 +6,8 @@ use eframe::egui::{self, Pos2, Rect, RichText, Sense, Stroke};
 use serde_json::{Map, Value};
 use solscope_engine::{CategoryIntervals, Phase, explanation_notes, reason_line, suggestion_line};
 
-use super::{Model, Status, execution, flex};
-use crate::gui::commands::Command;
+use super::{Model, Status, command_button, editor, execution, flex};
+use crate::gui::commands::{Command, UiCommand};
 use crate::gui::state::{Mode, TextBuffers};
 use crate::gui::theme::{
     FIELD_WIDTH, LABEL_WIDTH, TRACK_FONT_SIZE, TRACK_LINE_STROKE, TRACK_ROW_GAP, TRACK_ROW_HEIGHT,
@@ -29,12 +29,13 @@ pub fn inspector_ui(
                 egui::CollapsingHeader::new("Edit activity")
                     .default_open(false)
                     .show(ui, |ui| {
-                        activity_editor_ui(ui, m, st, a, cmds);
+                        activity_edit_ui(ui, m, st, a, cmds);
                     });
             }
         }
         (Mode::Schedule, None) => {
             ui.label("Select an activity in the list or on the Gantt chart.");
+            command_button(ui, UiCommand::AddActivity, true, cmds);
         }
         (Mode::Schedule, Some(a)) => activity_ui(ui, m, st, a, cmds),
     }
@@ -42,7 +43,35 @@ pub fn inspector_ui(
     egui::CollapsingHeader::new("Plan limits")
         .default_open(false)
         .show(ui, |ui| {
-            plan_editor_ui(ui, m, st, cmds);
+            if m.nav.selected.is_none() {
+                reset_buffers_if_stale(st, (None, m.revision));
+            }
+            editor::plan_fields_ui(ui, m, st, cmds);
+            egui::CollapsingHeader::new("Advanced (JSON)")
+                .id_salt("plan_json")
+                .default_open(false)
+                .show(ui, |ui| {
+                    plan_editor_ui(ui, m, st, cmds);
+                });
+        });
+}
+
+/// The selected activity's editor: its fields, and its JSON under Advanced.
+fn activity_edit_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    st: &mut TextBuffers,
+    a: usize,
+    cmds: &mut Vec<Command>,
+) {
+    reset_buffers_if_stale(st, (Some(a), m.revision));
+    editor::activity_fields_ui(ui, m, st, a, cmds);
+    ui.separator();
+    egui::CollapsingHeader::new("Advanced (JSON)")
+        .id_salt("activity_json")
+        .default_open(false)
+        .show(ui, |ui| {
+            activity_editor_ui(ui, m, st, a, cmds);
         });
 }
 
@@ -171,7 +200,7 @@ fn activity_ui(
     egui::CollapsingHeader::new("Edit activity")
         .default_open(true)
         .show(ui, |ui| {
-            activity_editor_ui(ui, m, st, a, cmds);
+            activity_edit_ui(ui, m, st, a, cmds);
         });
 }
 

@@ -10,9 +10,11 @@ mod execution;
 mod flex;
 mod gantt;
 pub use gantt::{BarDrag, GanttRows};
+mod editor;
 mod inspector;
 mod montecarlo;
 mod plots;
+mod repair;
 
 use eframe::egui::{self, RichText};
 use solscope_engine::{Outcome, RunOutcome, Suggestion, parse_local};
@@ -292,6 +294,11 @@ pub fn dropped_files(ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
 
 /// The whole window.
 pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &mut Vec<Command>) {
+    if let Some(r) = &m.messages.repair {
+        // A plan file that did not load: repaired in its own view.
+        repair::repair_ui(ui, m, r, w.text, cmds);
+        return;
+    }
     egui::Panel::top("toolbar").show(ui, |ui| {
         toolbar_ui(ui, m, cmds);
         match m.nav.mode {
