@@ -16,7 +16,11 @@
 //! `--sweep N` seeds too when given). `--huge` measures 200,000 activities over 30
 //! sols (issue 14): validation and scheduling, and explaining every failure without
 //! suggestions (`explain_each`, as `solscope explain --no-suggestions` streams it),
-//! once each (minutes).
+//! once each (minutes). `--navigation` measures the activity list's search and
+//! filters (issue 13) on 1,000 and 10,000 activities: a frame with nothing
+//! filtered, a frame with a search or a status and sol filter standing, the
+//! frame after the search text changes (the list computed again), and "Next
+//! match" with the frame that shows it.
 
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
@@ -95,6 +99,10 @@ fn main() {
     }
     if std::env::args().any(|a| a == "--huge") {
         huge();
+        return;
+    }
+    if std::env::args().any(|a| a == "--navigation") {
+        navigation(&profiles, quick);
         return;
     }
     if std::env::args().any(|a| a == "--flex") {
@@ -277,6 +285,85 @@ fn table(profile: Profile, sizes: &[(usize, usize, usize)]) {
             ms(t_frame),
             ms(t_edit)
         );
+    }
+}
+
+/// The activity list's search and filters (`--navigation`): frames with them
+/// standing and the frame after a change, as the desktop app runs (workers
+/// settled first).
+fn navigation(profiles: &[(&str, Profile)], quick: bool) {
+    use solscope::gui::{ListFilter, StatusFilter, UiCommand};
+    let sizes: &[(usize, usize)] = if quick {
+        &[(1000, 3)]
+    } else {
+        &[(1000, 3), (10_000, 30)]
+    };
+    println!(
+        "| profile | activities | sols | frame | frame, search standing | frame after a keystroke | Next match + frame | Select (a click) + frame | frame, status + sol filter standing |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for &(name, profile) in profiles {
+        for &(n, sols) in sizes {
+            let plan = generate_plan_with(profile, n, sols, 1);
+            let text = serde_json::to_string(&plan).expect("json");
+            let mut app = SolscopeApp::from_text(&text, None).expect("app");
+            app.background = true;
+            let ctx = egui::Context::default();
+            let settle = |app: &mut SolscopeApp| {
+                frame(&ctx, app);
+                frame(&ctx, app);
+                while app.workers_busy() {
+                    std::thread::sleep(Duration::from_millis(5));
+                    frame(&ctx, app);
+                }
+            };
+            settle(&mut app);
+            let t_plain = median(10, || frame(&ctx, &mut app));
+            // "s1_" matches every activity of sol 1 (ids are `s<sol>_...`).
+            app.apply(Command::SetFilter("s1_".into()));
+            settle(&mut app);
+            let t_search = median(10, || frame(&ctx, &mut app));
+            // Typing: each keystroke changes the text, so the list is computed
+            // again in the frame after it.
+            let mut flip = false;
+            let t_type = median(10, || {
+                flip = !flip;
+                let text = if flip { "s1_c" } else { "s1_" };
+                app.apply(Command::SetFilter(text.into()));
+                frame(&ctx, &mut app);
+            });
+            settle(&mut app);
+            let t_next = median(10, || {
+                app.apply(UiCommand::NextMatch.into());
+                frame(&ctx, &mut app);
+            });
+            // The same selections by click (what selecting anything costs:
+            // the frame derives the selected activity's valid starts).
+            let shown = app.list_shown();
+            let mut i = 0;
+            let t_select = median(10, || {
+                i = (i + 1) % shown.len().max(1);
+                app.apply(Command::Select(shown.get(i).copied()));
+                frame(&ctx, &mut app);
+            });
+            settle(&mut app);
+            app.apply(Command::SetListFilter(ListFilter {
+                status: Some(StatusFilter::Scheduled),
+                sol: Some(plan.local_time.sol(plan.horizon.start) + 1),
+                ..ListFilter::default()
+            }));
+            settle(&mut app);
+            let t_filters = median(10, || frame(&ctx, &mut app));
+            println!(
+                "| {name} | {n} | {sols} | {} | {} | {} | {} | {} | {} |",
+                ms(t_plain),
+                ms(t_search),
+                ms(t_type),
+                ms(t_next),
+                ms(t_select),
+                ms(t_filters)
+            );
+        }
     }
 }
 

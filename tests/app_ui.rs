@@ -3,7 +3,9 @@
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
 use egui_kittest::kittest::{NodeT, Queryable};
-use solscope::gui::{Command, Dialog, Mode, SolscopeApp, UiCommand};
+use solscope::gui::{
+    Command, Dialog, ListFilter, Look, Mode, SolscopeApp, StatusFilter, UiCommand,
+};
 use solscope::screenshot::{SNAPSHOT_SIZE, View, harness};
 
 fn tutorial() -> SolscopeApp {
@@ -2140,6 +2142,301 @@ fn hovering_a_bar_says_what_it_is_when_and_for_how_long() {
     // The general hint is for places where no bar is.
     assert!(
         h.query_by_label_contains("Click a bar to inspect it")
+            .is_none()
+    );
+}
+
+// ---- Linked navigation: back and forward, search, filters (issue 13) ----
+
+/// The default plan's failed MOXIE run selected, in a harness.
+fn moxie_selected() -> H {
+    let view = View {
+        select: Some("moxie_run_413".into()),
+        ..View::default()
+    };
+    harness(
+        SolscopeApp::with_default_plan().unwrap(),
+        SNAPSHOT_SIZE.into(),
+        &view,
+    )
+    .unwrap()
+}
+
+/// `(selected, step)` of the app in `h`.
+fn at(h: &H) -> (Option<usize>, usize) {
+    (h.state().ui.nav.selected, h.state().ui.nav.step)
+}
+
+#[test]
+fn following_a_culprit_then_back_and_forward() {
+    let mut h = moxie_selected();
+    let moxie = index(h.state(), "moxie_run_413");
+    let drive = index(h.state(), "drive_412");
+    let last = h.state().analysis.steps();
+    assert_eq!(at(&h), (Some(moxie), last));
+    assert!(
+        h.get_by_label("Forward").accesskit_node().is_disabled(),
+        "nothing ahead yet"
+    );
+    // A culprit in the inspector's Involved list: selected at its step.
+    h.get_by_label("drive_412 (step 21, min_soc)").click();
+    h.run_steps(3);
+    assert_eq!(at(&h), (Some(drive), 21));
+    // Back returns to the selection and the step before the link.
+    h.get_by_label("Back").click();
+    h.run_steps(3);
+    assert_eq!(at(&h), (Some(moxie), last));
+    assert!(h.query_by_label("Why it did not schedule").is_some());
+    h.get_by_label("Forward").click();
+    h.run_steps(3);
+    assert_eq!(at(&h), (Some(drive), 21), "Forward redoes it");
+    // The keys do the same.
+    h.key_press_modifiers(eframe::egui::Modifiers::ALT, eframe::egui::Key::ArrowLeft);
+    h.run_steps(3);
+    assert_eq!(at(&h), (Some(moxie), last), "Alt+Left");
+    h.key_press_modifiers(eframe::egui::Modifiers::ALT, eframe::egui::Key::ArrowRight);
+    h.run_steps(3);
+    assert_eq!(at(&h), (Some(drive), 21), "Alt+Right");
+    // Back, then another link: what was ahead is forgotten.
+    h.key_press_modifiers(eframe::egui::Modifiers::ALT, eframe::egui::Key::ArrowLeft);
+    h.run_steps(3);
+    h.get_by_label("drill_core_413 (step 35, min_soc)").click();
+    h.run_steps(3);
+    assert_eq!(at(&h), (Some(index(h.state(), "drill_core_413")), 35));
+    assert!(h.get_by_label("Forward").accesskit_node().is_disabled());
+    h.get_by_label("Back").click();
+    h.run_steps(3);
+    assert_eq!(at(&h), (Some(moxie), last));
+}
+
+#[test]
+fn next_failure_and_a_click_in_the_list_are_links_up_and_down_are_not() {
+    let mut h = harness(
+        tutorial(),
+        SNAPSHOT_SIZE.into(),
+        &View {
+            step: Some(0),
+            ..View::default()
+        },
+    )
+    .unwrap();
+    h.get_by_label("Next failure >>").click();
+    h.run_steps(3);
+    let failure = at(&h);
+    assert!(failure.0.is_some());
+    // Down twice moves the selection without a way back to each row.
+    h.key_press(eframe::egui::Key::ArrowDown);
+    h.key_press(eframe::egui::Key::ArrowDown);
+    h.run_steps(3);
+    assert_ne!(at(&h), failure);
+    h.key_press_modifiers(eframe::egui::Modifiers::ALT, eframe::egui::Key::ArrowLeft);
+    h.run_steps(3);
+    assert_eq!(at(&h), (None, 0), "back to before Next failure");
+    h.key_press_modifiers(eframe::egui::Modifiers::ALT, eframe::egui::Key::ArrowRight);
+    h.run_steps(3);
+    assert_ne!(at(&h), (None, 0));
+    // A click in the list is one.
+    let a = index(h.state(), "sky_flats_mast_busy");
+    let before = at(&h);
+    let step = h.state().analysis.schedule.step_of(a).unwrap().step;
+    h.get_by_label(&format!("x {step:>3} sky_flats_mast_busy"))
+        .click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.selected, Some(a));
+    h.get_by_label("Back").click();
+    h.run_steps(3);
+    assert_eq!(at(&h), before);
+}
+
+#[test]
+fn selecting_an_off_screen_activity_brings_it_into_view_and_back_restores_the_range() {
+    // Zoomed into the morning of sol 412.
+    let mut h = default_plan_over(50_000.0, 60_000.0);
+    let drive = index(h.state(), "drive_413");
+    let (s, e) = h.state().analysis.placement(drive).unwrap();
+    assert!(s > 60_000, "the sol-413 drive is out of view");
+    // Selected from the Gantt, the list or the inspector alike (the list's
+    // row is out of its view).
+    h.state_mut().push(Command::Select(Some(drive)));
+    h.run_steps(3);
+    let axis = h.state().ui.nav.axis;
+    assert!(
+        axis.start < s as f64 && (e as f64) < axis.end,
+        "{axis:?} shows [{s}, {e}]"
+    );
+    assert_eq!(axis.span(), 10_000.0, "panned, not zoomed");
+    let clock = h.state().doc.plan.local_time;
+    assert_eq!(
+        h.state().ui.text.range_text[0],
+        solscope_engine::format_local(&clock, axis.start.round() as i64),
+        "the range fields follow"
+    );
+    assert!(h.state().gantt_bar(drive).is_some(), "its bar is drawn");
+    let step = h.state().analysis.schedule.step_of(drive).unwrap().step;
+    assert!(
+        h.query_by_label(&format!("+ {step:>3} drive_413"))
+            .is_some(),
+        "the list scrolled to its row"
+    );
+    // Back: the range as it was.
+    h.get_by_label("Back").click();
+    h.run_steps(3);
+    let axis = h.state().ui.nav.axis;
+    assert_eq!((axis.start, axis.end), (50_000.0, 60_000.0));
+    assert_eq!(h.state().ui.nav.selected, None);
+    // A failed activity is shown by its windows: one of them comes into view.
+    let moxie = index(h.state(), "moxie_run_413");
+    h.state_mut().push(Command::Select(Some(moxie)));
+    h.run_steps(3);
+    let axis = h.state().ui.nav.axis;
+    let windows = h.state().doc.plan.activities[moxie]
+        .windows
+        .clone()
+        .expect("windows");
+    assert!(
+        windows
+            .iter()
+            .any(|w| (w.start as f64) < axis.end && (w.end as f64) > axis.start),
+        "{axis:?} shows a window of {windows:?}"
+    );
+}
+
+#[test]
+fn ctrl_f_searches_the_list_and_highlights_the_gantt() {
+    let mut h = harness(
+        SolscopeApp::with_default_plan().unwrap(),
+        SNAPSHOT_SIZE.into(),
+        &View::default(),
+    )
+    .unwrap();
+    h.key_press_modifiers(eframe::egui::Modifiers::COMMAND, eframe::egui::Key::F);
+    h.run_steps(2);
+    assert!(h.get_by_label("Search").is_focused(), "Ctrl+F focuses it");
+    h.get_by_label("Search").type_text("MEDA");
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.filter.search, "MEDA");
+    let plan = h.state().doc.plan.clone();
+    let is_match = |a: usize| {
+        let act = &plan.activities[a];
+        act.id.contains("meda") || act.display_name().to_lowercase().contains("meda")
+    };
+    let shown = h.state_mut().list_shown();
+    let matches = (0..plan.activities.len()).filter(|&a| is_match(a)).count();
+    assert!(matches >= 10);
+    assert_eq!(shown.len(), matches);
+    assert!(shown.iter().all(|&a| is_match(a)));
+    // The list's rows are the matches (all in view).
+    let row = |h: &H, a: usize| {
+        let step = h.state().analysis.schedule.step_of(a).unwrap();
+        let mark = match step.outcome.status() {
+            "scheduled" => "+",
+            "failed" => "x",
+            _ => "-",
+        };
+        format!("{mark} {:>3} {}", step.step, plan.activities[a].id)
+    };
+    for &a in &shown {
+        assert!(h.query_by_label(&row(&h, a)).is_some(), "{}", row(&h, a));
+    }
+    let drive = index(h.state(), "drive_413");
+    assert!(h.query_by_label(&row(&h, drive)).is_none(), "filtered out");
+    assert!(
+        h.query_by_label(&format!("{matches} of {} shown", plan.activities.len()))
+            .is_some()
+    );
+    // The Gantt outlines the matches and fades the rest.
+    let looks = h.state().gantt_looks().to_vec();
+    let highlighted: Vec<usize> = looks
+        .iter()
+        .filter(|l| l.1 == Look::Highlighted)
+        .map(|l| l.0)
+        .collect();
+    let dimmed: Vec<usize> = looks
+        .iter()
+        .filter(|l| l.1 == Look::Dimmed)
+        .map(|l| l.0)
+        .collect();
+    assert!(
+        shown.iter().all(|a| highlighted.contains(a)),
+        "every match drawn"
+    );
+    assert!(highlighted.iter().all(|&a| is_match(a)));
+    assert!(!dimmed.is_empty() && dimmed.iter().all(|&a| !is_match(a)));
+    assert!(looks.iter().all(|l| l.1 != Look::Plain));
+    // Enter selects the first match, and the field keeps the keyboard: Enter
+    // again the next.
+    h.key_press(eframe::egui::Key::Enter);
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.selected, Some(shown[0]));
+    assert!(h.get_by_label("Search").is_focused());
+    h.key_press(eframe::egui::Key::Enter);
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.selected, Some(shown[1]));
+    assert!(
+        h.query_by_label(&format!(
+            "2 of {matches} ({} in all)",
+            plan.activities.len()
+        ))
+        .is_some()
+    );
+    // Previous match wraps round to the last.
+    h.get_by_label("Previous match").click();
+    h.get_by_label("Previous match").click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.selected, shown.last().copied());
+    // Cleared: the whole list, the Gantt plain.
+    h.get_by_label("Clear filters").click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.filter, ListFilter::default());
+    assert!(h.state().gantt_looks().iter().all(|l| l.1 == Look::Plain));
+}
+
+#[test]
+fn the_status_filter_lists_one_status_and_keeps_the_selection_in_view() {
+    let mut h = harness(tutorial(), SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    let zcam = index(h.state(), "zcam_pano");
+    h.state_mut().push(Command::Select(Some(zcam)));
+    h.run_steps(3);
+    h.get_by_label("Status").click();
+    h.run_steps(2);
+    h.get_by_label("Failed").click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.filter.status, Some(StatusFilter::Failed));
+    let failed: Vec<usize> = h
+        .state()
+        .analysis
+        .schedule
+        .steps
+        .iter()
+        .filter(|s| s.outcome.status() == "failed")
+        .map(|s| s.activity)
+        .collect();
+    assert_eq!(h.state_mut().list_shown(), failed);
+    for &a in &failed {
+        let step = h.state().analysis.schedule.step_of(a).unwrap().step;
+        let id = &h.state().doc.plan.activities[a].id;
+        assert!(h.query_by_label(&format!("x {step:>3} {id}")).is_some());
+    }
+    // The selection, scheduled, is hidden by the filter: pinned above the list.
+    assert!(
+        h.query_by_label("Selected (hidden by the filters):")
+            .is_some()
+    );
+    let step = h.state().analysis.schedule.step_of(zcam).unwrap().step;
+    assert!(
+        h.query_by_label(&format!("+ {step:>3} zcam_pano"))
+            .is_some()
+    );
+    // Before step 1 nothing has failed yet.
+    h.key_press(eframe::egui::Key::Home);
+    h.run_steps(3);
+    assert!(h.state_mut().list_shown().is_empty());
+    assert!(h.query_by_label("No activity matches.").is_some());
+    h.get_by_label("Clear filters").click();
+    h.run_steps(3);
+    assert_eq!(h.state().ui.nav.filter.status, None);
+    assert!(
+        h.query_by_label("Selected (hidden by the filters):")
             .is_none()
     );
 }

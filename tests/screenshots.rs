@@ -298,6 +298,27 @@ fn repair_view_of_a_broken_plan() {
     h.snapshot_options("repair_view", &snapshot_options());
 }
 
+/// Sol 412 searched for "meda": the MEDA weather runs outlined on the Gantt,
+/// everything else faded, the list showing the matches with the noon run
+/// selected.
+#[test]
+fn a_search_highlights_its_matches_on_the_gantt() {
+    let mut app = app();
+    app.apply(Command::SetAxis(TimeAxis::new(
+        23_975.0,
+        23_975.0 + 88_775.0,
+    )));
+    app.apply(Command::SetFilter("meda".into()));
+    check(
+        "gantt_search",
+        app,
+        View {
+            select: Some("meda_412_1200".into()),
+            ..View::default()
+        },
+    );
+}
+
 #[test]
 fn the_screenshot_command_is_quiet_without_xdg_runtime_dir() {
     let out = std::env::temp_dir().join(format!("solscope-quiet-{}.png", std::process::id()));

@@ -70,6 +70,9 @@ pub struct SolscopeApp {
     quit_now: bool,
     /// A PNG export asked for, for the host to render.
     png_to: Option<PathBuf>,
+    /// The selection changed by a link or key: the time range is moved to
+    /// show it before the next frame is drawn.
+    reveal: bool,
     commands: Vec<Command>,
 }
 
@@ -111,6 +114,7 @@ impl SolscopeApp {
             dialog: None,
             quit_now: false,
             png_to: None,
+            reveal: false,
             commands: Vec::new(),
         })
     }
@@ -213,6 +217,8 @@ impl SolscopeApp {
             self.derived.valid_for(&self.analysis, self.revision, a);
         }
         self.reap_worker();
+        // A selection made by a command given outside a frame.
+        self.reveal_selection();
         if self.workers_busy() {
             // Poll the worker until its result is in.
             ui.ctx()
@@ -232,6 +238,97 @@ impl SolscopeApp {
         for cmd in cmds {
             self.apply(cmd);
         }
+        self.reveal_selection();
+    }
+
+    /// Follows a link: `go` changes the selection or step; when they changed,
+    /// Back returns to where the user was (selection, step, time range) and
+    /// the time range moves to show the selection.
+    fn follow(&mut self, go: impl FnOnce(&mut Self)) {
+        let before = self.ui.nav.place();
+        go(self);
+        let after = self.ui.nav.place();
+        if (after.selected, after.step) != (before.selected, before.step) {
+            self.ui.nav.history.visit(before);
+            self.reveal = true;
+        }
+    }
+
+    /// Goes back (or forward) to a place: its selection, step and time range
+    /// exactly as they were.
+    fn go_to(&mut self, place: Option<super::state::Place>) {
+        let Some(p) = place else {
+            return;
+        };
+        let n = self.doc.plan.activities.len();
+        self.ui.nav.selected = p.selected.filter(|&a| a < n);
+        self.set_step(p.step);
+        self.apply(Command::SetAxis(p.axis));
+        self.reveal = false;
+    }
+
+    /// When asked for (a link or key changed the selection), moves the time
+    /// range as little as it can to show the selected activity: its bar
+    /// whole, or, not placed, one of its windows (the nearest; nothing moves
+    /// while one is partly in view). In execution mode it waits for the
+    /// execution.
+    fn reveal_selection(&mut self) {
+        if !std::mem::take(&mut self.reveal) {
+            return;
+        }
+        let Some(a) = self.ui.nav.selected else {
+            return;
+        };
+        let run = match self.ui.nav.mode {
+            Mode::Schedule => None,
+            Mode::Execution => match self.execution_run() {
+                Some(run) => Some(run),
+                None => {
+                    // Not derived yet: once it is.
+                    self.reveal = self.execution.run(self.exec_key()).is_none();
+                    return;
+                }
+            },
+        };
+        let Some(extent) = views::extent(&self.doc.plan, &self.analysis, run, self.ui.nav.step, a)
+        else {
+            return;
+        };
+        let bounds = self.bounds();
+        let mut axis = self.ui.nav.axis;
+        match extent {
+            views::Extent::Bar(s, e) => axis.reveal((s as f64, e as f64), bounds),
+            views::Extent::Windows(spans) => {
+                let (lo, hi) = (axis.start, axis.end);
+                let seen = spans
+                    .iter()
+                    .any(|&(s, e)| (e as f64) > lo && (s as f64) < hi);
+                let centre = (lo + hi) / 2.0;
+                let distance = |&&(s, e): &&(i64, i64)| {
+                    let (s, e) = (s as f64, e as f64);
+                    if centre < s {
+                        s - centre
+                    } else {
+                        (centre - e).max(0.0)
+                    }
+                };
+                let nearest = spans
+                    .iter()
+                    .min_by(|x, y| distance(x).total_cmp(&distance(y)));
+                if let Some(&(s, e)) = nearest.filter(|_| !seen) {
+                    axis.reveal((s as f64, e as f64), bounds);
+                }
+            }
+        }
+        if axis != self.ui.nav.axis {
+            self.apply(Command::SetAxis(axis));
+        }
+    }
+
+    /// What the search and filters list now, in step order.
+    fn listed(&mut self) -> std::sync::Arc<views::Listed> {
+        self.view_cache
+            .listed(&self.doc.plan, &self.analysis, &self.ui.nav, self.revision)
     }
 
     /// The read-only model the views draw and the widget state they may write,
@@ -301,6 +398,19 @@ impl SolscopeApp {
     /// placement's bar, in schedule mode), if it was.
     pub fn gantt_bar(&self, a: usize) -> Option<egui::Rect> {
         self.view_cache.gantt_bar(a)
+    }
+
+    /// The activities the list shows with the search and filters as they are,
+    /// in step order.
+    pub fn list_shown(&mut self) -> Vec<usize> {
+        self.listed().shown.clone()
+    }
+
+    /// How each activity bar the Gantt drew last frame looked against the
+    /// search and filters (an activity with several bars appears once per
+    /// bar).
+    pub fn gantt_looks(&self) -> &[(usize, views::Look)] {
+        &self.view_cache.looks
     }
 
     /// The Monte Carlo campaign running, if any.
@@ -465,13 +575,13 @@ impl SolscopeApp {
                         Some(format!("Runs: enter a whole number from 1 to {MAX_RUNS}"));
                 }
             }
-            Command::Select(a) => self.ui.nav.selected = a,
-            Command::GoToFailureStep(a) => {
-                self.ui.nav.selected = Some(a);
-                if let Some(k) = self.explanation_for(a).and_then(|e| e.failure_step) {
-                    self.set_step(k);
+            Command::Select(a) => self.follow(|app| app.ui.nav.selected = a),
+            Command::GoToFailureStep(a) => self.follow(|app| {
+                app.ui.nav.selected = Some(a);
+                if let Some(k) = app.explanation_for(a).and_then(|e| e.failure_step) {
+                    app.set_step(k);
                 }
-            }
+            }),
             Command::SetAxis(axis) => {
                 self.ui.nav.axis = axis;
                 self.ui.nav.axis.clamp(self.bounds());
@@ -522,7 +632,8 @@ impl SolscopeApp {
             Command::ExportScheduleTo(path) => self.export_schedule_to(&path),
             Command::SetDark(dark) => self.persisted.light = !dark,
             Command::GroupByResource(on) => self.persisted.by_resource = on,
-            Command::SetFilter(f) => self.ui.nav.filter = f,
+            Command::SetFilter(f) => self.ui.nav.filter.search = f,
+            Command::SetListFilter(f) => self.ui.nav.filter = f,
             Command::RepairJump(i) => self.repair_jump(i),
             Command::ShowError(e) => self.ui.messages.error = Some(e),
             Command::OfferPin { activity, start } => {
@@ -709,18 +820,17 @@ impl SolscopeApp {
                     failed.iter().rev().find(|f| f.0 < k)
                 };
                 if let Some(&(j, a)) = next {
-                    self.apply(self.set_step_command(j));
-                    if a.is_some() {
-                        self.ui.nav.selected = a;
-                    }
+                    self.follow(|app| {
+                        app.apply(app.set_step_command(j));
+                        if a.is_some() {
+                            app.ui.nav.selected = a;
+                        }
+                    });
                 }
             }
             UiCommand::SelectPrevious | UiCommand::SelectNext => {
-                let listed = views::listed_activities(
-                    &self.doc.plan,
-                    &self.analysis.schedule.steps,
-                    &self.ui.nav.filter,
-                );
+                let listed = self.listed();
+                let listed = &listed.shown;
                 let at = self
                     .ui
                     .nav
@@ -733,10 +843,43 @@ impl SolscopeApp {
                     (None, true) => listed.first(),
                     (None, false) => listed.last(),
                 };
-                if let Some(&a) = next {
+                if let Some(&a) = next.filter(|&&a| Some(a) != self.ui.nav.selected) {
+                    // Moving through the list is not a link: Back skips it.
                     self.ui.nav.selected = Some(a);
+                    self.reveal = true;
                 }
             }
+            UiCommand::NextMatch | UiCommand::PreviousMatch => {
+                let listed = self.listed();
+                let shown = &listed.shown;
+                let n = shown.len();
+                let at = self
+                    .ui
+                    .nav
+                    .selected
+                    .and_then(|a| shown.iter().position(|&b| b == a));
+                // Round and round the matches.
+                let next = match (at, cmd == UiCommand::NextMatch) {
+                    _ if n == 0 => None,
+                    (Some(i), true) => Some((i + 1) % n),
+                    (Some(i), false) => Some((i + n - 1) % n),
+                    (None, true) => Some(0),
+                    (None, false) => Some(n - 1),
+                };
+                if let Some(&a) = next.and_then(|i| shown.get(i)) {
+                    self.follow(|app| app.ui.nav.selected = Some(a));
+                }
+            }
+            UiCommand::Back => {
+                let place = self.ui.nav.history.back(self.ui.nav.place());
+                self.go_to(place);
+            }
+            UiCommand::Forward => {
+                let place = self.ui.nav.history.forward(self.ui.nav.place());
+                self.go_to(place);
+            }
+            UiCommand::Search => self.ui.text.focus_search = true,
+            UiCommand::ClearFilters => self.ui.nav.filter = Default::default(),
             UiCommand::ShowSchedule => self.ui.nav.mode = Mode::Schedule,
             UiCommand::ShowExecution => self.ui.nav.mode = Mode::Execution,
             UiCommand::OpenActuals => self.dialog = Some(Dialog::OpenActuals),

@@ -12,7 +12,7 @@ use std::path::PathBuf;
 use eframe::egui::{Key, KeyboardShortcut, Modifiers};
 use serde_json::{Map, Value};
 
-use super::state::Dialog;
+use super::state::{Dialog, ListFilter};
 use super::time_axis::TimeAxis;
 
 /// A command the user gives by name: its label is the button's text (and
@@ -89,23 +89,43 @@ pub enum UiCommand {
     /// (replan, dispatch, fixed over the same runs) or runs the replanning
     /// executive alone.
     ToggleComparePolicies,
+    /// Go back to the selection, step and time range before the last link
+    /// followed.
+    Back,
+    /// Go forward again to where Back came from.
+    Forward,
+    /// Put the keyboard in the activity search field.
+    Search,
+    /// Select the next activity the search and filters list (wrapping).
+    NextMatch,
+    /// Select the previous activity the search and filters list (wrapping).
+    PreviousMatch,
+    /// Show every activity again: empty the search, clear the filters.
+    ClearFilters,
 }
 
 impl UiCommand {
-    /// Commands with a modifier shortcut, in the order the keyboard handling checks
-    /// them (Redo before Undo: Cmd+Shift+Z also matches Cmd+Z logically).
-    pub const WITH_MODIFIERS: [Self; 6] = [
+    /// Commands whose shortcut is taken also while a text field has focus
+    /// (with Ctrl/Cmd, or a function key), in the order the keyboard handling
+    /// checks them (Redo before Undo: Cmd+Shift+Z also matches Cmd+Z
+    /// logically; so does Shift+F3 F3).
+    pub const WITH_MODIFIERS: [Self; 9] = [
         Self::Redo,
         Self::Undo,
         Self::Save,
         Self::Open,
         Self::ShowSchedule,
         Self::ShowExecution,
+        Self::Search,
+        Self::PreviousMatch,
+        Self::NextMatch,
     ];
 
-    /// Commands on keys without Ctrl/Cmd (stepping, the list), taken only when no
-    /// text field has focus; each press counts, also several in one frame.
-    pub const PLAIN_KEYS: [Self; 11] = [
+    /// Commands on keys without Ctrl/Cmd (stepping, the list, Back and Forward
+    /// on Alt+arrows, which a text field uses to move by words), taken only
+    /// when no text field has focus; each press counts, also several in one
+    /// frame.
+    pub const PLAIN_KEYS: [Self; 13] = [
         Self::PreviousStep,
         Self::NextStep,
         Self::PreviousFailure,
@@ -117,6 +137,8 @@ impl UiCommand {
         Self::PreviousCycle,
         Self::NextCycle,
         Self::ToggleFlex,
+        Self::Back,
+        Self::Forward,
     ];
 
     /// The text of its button or menu item (also its accessibility label).
@@ -154,6 +176,12 @@ impl UiCommand {
             Self::CancelCampaign => "Cancel",
             Self::ToggleFlex => "Flexibility layer",
             Self::ToggleComparePolicies => "Compare policies",
+            Self::Back => "Back",
+            Self::Forward => "Forward",
+            Self::Search => "Search",
+            Self::NextMatch => "Next match",
+            Self::PreviousMatch => "Previous match",
+            Self::ClearFilters => "Clear filters",
         }
     }
 
@@ -191,6 +219,11 @@ impl UiCommand {
             | Self::RecheckRepair
             | Self::ReplaceAtError
             | Self::CancelRepair => None,
+            Self::Back => Some(KeyboardShortcut::new(Modifiers::ALT, Key::ArrowLeft)),
+            Self::Forward => Some(KeyboardShortcut::new(Modifiers::ALT, Key::ArrowRight)),
+            Self::Search => cmd(Key::F),
+            Self::NextMatch => plain(Key::F3),
+            Self::PreviousMatch => Some(KeyboardShortcut::new(Modifiers::SHIFT, Key::F3)),
             Self::SaveAs
             | Self::ExportSchedule
             | Self::ExportScheduleCsv
@@ -199,7 +232,8 @@ impl UiCommand {
             | Self::OpenActuals
             | Self::NominalActuals
             | Self::CancelCampaign
-            | Self::ToggleComparePolicies => None,
+            | Self::ToggleComparePolicies
+            | Self::ClearFilters => None,
         }
     }
 }
@@ -213,9 +247,12 @@ pub enum Command {
     SetStep(usize),
     /// Start or stop stepping automatically.
     Play(bool),
-    /// Select an activity (or nothing).
+    /// Select an activity (or nothing): a link followed (a click in the list,
+    /// on the Gantt, in the inspector), so Back returns to the selection, step
+    /// and time range before it; the Gantt's time range moves to show the
+    /// activity when it is out of view.
     Select(Option<usize>),
-    /// Select an activity and jump to its failure step.
+    /// Select an activity and jump to its failure step (a link followed).
     GoToFailureStep(usize),
     /// Change the visible time range.
     SetAxis(TimeAxis),
@@ -266,8 +303,12 @@ pub enum Command {
     SetDark(bool),
     /// Gantt rows per unit resource (true) or packed lanes.
     GroupByResource(bool),
-    /// Filter activities by id or name.
+    /// Search the activities by id or name (the list shows the matches, the
+    /// Gantt highlights them).
     SetFilter(String),
+    /// Filter the activity list (and the Gantt's highlight) by search text,
+    /// status, unit resource and sol.
+    SetListFilter(ListFilter),
     /// Show an error message (bad input in a view, a failed write in the host).
     ShowError(String),
     /// Execution mode: look at scheduling cycle k (its last step).

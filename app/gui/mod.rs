@@ -32,6 +32,10 @@ pub use document::{Analysis, Document, OutcomeDiff};
 pub use execution::{ActualsSource, CycleRun, ExecutionRun};
 pub use host::{SolscopeHost, run, save_color_image};
 pub use montecarlo::{CampaignResult, Progress, StopReason, Stopped};
-pub use state::{LAST_STEP, Mode, PathPrompt, Pending, Persisted, StepView, UiState};
+pub use state::{
+    History, LAST_STEP, ListFilter, Mode, PathPrompt, Pending, Persisted, Place, StatusFilter,
+    StepView, UiState,
+};
 pub use theme::Theme;
 pub use time_axis::TimeAxis;
+pub use views::Look;

@@ -191,7 +191,8 @@ impl UiState {
                 axis,
                 probe: None,
                 since_full: false,
-                filter: String::new(),
+                filter: ListFilter::default(),
+                history: History::default(),
                 mode: Mode::Schedule,
                 cycle: 0,
                 cycle_step: LAST_STEP,
@@ -213,7 +214,8 @@ impl UiState {
     }
 }
 
-/// Where the user is: step, selection, visible range, probe, filter.
+/// Where the user is: step, selection, visible range, probe, filters, and the
+/// way back.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Navigation {
     /// The step shown (0..=N).
@@ -228,8 +230,11 @@ pub struct Navigation {
     pub probe: Option<i64>,
     /// Energy consumers since the last full battery.
     pub since_full: bool,
-    /// Activity filter text.
-    pub filter: String,
+    /// What the activity list shows and the Gantt highlights: search text,
+    /// status, unit resource, sol.
+    pub filter: ListFilter,
+    /// Where Back and Forward go.
+    pub history: History,
     /// Schedule or execution.
     pub mode: Mode,
     /// Execution mode: the scheduling cycle looked at (clamped to the cycles of
@@ -238,6 +243,137 @@ pub struct Navigation {
     /// Execution mode: the step shown inside that cycle's scheduler run (clamped
     /// to its steps when read; [`LAST_STEP`] shows its last).
     pub cycle_step: usize,
+}
+
+impl Navigation {
+    /// Where the user is, as Back and Forward restore it.
+    pub fn place(&self) -> Place {
+        Place {
+            selected: self.selected,
+            step: self.step,
+            axis: self.axis,
+        }
+    }
+}
+
+/// An activity status the list can be filtered to, as of the step shown
+/// (schedule mode).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StatusFilter {
+    /// Placed by a step up to the one shown.
+    Scheduled,
+    /// Failed by a step up to the one shown.
+    Failed,
+    /// Skipped (another member of its group was placed).
+    Skipped,
+    /// Its step is after the one shown: not yet run.
+    Pending,
+}
+
+impl StatusFilter {
+    /// Every status, in the order the list's menu offers them.
+    pub const ALL: [Self; 4] = [Self::Scheduled, Self::Failed, Self::Skipped, Self::Pending];
+
+    /// Its menu entry (also its accessibility label).
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Scheduled => "Scheduled",
+            Self::Failed => "Failed",
+            Self::Skipped => "Skipped",
+            Self::Pending => "Pending (not yet run)",
+        }
+    }
+}
+
+/// What the activity list shows (and the Gantt highlights, dimming the rest):
+/// every condition set must hold. Runtime state, never persisted.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ListFilter {
+    /// Part of the id or name, ignoring case (empty: any).
+    pub search: String,
+    /// Its status as of the step shown (schedule mode only).
+    pub status: Option<StatusFilter>,
+    /// A unit resource it holds.
+    pub resource: Option<String>,
+    /// A sol its bar is in (placed as of the step shown) or its windows touch
+    /// (not placed).
+    pub sol: Option<i64>,
+}
+
+impl ListFilter {
+    /// Whether anything is filtered out.
+    pub fn active(&self) -> bool {
+        !self.search.trim().is_empty()
+            || self.status.is_some()
+            || self.resource.is_some()
+            || self.sol.is_some()
+    }
+}
+
+/// A place to go back to: the selection, the step shown and the time range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Place {
+    /// The selected activity.
+    pub selected: Option<usize>,
+    /// The step shown.
+    pub step: usize,
+    /// The visible time range.
+    pub axis: TimeAxis,
+}
+
+/// How many places Back remembers.
+pub const HISTORY_LIMIT: usize = 100;
+
+/// Back and Forward, as in a browser: following a link remembers where the
+/// user was (and forgets what was forward of it).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct History {
+    back: std::collections::VecDeque<Place>,
+    forward: Vec<Place>,
+}
+
+impl History {
+    /// The user left `from` by following a link: Back returns there; what was
+    /// forward is forgotten. At most [`HISTORY_LIMIT`] places are kept (the
+    /// oldest go first).
+    pub fn visit(&mut self, from: Place) {
+        self.forward.clear();
+        if self.back.back() != Some(&from) {
+            self.back.push_back(from);
+            while self.back.len() > HISTORY_LIMIT {
+                self.back.pop_front();
+            }
+        }
+    }
+
+    /// Where Back goes from `current` (which Forward then returns to).
+    pub fn back(&mut self, current: Place) -> Option<Place> {
+        let to = self.back.pop_back()?;
+        self.forward.push(current);
+        Some(to)
+    }
+
+    /// Where Forward goes from `current` (which Back then returns to).
+    pub fn forward(&mut self, current: Place) -> Option<Place> {
+        let to = self.forward.pop()?;
+        self.back.push_back(current);
+        Some(to)
+    }
+
+    /// Whether Back has somewhere to go.
+    pub fn can_back(&self) -> bool {
+        !self.back.is_empty()
+    }
+
+    /// Whether Forward has somewhere to go.
+    pub fn can_forward(&self) -> bool {
+        !self.forward.is_empty()
+    }
+
+    /// The number of places behind and ahead.
+    pub fn depth(&self) -> (usize, usize) {
+        (self.back.len(), self.forward.len())
+    }
 }
 
 /// The value of [`Navigation::cycle_step`] that shows a cycle's last step
@@ -303,6 +439,9 @@ pub struct TextBuffers {
     /// Repair view: the chars of the plan text to select and scroll to (set
     /// by a jump to an error, taken by the text view).
     pub repair_cursor: Option<std::ops::Range<usize>>,
+    /// Ctrl+F was pressed: the search field takes the keyboard (and selects
+    /// its text) when next drawn.
+    pub focus_search: bool,
 }
 
 impl Default for TextBuffers {
@@ -318,6 +457,75 @@ impl Default for TextBuffers {
             repair_text: String::new(),
             repair_value: String::new(),
             repair_cursor: None,
+            focus_search: false,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn at(selected: usize, step: usize) -> Place {
+        Place {
+            selected: Some(selected),
+            step,
+            axis: TimeAxis::new(0.0, 100.0),
+        }
+    }
+
+    #[test]
+    fn back_and_forward_walk_the_places_visited_and_a_visit_forgets_forward() {
+        let mut h = History::default();
+        assert!(!h.can_back() && !h.can_forward());
+        assert_eq!(h.back(at(0, 0)), None, "nowhere to go");
+        // At 1, follow to 2, then to 3.
+        h.visit(at(1, 10));
+        h.visit(at(2, 20));
+        assert_eq!(h.back(at(3, 30)), Some(at(2, 20)));
+        assert_eq!(h.back(at(2, 20)), Some(at(1, 10)));
+        assert!(!h.can_back());
+        assert_eq!(h.forward(at(1, 10)), Some(at(2, 20)));
+        assert_eq!(h.forward(at(2, 20)), Some(at(3, 30)));
+        assert!(!h.can_forward());
+        // Back to 2, then a new link: 3 is forgotten.
+        assert_eq!(h.back(at(3, 30)), Some(at(2, 20)));
+        h.visit(at(2, 20));
+        assert!(!h.can_forward());
+        assert_eq!(h.depth(), (2, 0));
+        // The same place twice in a row is one entry.
+        h.visit(at(2, 20));
+        assert_eq!(h.depth(), (2, 0));
+    }
+
+    #[test]
+    fn history_is_bounded_and_forgets_the_oldest() {
+        let mut h = History::default();
+        for i in 0..HISTORY_LIMIT + 50 {
+            h.visit(at(i, i));
+        }
+        assert_eq!(h.depth(), (HISTORY_LIMIT, 0));
+        let mut current = at(9999, 0);
+        let mut last = None;
+        while let Some(p) = h.back(current) {
+            last = Some(p);
+            current = p;
+        }
+        assert_eq!(last, Some(at(50, 50)), "the oldest 50 are gone");
+    }
+
+    #[test]
+    fn a_filter_is_active_when_any_condition_is_set() {
+        let mut f = ListFilter::default();
+        assert!(!f.active());
+        f.search = "  ".into();
+        assert!(!f.active(), "blank search text filters nothing");
+        f.search = "mast".into();
+        assert!(f.active());
+        let f = ListFilter {
+            sol: Some(412),
+            ..ListFilter::default()
+        };
+        assert!(f.active());
     }
 }

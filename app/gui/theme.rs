@@ -86,6 +86,8 @@ pub struct Theme {
     pub ghost: Color32,
     /// Repair view: behind the text at the path of the error looked at.
     pub error_mark: Color32,
+    /// The outline of the bars the search and filters match.
+    pub highlight: Color32,
 }
 
 /// Least distance between two labelled value grid lines on a plot (points).
@@ -146,8 +148,10 @@ pub const TRACK_ROW_GAP: f32 = 3.0;
 pub const TRACK_FONT_SIZE: f32 = 9.0;
 /// Width of an editor text field in the inspector.
 pub const FIELD_WIDTH: f32 = 200.0;
-/// Width of the activity filter field.
-pub const FILTER_WIDTH: f32 = 140.0;
+/// Outline width of the bars the search and filters match.
+pub const MATCH_STROKE: f32 = 1.5;
+/// Opacity of the bars the search and filters leave out.
+pub const DIMMED: f32 = 0.2;
 /// Width of each time range field.
 pub const RANGE_FIELD_WIDTH: f32 = 120.0;
 /// Inner margin of the banner and error frames.
@@ -243,6 +247,7 @@ impl Theme {
                 neighbour: Color32::from_rgb(255, 120, 210),
                 ghost: Color32::from_rgba_unmultiplied(255, 255, 255, 40),
                 error_mark: Color32::from_rgba_unmultiplied(255, 110, 100, 70),
+                highlight: Color32::from_rgb(200, 255, 80),
             }
         } else {
             Self {
@@ -274,6 +279,7 @@ impl Theme {
                 neighbour: Color32::from_rgb(200, 40, 150),
                 ghost: Color32::from_rgba_unmultiplied(0, 0, 0, 35),
                 error_mark: Color32::from_rgba_unmultiplied(190, 30, 20, 50),
+                highlight: Color32::from_rgb(20, 140, 20),
             }
         }
     }

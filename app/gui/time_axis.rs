@@ -117,6 +117,10 @@ pub struct TimeAxis {
 /// Shortest visible span (seconds): zooming stops there.
 const MIN_SPAN: f64 = 10.0;
 
+/// The margin [`TimeAxis::reveal`] leaves on each side, as a share of the span
+/// shown.
+const REVEAL_MARGIN: f64 = 0.05;
+
 impl TimeAxis {
     /// The whole horizon.
     pub fn new(start: f64, end: f64) -> Self {
@@ -164,6 +168,31 @@ impl TimeAxis {
     pub fn pan(&mut self, dt: f64, bounds: (f64, f64)) {
         self.start += dt;
         self.end += dt;
+        self.clamp(bounds);
+    }
+
+    /// Brings `[lo, hi]` into view with a margin, changing the range as little
+    /// as it can: nothing when it is wholly visible, a pan keeping the zoom
+    /// when it fits, else a zoom out to it (within `bounds`).
+    pub fn reveal(&mut self, (lo, hi): (f64, f64), bounds: (f64, f64)) {
+        let (lo, hi) = (lo.min(hi), lo.max(hi));
+        if lo >= self.start && hi <= self.end {
+            return;
+        }
+        let span = self.span();
+        let margin = span * REVEAL_MARGIN;
+        if hi - lo + 2.0 * margin <= span {
+            // Pan just past it: from the side it lies on.
+            self.start = if lo < self.start {
+                lo - margin
+            } else {
+                hi + margin - span
+            };
+            self.end = self.start + span;
+        } else {
+            let margin = ((hi - lo) * REVEAL_MARGIN).max(MIN_SPAN);
+            *self = Self::new(lo - margin, hi + margin);
+        }
         self.clamp(bounds);
     }
 
@@ -232,6 +261,29 @@ mod tests {
             let gap = (pair[1].t - pair[0].t) / axis.seconds_per_pixel(600.0);
             assert!(gap >= 60.0, "labels apart: {pair:?}");
         }
+    }
+
+    #[test]
+    fn reveal_pans_or_zooms_out_only_as_far_as_needed() {
+        let bounds = (0.0, 100_000.0);
+        let mut axis = TimeAxis::new(10_000.0, 20_000.0);
+        // Wholly visible: nothing moves.
+        axis.reveal((12_000.0, 13_000.0), bounds);
+        assert_eq!((axis.start, axis.end), (10_000.0, 20_000.0));
+        // Later, fits: a pan keeping the span, the end a margin past it.
+        axis.reveal((30_000.0, 31_000.0), bounds);
+        assert_eq!((axis.start, axis.end), (21_500.0, 31_500.0));
+        // Earlier, cut by the left edge: the start a margin before it.
+        axis.reveal((21_000.0, 22_000.0), bounds);
+        assert_eq!((axis.start, axis.end), (20_500.0, 30_500.0));
+        // Longer than the span: zoomed out to it with a margin.
+        axis.reveal((40_000.0, 60_000.0), bounds);
+        assert_eq!((axis.start, axis.end), (39_000.0, 61_000.0));
+        // Within the bounds at their edges.
+        axis.reveal((99_000.0, 100_000.0), bounds);
+        assert_eq!((axis.start, axis.end), (78_000.0, 100_000.0));
+        axis.reveal((0.0, 100_000.0), bounds);
+        assert_eq!((axis.start, axis.end), (0.0, 100_000.0));
     }
 
     #[test]

@@ -14,15 +14,16 @@ use solscope_engine::{FailurePhase, GeneratedKind, Outcome, RunOutcome, Schedule
 
 use super::execution::{trigger_text, violation_text};
 use super::flex::{self, Slack};
-use super::{Model, Status, ViewCache};
+use super::{Look, Model, Status, ViewCache, status_at};
 use crate::gui::commands::Command;
+use crate::gui::document::Analysis;
 use crate::gui::execution::{CycleRun, ExecutionRun};
 use crate::gui::state::Mode;
 use crate::gui::theme::{
-    BAR_FONT_SIZE, BAR_ROUNDING, BASELINE_HEIGHT, CURRENT_STROKE, CYCLE_LINE_STROKE, GHOST_STROKE,
-    HATCH_GAP, HATCH_STROKE, LABEL_MIN_WIDTH, LABEL_WIDTH, LANE_GAP, LANE_HEIGHT, MARKER_WIDTH,
-    NEIGHBOUR_STROKE, PROBE_LINE_STROKE, RULER_HEIGHT, SELECTION_STROKE, SOL_LINE_STROKE, TICK_GAP,
-    TICK_LENGTH, WINDOW_FILL, WINDOW_HATCH,
+    BAR_FONT_SIZE, BAR_ROUNDING, BASELINE_HEIGHT, CURRENT_STROKE, CYCLE_LINE_STROKE, DIMMED,
+    GHOST_STROKE, HATCH_GAP, HATCH_STROKE, LABEL_MIN_WIDTH, LABEL_WIDTH, LANE_GAP, LANE_HEIGHT,
+    MARKER_WIDTH, MATCH_STROKE, NEIGHBOUR_STROKE, PROBE_LINE_STROKE, RULER_HEIGHT,
+    SELECTION_STROKE, SOL_LINE_STROKE, TICK_GAP, TICK_LENGTH, WINDOW_FILL, WINDOW_HATCH,
 };
 use crate::gui::time_axis::ticks;
 
@@ -260,7 +261,10 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
 /// Where an activity that is not placed is drawn: each window, from its start to
 /// its end plus the longest duration (clipped to the horizon), or the whole
 /// horizon without windows.
-fn window_spans(plan: &solscope_engine::Plan, act: &solscope_engine::Activity) -> Vec<(i64, i64)> {
+pub(super) fn window_spans(
+    plan: &solscope_engine::Plan,
+    act: &solscope_engine::Activity,
+) -> Vec<(i64, i64)> {
     let clip = |(lo, hi): (i64, i64)| (lo.max(plan.horizon.start), hi.min(plan.horizon.end));
     match &act.windows {
         Some(windows) => windows
@@ -270,6 +274,39 @@ fn window_spans(plan: &solscope_engine::Plan, act: &solscope_engine::Activity) -
             .collect(),
         None => vec![(plan.horizon.start, plan.horizon.end)],
     }
+}
+
+/// Where the Gantt draws an activity.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Extent {
+    /// As a bar `[start, end]`: placed, or in execution mode run (or
+    /// predicted).
+    Bar(i64, i64),
+    /// As its windows (not placed, or never run): see [`window_spans`].
+    Windows(Vec<(i64, i64)>),
+}
+
+/// Where the Gantt draws activity `a`: in schedule mode (`run` none) as of step
+/// `k`, in execution mode where it ran, else where it was predicted.
+pub fn extent(
+    plan: &solscope_engine::Plan,
+    analysis: &Analysis,
+    run: Option<&ExecutionRun>,
+    k: usize,
+    a: usize,
+) -> Option<Extent> {
+    let act = plan.activities.get(a)?;
+    let bar = match run {
+        None => match status_at(analysis, a, k) {
+            Status::Scheduled(s, e) => Some((s, e)),
+            _ => None,
+        },
+        Some(run) => run.activity(a).and_then(|r| r.actual.or(r.predicted)),
+    };
+    Some(match bar {
+        Some((s, e)) => Extent::Bar(s, e),
+        None => Extent::Windows(window_spans(plan, act)),
+    })
 }
 
 /// Scheduled bars in one row per unit resource (resource names in order; an
@@ -567,6 +604,44 @@ struct Hovered {
     click: Option<Command>,
 }
 
+/// What hovering `bar` shows and what clicking it does (`steps`: a schedule
+/// row following the step slider, whose activity bars say what happened), if
+/// anything.
+fn hover_of(
+    m: &Model<'_>,
+    bar: &Bar,
+    steps: bool,
+    flex_layer: Option<&solscope_engine::Flex>,
+) -> Option<Hovered> {
+    let click = match (bar.activity, bar.cycle) {
+        (Some(a), _) => Some(Command::Select(Some(a))),
+        (None, Some(c)) => Some(Command::SetCycle(c)),
+        (None, None) => None,
+    };
+    if click.is_none() && bar.tip.is_none() {
+        return None;
+    }
+    let mut text = bar.tip.clone().unwrap_or_else(|| match bar.activity {
+        Some(a) if steps => activity_tip(m, a, bar),
+        _ => format!(
+            "{} {}–{}",
+            bar.label,
+            m.time(bar.start as i64),
+            m.time(bar.end as i64)
+        ),
+    });
+    let fa = flex_layer
+        .filter(|_| bar.placed)
+        .and_then(|f| bar.activity.and_then(|a| f.activity(a)));
+    if let Some(fa) = fa {
+        text.push_str(&format!(
+            "\n{}; drag to try another start",
+            flex::hover_line(m, fa)
+        ));
+    }
+    Some(Hovered { text, click })
+}
+
 /// What hovering activity `a`'s bar says in schedule mode: who it is, what
 /// happened to it by the step shown and when, its duration and unit resources,
 /// and for a failure the one-line reason.
@@ -787,6 +862,21 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
     let mut hovered: Option<Hovered> = None;
     let pointer = response.hover_pos();
     let flex_layer = m.flex_layer();
+    if cache.gantt_revealed != Some(m.nav.selected) {
+        // A new selection: its row scrolled into view (its time range was
+        // moved to it when it was selected).
+        cache.gantt_revealed = Some(m.nav.selected);
+        if let Some(r) = m
+            .nav
+            .selected
+            .and_then(|a| row_of(m, &rows, a, rect.top(), timeline))
+        {
+            ui.scroll_to_rect(r, None);
+        }
+    }
+    // The search and filters: what they match outlined, the rest faded.
+    let listed = cache.listed.clone().filter(|l| l.active);
+    let mut looks: Vec<(usize, Look)> = Vec::new();
     // The selected activity's neighbours in the minimum dispatchable network.
     let neighbours: Vec<usize> = match (flex_layer, m.nav.selected) {
         (Some(f), Some(a)) => flex::neighbours(f, a),
@@ -816,7 +906,16 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
                 }
                 if let Some(fa) = bar.activity.and_then(|a| f.activity(a)) {
                     let d = (bar.end - bar.start) as i64;
-                    flex::underlay(&painter, m, fa, d, axis, timeline, y, h);
+                    // Faded with its bar when the search leaves it out.
+                    let left_out = listed.as_ref().is_some_and(|l| !l.shows(fa.activity))
+                        && m.nav.selected != Some(fa.activity);
+                    if left_out {
+                        let mut faded = painter.clone();
+                        faded.multiply_opacity(DIMMED);
+                        flex::underlay(&faded, m, fa, d, axis, timeline, y, h);
+                    } else {
+                        flex::underlay(&painter, m, fa, d, axis, timeline, y, h);
+                    }
                 }
             }
         }
@@ -837,10 +936,42 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
         // overflow lane holding thousands of failed activities' windows, so it is
         // skipped unless it is highlighted.
         let mut painted = (f64::INFINITY, f64::NEG_INFINITY, Color32::TRANSPARENT);
+        // Bars the search and filters leave out are context: a run of
+        // overlapping ones is drawn once, as their union, so an overflow lane
+        // of windows stays faded instead of stacking back up to full colour.
+        let mut faded: Option<(f64, f64, Color32, bool)> = None;
+        let flush_faded = |run: Option<(f64, f64, Color32, bool)>| {
+            if let Some((x0, x1, c, outline)) = run {
+                let r = Rect::from_min_max(
+                    Pos2::new(x0 as f32, y),
+                    Pos2::new((x1 as f32).max(x0 as f32 + 1.0), y + h),
+                );
+                if outline {
+                    window_bar(&painter, r, c);
+                } else {
+                    painter.rect_filled(r, BAR_ROUNDING, c);
+                }
+            }
+        };
         for bar in &row.bars {
             if bar.end < axis.start || bar.start > axis.end {
                 continue;
             }
+            let look = match (bar.activity, &listed) {
+                (Some(a), Some(l)) if l.shows(a) => Look::Highlighted,
+                // The selection is never faded, filtered out or not.
+                (Some(a), Some(_)) if Some(a) == m.nav.selected => Look::Plain,
+                (Some(_), Some(_)) => Look::Dimmed,
+                _ => Look::Plain,
+            };
+            if let Some(a) = bar.activity {
+                looks.push((a, look));
+            }
+            let color = if look == Look::Dimmed {
+                bar.color.gamma_multiply(DIMMED)
+            } else {
+                bar.color
+            };
             let mut x0 = axis.x(bar.start, timeline).max(f64::from(timeline.left()));
             let mut x1 = axis.x(bar.end, timeline).min(f64::from(timeline.right()));
             if bar.marker {
@@ -852,21 +983,47 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
             } else {
                 let marked = bar.activity.is_some()
                     && (bar.activity == current || bar.activity == m.nav.selected);
-                let (lo, hi, color) = painted;
-                if bar.color == color && lo <= x0 && x1 <= hi && !marked {
+                let neighbour = bar.activity.is_some_and(|a| neighbours.contains(&a));
+                if look == Look::Dimmed && !marked && !neighbour {
+                    let r = Rect::from_min_max(
+                        Pos2::new(x0 as f32, y),
+                        Pos2::new((x1 as f32).max(x0 as f32 + 1.0), y + h),
+                    );
+                    if let Some(a) = bar.activity.filter(|_| bar.placed) {
+                        // Still picked up by a drag.
+                        drawn.push((a, r));
+                    }
+                    if pointer.is_some_and(|p| r.contains(p)) {
+                        hovered =
+                            hover_of(m, bar, row.steps && run.is_none(), flex_layer).or(hovered);
+                    }
+                    faded = match faded {
+                        Some((a, b, c, o)) if c == color && o == bar.outline && x0 <= b => {
+                            Some((a, b.max(x1), c, o))
+                        }
+                        other => {
+                            flush_faded(other);
+                            Some((x0, x1, color, bar.outline))
+                        }
+                    };
                     continue;
                 }
-                painted = if bar.color == color && x0 <= hi && lo <= x1 {
+                flush_faded(faded.take());
+                let (lo, hi, painted_color) = painted;
+                if color == painted_color && lo <= x0 && x1 <= hi && !marked {
+                    continue;
+                }
+                painted = if color == painted_color && x0 <= hi && lo <= x1 {
                     (lo.min(x0), hi.max(x1), color)
                 } else {
-                    (x0, x1, bar.color)
+                    (x0, x1, color)
                 };
                 if x1 - x0 < 1.0 {
                     merged = match merged {
-                        Some((a, b, c)) if x0 <= b + 1.0 => Some((a, b.max(x1), c)),
+                        Some((a, b, c)) if c == color && x0 <= b + 1.0 => Some((a, b.max(x1), c)),
                         other => {
                             flush(other);
-                            Some((x0, x1, bar.color))
+                            Some((x0, x1, color))
                         }
                     };
                     continue;
@@ -875,9 +1032,17 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
             }
             let r = Rect::from_min_max(Pos2::new(x0 as f32, y), Pos2::new(x1 as f32, y + h));
             if bar.outline {
-                window_bar(&painter, r, bar.color);
+                window_bar(&painter, r, color);
             } else {
-                painter.rect_filled(r, BAR_ROUNDING, bar.color);
+                painter.rect_filled(r, BAR_ROUNDING, color);
+            }
+            if look == Look::Highlighted {
+                painter.rect_stroke(
+                    r,
+                    BAR_ROUNDING,
+                    Stroke::new(MATCH_STROKE, m.theme.highlight),
+                    StrokeKind::Outside,
+                );
             }
             let is_current = bar.activity.is_some() && bar.activity == current;
             let is_selected = bar.activity.is_some() && bar.activity == m.nav.selected;
@@ -911,45 +1076,26 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
                 }
             }
             if r.width() >= LABEL_MIN_WIDTH && h >= LANE_HEIGHT {
-                let text = painter.layout_no_wrap(bar.label.clone(), font.clone(), m.theme.label);
+                let label = if look == Look::Dimmed {
+                    m.theme.label.gamma_multiply(DIMMED * 2.0)
+                } else {
+                    m.theme.label
+                };
+                let text = painter.layout_no_wrap(bar.label.clone(), font.clone(), label);
                 if text.size().x + 4.0 <= r.width() {
                     painter.galley(
                         Pos2::new(r.left() + 2.0, r.center().y - text.size().y / 2.0),
                         text,
-                        m.theme.label,
+                        label,
                     );
                 }
             }
             if pointer.is_some_and(|p| r.contains(p)) {
-                let click = match (bar.activity, bar.cycle) {
-                    (Some(a), _) => Some(Command::Select(Some(a))),
-                    (None, Some(c)) => Some(Command::SetCycle(c)),
-                    (None, None) => None,
-                };
-                let mut text = bar.tip.clone().unwrap_or_else(|| match bar.activity {
-                    Some(a) if run.is_none() && row.steps => activity_tip(m, a, bar),
-                    _ => format!(
-                        "{} {}–{}",
-                        bar.label,
-                        m.time(bar.start as i64),
-                        m.time(bar.end as i64)
-                    ),
-                });
-                let fa = flex_layer
-                    .filter(|_| bar.placed)
-                    .and_then(|f| bar.activity.and_then(|a| f.activity(a)));
-                if let Some(fa) = fa {
-                    text.push_str(&format!(
-                        "\n{}; drag to try another start",
-                        flex::hover_line(m, fa)
-                    ));
-                }
-                if click.is_some() || bar.tip.is_some() {
-                    hovered = Some(Hovered { text, click });
-                }
+                hovered = hover_of(m, bar, row.steps && run.is_none(), flex_layer).or(hovered);
             }
         }
         flush(merged);
+        flush_faded(faded);
     }
     // The looked-at cycle's time.
     if let Some(run) = run {
@@ -1092,6 +1238,40 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
     }
     cache.gantt = Some(GanttRows { key, rows });
     cache.bars = drawn;
+    cache.looks = looks;
+}
+
+/// Where activity `a`'s row is on screen (the Gantt's top at `top`), at its
+/// bar when that is in view: its placement, else its first window, else any
+/// bar of its own (not a heater's).
+fn row_of(m: &Model<'_>, rows: &[Row], a: usize, top: f32, timeline: Rect) -> Option<Rect> {
+    let id = &m.doc.plan.activities.get(a)?.id;
+    let mut best: Option<(u8, Rect)> = None;
+    let mut offset = 0.0_f32;
+    for row in rows {
+        let y = top + offset;
+        offset += row.height + LANE_GAP;
+        for bar in row.bars.iter().filter(|b| b.activity == Some(a)) {
+            let rank = match (bar.placed, bar.outline) {
+                (true, _) => 0,
+                (_, true) => 1,
+                _ if bar.label == *id => 2,
+                _ => continue,
+            };
+            if best.is_some_and(|(r, _)| r <= rank) {
+                continue;
+            }
+            let axis = m.nav.axis;
+            let x0 = (axis.x(bar.start, timeline) as f32).clamp(timeline.left(), timeline.right());
+            let x1 = (axis.x(bar.end, timeline) as f32).clamp(x0, timeline.right());
+            let r = Rect::from_min_max(
+                Pos2::new(x0, y),
+                Pos2::new(x1.max(x0 + 1.0), y + row.height),
+            );
+            best = Some((rank, r));
+        }
+    }
+    best.map(|(_, r)| r)
 }
 
 #[cfg(test)]

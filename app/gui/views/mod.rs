@@ -9,15 +9,17 @@
 mod execution;
 mod flex;
 mod gantt;
-pub use gantt::{BarDrag, GanttRows};
+pub use gantt::{BarDrag, Extent, GanttRows, extent};
 mod editor;
 mod inspector;
+mod list;
+pub use list::{Listed, SearchIndex};
 mod montecarlo;
 mod plots;
 mod repair;
 
 use eframe::egui::{self, RichText};
-use solscope_engine::{Outcome, RunOutcome, Suggestion, parse_local};
+use solscope_engine::{Outcome, Suggestion, parse_local};
 
 use crate::gui::commands::{Command, UiCommand};
 use crate::gui::document::{Analysis, Document};
@@ -25,9 +27,8 @@ use crate::gui::execution::{ActualsSource, CycleRun, ExecutionRun};
 use crate::gui::montecarlo::{CampaignResult, Progress, Stopped};
 use crate::gui::state::{Messages, Mode, Navigation, Pending, Persisted, StepView, TextBuffers};
 use crate::gui::theme::{
-    FAILURE_TICK_HEIGHT, FAILURE_TICK_STROKE, FILTER_WIDTH, INSPECTOR_WIDTH, LIST_WIDTH,
-    MESSAGE_MARGIN, PROMPT_WIDTH, RANGE_FIELD_WIDTH, SHARE_BAR_HEIGHT, SHARE_BAR_WIDTH,
-    STEP_SLIDER_WIDTH, Theme,
+    FAILURE_TICK_HEIGHT, FAILURE_TICK_STROKE, INSPECTOR_WIDTH, LIST_WIDTH, MESSAGE_MARGIN,
+    PROMPT_WIDTH, RANGE_FIELD_WIDTH, STEP_SLIDER_WIDTH, Theme,
 };
 use crate::gui::time_axis::TimeAxis;
 
@@ -137,8 +138,29 @@ pub struct ViewCache {
     pub drag: Option<BarDrag>,
     /// The activity list's rows wholly in view last frame.
     pub list_rows: std::ops::Range<usize>,
-    /// The selection the activity list last scrolled to.
-    pub list_selected: Option<usize>,
+    /// The selection the activity list last scrolled to, and the
+    /// [`Listed::generation`] it was in.
+    pub list_selected: Option<(Option<usize>, u64)>,
+    /// What the search and filters select (see [`ViewCache::listed`]).
+    pub listed: Option<std::sync::Arc<Listed>>,
+    /// Lower-case ids and names, resources and sols of one plan revision.
+    pub search: Option<std::sync::Arc<SearchIndex>>,
+    /// The selection the Gantt last scrolled its row into view for.
+    pub gantt_revealed: Option<Option<usize>>,
+    /// How each activity bar drawn last frame looked with the search and
+    /// filters (every bar plain without them).
+    pub looks: Vec<(usize, Look)>,
+}
+
+/// How the Gantt draws an activity's bar against the search and filters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Look {
+    /// Nothing is filtered.
+    Plain,
+    /// It matches: outlined.
+    Highlighted,
+    /// It does not: faded.
+    Dimmed,
 }
 
 impl ViewCache {
@@ -170,17 +192,22 @@ pub enum Status {
     Pending,
 }
 
+/// Status of activity `a` after step `k` of `analysis`'s run.
+pub fn status_at(analysis: &Analysis, a: usize, k: usize) -> Status {
+    match analysis.step(a) {
+        Some(st) if st.step <= k => match st.outcome {
+            Outcome::Scheduled { start, end } => Status::Scheduled(start, end),
+            Outcome::Failed(_) => Status::Failed,
+            Outcome::Skipped { .. } => Status::Skipped,
+        },
+        _ => Status::Pending,
+    }
+}
+
 impl Model<'_> {
     /// Status of activity `a` after step `k`.
     pub fn status(&self, a: usize, k: usize) -> Status {
-        match self.analysis.step(a) {
-            Some(st) if st.step <= k => match st.outcome {
-                Outcome::Scheduled { start, end } => Status::Scheduled(start, end),
-                Outcome::Failed(_) => Status::Failed,
-                Outcome::Skipped { .. } => Status::Skipped,
-            },
-            _ => Status::Pending,
-        }
+        status_at(self.analysis, a, k)
     }
 
     /// The activity of step `k` (1-based).
@@ -299,6 +326,8 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
         repair::repair_ui(ui, m, r, w.text, cmds);
         return;
     }
+    // What the search and filters select, for the list and the Gantt alike.
+    w.cache.listed(&m.doc.plan, m.analysis, m.nav, m.revision);
     egui::Panel::top("toolbar").show(ui, |ui| {
         toolbar_ui(ui, m, cmds);
         match m.nav.mode {
@@ -315,7 +344,7 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
         .resizable(true)
         .default_size(LIST_WIDTH)
         .show(ui, |ui| {
-            activities_ui(ui, m, w.cache, cmds);
+            list::activities_ui(ui, m, w, cmds);
         });
     egui::Panel::right("inspector")
         .resizable(false)
@@ -404,7 +433,7 @@ fn pin_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
     }
 }
 
-/// File actions, undo/redo, theme, search.
+/// File actions, back/forward, undo/redo, theme, layers.
 fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
     ui.horizontal_wrapped(|ui| {
         ui.menu_button("File", |ui| {
@@ -430,6 +459,8 @@ fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
             ui.separator();
             menu_item(ui, UiCommand::Quit, cmds);
         });
+        shortcut_button(ui, UiCommand::Back, m.nav.history.can_back(), cmds);
+        shortcut_button(ui, UiCommand::Forward, m.nav.history.can_forward(), cmds);
         command_button(ui, UiCommand::Undo, m.doc.can_undo(), cmds);
         command_button(ui, UiCommand::Redo, m.doc.can_redo(), cmds);
         let dark = !m.persisted.light;
@@ -469,16 +500,6 @@ fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
         let failed = m.analysis.failed();
         let n = m.doc.plan.activities.len();
         ui.label(format!("{} of {n} scheduled, {failed} not", n - failed));
-        ui.separator();
-        let label = ui.label("Search");
-        let mut filter = m.nav.filter.to_owned();
-        if ui
-            .add(egui::TextEdit::singleline(&mut filter).desired_width(FILTER_WIDTH))
-            .labelled_by(label.id)
-            .changed()
-        {
-            cmds.push(Command::SetFilter(filter));
-        }
         // The mode switch, at the right end (the other tools keep their place).
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
             for (cmd, mode) in [
@@ -644,99 +665,6 @@ fn banner_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
             }
         });
     }
-}
-
-/// The activities the list shows, in step order: those whose id or name
-/// contains `filter` (ignoring case).
-pub fn listed_activities(
-    plan: &solscope_engine::Plan,
-    steps: &[solscope_engine::Step],
-    filter: &str,
-) -> Vec<usize> {
-    let needle = filter.to_lowercase();
-    steps
-        .iter()
-        .map(|step| step.activity)
-        .filter(|&a| {
-            let act = &plan.activities[a];
-            needle.is_empty()
-                || act.id.to_lowercase().contains(&needle)
-                || act.display_name().to_lowercase().contains(&needle)
-        })
-        .collect()
-}
-
-/// The activity list: search, status as of the current step, click to select;
-/// a selection made elsewhere (keys, the Gantt, a culprit) is scrolled into view.
-fn activities_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &mut Vec<Command>) {
-    ui.heading("Activities");
-    let shown = listed_activities(&m.doc.plan, &m.analysis.schedule.steps, &m.nav.filter);
-    let campaign = m.exec.campaign.ready();
-    // Only the visible rows are laid out, so 10k activities stay cheap.
-    let row_height = ui.spacing().interact_size.y;
-    let mut area = egui::ScrollArea::vertical().auto_shrink([false; 2]);
-    if cache.list_selected != m.nav.selected {
-        cache.list_selected = m.nav.selected;
-        let row = m
-            .nav
-            .selected
-            .and_then(|a| shown.iter().position(|&b| b == a));
-        if let Some(i) = row.filter(|i| !cache.list_rows.contains(i)) {
-            // Rows are `row_height` apart plus the item spacing; put the row a
-            // few rows below the top.
-            let pitch = row_height + ui.spacing().item_spacing.y;
-            area = area.vertical_scroll_offset((i.saturating_sub(3)) as f32 * pitch);
-        }
-    }
-    area.show_rows(ui, row_height, shown.len(), |ui, rows| {
-        // Whole rows in view (the first and last may be cut).
-        cache.list_rows = rows.start + 1..rows.end.saturating_sub(1);
-        for &a in &shown[rows] {
-            let Some(step) = m.analysis.schedule.step_of(a) else {
-                continue;
-            };
-            let act = &m.doc.plan.activities[a];
-            let (mark, color) = match m.nav.mode {
-                Mode::Schedule => match m.status(a, m.nav.step) {
-                    Status::Scheduled(..) => ("+", m.theme.scheduled),
-                    Status::Failed => ("x", m.theme.failed),
-                    Status::Skipped => ("-", m.theme.skipped),
-                    Status::Pending => (".", m.theme.muted),
-                },
-                Mode::Execution => match m.exec.ready().and_then(|r| r.activity(a)) {
-                    Some(r) => match r.outcome {
-                        RunOutcome::Completed => ("+", m.theme.scheduled),
-                        RunOutcome::Aborted => ("!", m.theme.aborted),
-                        RunOutcome::NotRun => ("x", m.theme.failed),
-                    },
-                    None => (".", m.theme.muted),
-                },
-            };
-            let text = RichText::new(format!("{mark} {:>3} {}", step.step, act.id)).color(color);
-            let button = egui::Button::new(text)
-                .selected(m.nav.selected == Some(a))
-                .frame(false);
-            // In execution mode, once a campaign is summarised: the
-            // activity's shares across its runs before its name.
-            let shares = campaign
-                .and_then(|c| c.activity(a).map(|s| (s, c.runs())))
-                .filter(|_| m.nav.mode == Mode::Execution);
-            let resp = match shares {
-                Some((s, runs)) => {
-                    ui.horizontal(|ui| {
-                        let size = egui::vec2(SHARE_BAR_WIDTH, SHARE_BAR_HEIGHT);
-                        montecarlo::share_bar(ui, m, s, runs, size);
-                        ui.add(button)
-                    })
-                    .inner
-                }
-                None => ui.add(button),
-            };
-            if resp.clicked() {
-                cmds.push(Command::Select(Some(a)));
-            }
-        }
-    });
 }
 
 /// Zoom/pan controls and the exact range.
