@@ -11,6 +11,7 @@
 
 use super::floors::Floors;
 use super::spending::Spending;
+use crate::model::AwakeMode;
 use crate::scheduler::{
     Detail, Evaluated, FailurePhase, Outcome, Problem, Schedule, Scope, State, Step, Try, run_step,
 };
@@ -411,8 +412,17 @@ fn next_check(
             other = other.min(j);
         }
     }
+    // Only an activity that needs the rover awake (its awake period merges
+    // with others near it) or heating (a heater on before it) is coupled to
+    // placements beyond its footprint; any other one only to those that
+    // overlap it (the placements' footprints hold everything they change).
     let (lo, hi) = ev.footprint(problem);
-    let (lo, hi) = (lo.saturating_sub(fx.reach), hi.saturating_add(fx.reach));
+    let reach = if act.awake == AwakeMode::Required || !act.zones.is_empty() {
+        fx.reach
+    } else {
+        1
+    };
+    let (lo, hi) = (lo.saturating_sub(reach), hi.saturating_add(reach));
     let end = other.min(fx.applied.len());
     let first = fx
         .first_meeting(k + 1, end, lo, hi)

@@ -953,6 +953,61 @@ mod tests {
         }
     }
 
+    /// `local_budget`'s promise, by brute force: any other changes of at most
+    /// the budget before `until` (and any after it) keep the drained levels at
+    /// or above the floor from the drain's start to `until`, and leave no trace
+    /// of the drain from `until` on.
+    #[test]
+    fn local_budget_holds_under_any_change_within_it() {
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
+        let mut checked = 0;
+        for _ in 0..3000 {
+            let (rate, initial, cap, tl) = random_timeline(&mut next);
+            let a = next(100);
+            let drain = [(a, a + 1 + next(15), 1 + next(8))];
+            let lowest = *brute(&rate, &drain, initial, cap)[a as usize..]
+                .iter()
+                .min()
+                .unwrap();
+            let floor = lowest - next(40) as i128;
+            let Some((budget, until)) = tl.local_budget(&drain, floor) else {
+                continue;
+            };
+            for _ in 0..20 {
+                let mut other: Vec<(i64, i64, i64)> = Vec::new();
+                let mut spent = 0i128;
+                for _ in 0..1 + next(3) {
+                    let x = next(until.max(1));
+                    let (y, r) = (x + 1 + next(20), next(11) - 5);
+                    let charge = i128::from(r.abs()) * i128::from(y - x);
+                    if spent + charge <= budget {
+                        spent += charge;
+                        other.push((x, y, r));
+                    }
+                }
+                // Anything at all from `until` on.
+                let x = until + next(30);
+                other.push((x, x + 1 + next(30), next(41) - 20));
+                let without = brute(&rate, &other, initial, cap);
+                let both: Vec<(i64, i64, i64)> = other.iter().chain(&drain).copied().collect();
+                let with = brute(&rate, &both, initial, cap);
+                for t in 0..=120usize {
+                    let t_i = t as i64;
+                    if t_i >= until {
+                        assert_eq!(with[t], without[t], "t={t} until={until}");
+                    } else if t_i >= a {
+                        assert!(with[t] >= floor, "t={t} floor={floor} budget={budget}");
+                    }
+                }
+                checked += 1;
+            }
+        }
+        assert!(
+            checked > 500,
+            "too few cases with a local budget: {checked}"
+        );
+    }
+
     #[test]
     fn profile_marks_cap_hits() {
         let rate = StepFn::constant(0, 10, 7);
