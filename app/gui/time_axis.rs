@@ -87,8 +87,10 @@ pub fn ticks(axis: &TimeAxis, width: f64, clock: &LocalTime, min_gap: f64) -> Ve
             let from = ((lo - midnight).max(step) + step - 1) / step * step;
             let mut tod = from;
             while tod < sol && midnight + tod <= hi {
-                // The last step of a sol is shorter: skip a tick crowding midnight.
-                if (sol - tod) as f64 / per_px >= min_gap / 2.0 {
+                // The last step of a sol is shorter (a sol is 24:39:35 of
+                // Earth seconds): skip a tick whose label would run into the
+                // sol's (`24:00` over `Sol 413`).
+                if (sol - tod) as f64 / per_px >= min_gap {
                     let t = midnight + tod;
                     out.push(Tick {
                         t: t as f64,
@@ -219,6 +221,27 @@ mod tests {
             sol_length: 88_775,
             offset: 64_800,
             first_sol: Some(411),
+        }
+    }
+
+    #[test]
+    fn no_tick_runs_into_a_sol_label() {
+        // Around a local midnight at zooms where the last hour of the sol
+        // (24:00 to 24:39:35) is shorter than a label.
+        for width in [600.0, 1000.0, 1400.0, 2600.0] {
+            for span in [20_000.0, 40_000.0, 88_775.0] {
+                let axis = TimeAxis::new(23_975.0 - span / 2.0, 23_975.0 + span / 2.0);
+                let t = ticks(&axis, width, &clock(), 60.0);
+                let px = axis.seconds_per_pixel(width);
+                for pair in t.windows(2).filter(|p| p[1].sol_start) {
+                    assert!(
+                        (pair[1].t - pair[0].t) / px >= 60.0,
+                        "{} too close to {} ({width} px, {span} s)",
+                        pair[0].label,
+                        pair[1].label
+                    );
+                }
+            }
         }
     }
 
