@@ -173,7 +173,8 @@ fn plot_ui(
                     .radius(VIOLATION_RADIUS)
                     .color(m.theme.would_cause),
             );
-            // The label on the side of the point with more room.
+            // The label below the point (a line down, clear of the limit
+            // labels next to the limit it breaks), on the side with more room.
             let anchor = if w.at as f64 > axis.start + axis.span() / 2.0 {
                 egui::Align2::RIGHT_TOP
             } else {
@@ -183,7 +184,7 @@ fn plot_ui(
                 Text::new(
                     "violation",
                     at,
-                    RichText::new(format!("  {}  ", w.label)).size(LIMIT_FONT_SIZE),
+                    RichText::new(format!("\n  {}  ", w.label)).size(LIMIT_FONT_SIZE),
                 )
                 .anchor(anchor)
                 .color(m.theme.would_cause),
