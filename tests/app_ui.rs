@@ -2491,3 +2491,25 @@ fn an_energy_failure_draws_what_it_would_have_caused() {
     assert!(h.state().would_cause().is_none());
     assert!(h.query_by_label_contains("Dashed:").is_none());
 }
+
+#[test]
+fn a_peak_power_failure_draws_on_the_peak_plot() {
+    let mut h = default_with_selected("supercam_libs_413");
+    h.run_steps(3);
+    let w = h
+        .state()
+        .would_cause()
+        .expect("an overlay for a max_peak failure");
+    assert_eq!(w.plot, solscope::gui::OverlayPlot::Peak);
+    assert_eq!(w.at, 149_350);
+    assert!((w.value - 923.0).abs() < 1e-9);
+    assert_eq!(w.label, "would reach 923.0 W > max_peak 750.0 W");
+    // The step function with it placed reaches the reported peak there.
+    assert!(
+        w.points
+            .iter()
+            .any(|p| p[0] == 149_350.0 && (p[1] - 923.0).abs() < 1e-9)
+    );
+    let xband = index(h.state(), "xband_dte_413");
+    assert!(w.culprits.contains(&xband));
+}
