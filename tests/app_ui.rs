@@ -2440,3 +2440,76 @@ fn the_status_filter_lists_one_status_and_keeps_the_selection_in_view() {
             .is_none()
     );
 }
+
+/// The default plan with activity `id` selected, in a harness.
+fn default_with_selected(id: &str) -> egui_kittest::Harness<'static, SolscopeApp> {
+    let view = View {
+        select: Some(id.into()),
+        ..View::default()
+    };
+    let app = SolscopeApp::with_default_plan().expect("default plan");
+    harness(app, SNAPSHOT_SIZE.into(), &view).unwrap()
+}
+
+#[test]
+fn an_energy_failure_draws_what_it_would_have_caused() {
+    let mut h = default_with_selected("moxie_run_413");
+    h.run_steps(3);
+    let a = index(h.state(), "moxie_run_413");
+    let (plot, at, value, label, culprits) = {
+        let w = h
+            .state()
+            .would_cause()
+            .expect("an overlay for a min_soc failure");
+        assert_eq!(w.activity, a);
+        assert!(!w.points.is_empty());
+        (w.plot, w.at, w.value, w.label.clone(), w.culprits.clone())
+    };
+    assert_eq!(plot, solscope::gui::OverlayPlot::Soc);
+    // The explanation's numbers: lowest 921.5 Wh at t=164050, below min_soc.
+    assert_eq!(at, 164_050);
+    assert!((value - 921.541_666).abs() < 1e-3, "{value}");
+    assert!(
+        label.starts_with("would reach 921.5 Wh < min_soc"),
+        "{label}"
+    );
+    let drive = index(h.state(), "drive_412");
+    assert!(culprits.contains(&drive));
+    // The overlay's line reaches the reported value at the reported time.
+    {
+        let w = h.state().would_cause().unwrap();
+        let there = w.points.iter().find(|p| p[0] == at as f64).unwrap();
+        assert!((there[1] - value).abs() < 1e-6);
+    }
+    assert!(
+        h.query_by_label_contains("Dashed: moxie_run_413 if placed at")
+            .is_some()
+    );
+    // None for a scheduled activity.
+    let mut h = default_with_selected("drive_412");
+    h.run_steps(3);
+    assert!(h.state().would_cause().is_none());
+    assert!(h.query_by_label_contains("Dashed:").is_none());
+}
+
+#[test]
+fn a_peak_power_failure_draws_on_the_peak_plot() {
+    let mut h = default_with_selected("supercam_libs_413");
+    h.run_steps(3);
+    let w = h
+        .state()
+        .would_cause()
+        .expect("an overlay for a max_peak failure");
+    assert_eq!(w.plot, solscope::gui::OverlayPlot::Peak);
+    assert_eq!(w.at, 149_350);
+    assert!((w.value - 923.0).abs() < 1e-9);
+    assert_eq!(w.label, "would reach 923.0 W > max_peak 750.0 W");
+    // The step function with it placed reaches the reported peak there.
+    assert!(
+        w.points
+            .iter()
+            .any(|p| p[0] == 149_350.0 && (p[1] - 923.0).abs() < 1e-9)
+    );
+    let xband = index(h.state(), "xband_dte_413");
+    assert!(w.culprits.contains(&xband));
+}

@@ -21,6 +21,7 @@ use super::repair::{self, Repair};
 pub use super::state::Dialog;
 use super::state::{
     LAST_STEP, Mode, Navigation, PathPrompt, Pending, Persisted, PinOffer, StepView, UiState,
+    WouldCause,
 };
 use super::theme::Theme;
 use super::time_axis::TimeAxis;
@@ -215,6 +216,8 @@ impl SolscopeApp {
             self.explanation_for(a);
             self.suggestions_for(a);
             self.derived.valid_for(&self.analysis, self.revision, a);
+            self.derived
+                .would_cause_for(&self.doc.plan, &self.analysis, self.revision, a);
         }
         self.reap_worker();
         // A selection made by a command given outside a frame.
@@ -348,6 +351,10 @@ impl SolscopeApp {
             explanation: selected.and_then(|a| derived.explanation(a, revision)),
             explanation_error: selected.and_then(|a| derived.explanation_error(a, revision)),
             valid: selected.and_then(|a| derived.valid(a, revision)),
+            // Execution mode explains nothing.
+            would_cause: selected
+                .filter(|_| self.ui.nav.mode == Mode::Schedule)
+                .and_then(|a| derived.would_cause(a, revision)),
             flex: self.flex.get(revision),
             nav: &self.ui.nav,
             messages: &self.ui.messages,
@@ -964,6 +971,17 @@ impl SolscopeApp {
     pub fn explanation_for(&mut self, a: usize) -> Option<&solscope_engine::Explanation> {
         self.derived
             .explanation_for(&self.doc.plan, &self.analysis, self.revision, a)
+    }
+
+    /// What the selected activity, failed on energy or peak power, would have
+    /// caused, as the plots draw it this frame (derived before drawing, once
+    /// per selection and plan revision; none in execution mode).
+    pub fn would_cause(&self) -> Option<&WouldCause> {
+        self.ui
+            .nav
+            .selected
+            .filter(|_| self.ui.nav.mode == Mode::Schedule)
+            .and_then(|a| self.derived.would_cause(a, self.revision))
     }
 
     /// Cached suggestions, if computed for this revision (views read these).

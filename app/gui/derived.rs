@@ -11,12 +11,15 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, TryRecvError};
 
-use solscope_engine::{CategoryIntervals, Explanation, Flex, Loss, Plan, RunOutcome, Suggestion};
+use solscope_engine::{
+    CategoryIntervals, Explanation, Flex, Loss, MJ_PER_WH, MW_PER_W, Phase, Phase2Reason, Plan,
+    RunOutcome, Suggestion, format_watts, format_wh, involved,
+};
 
 use super::document::Analysis;
 use super::execution::{ActualsSource, CycleRun, ExecutionRun};
 use super::montecarlo::{CampaignResult, Progress, StopReason, Stopped, total_runs};
-use super::state::StepView;
+use super::state::{OverlayPlot, StepView, WouldCause};
 
 /// A value derived for one activity at one plan revision (its explanation, valid
 /// intervals, verified suggestions, or the worker computing them). It is read back
@@ -43,6 +46,9 @@ pub struct DerivedCache {
     /// Explanation of the selected activity (none when it scheduled), or why it
     /// could not be explained, per plan revision.
     explanation: Option<Derived<Result<Option<Explanation>, String>>>,
+    /// What the selected activity, failed on energy or peak power, would have
+    /// caused (none for any other), per plan revision.
+    would_cause: Option<Derived<Option<WouldCause>>>,
     /// Full valid intervals of the selected scheduled activity as it saw them.
     valid: Option<Derived<Vec<CategoryIntervals>>>,
     /// Verified suggestions of the selected activity, per plan revision.
@@ -83,6 +89,28 @@ impl DerivedCache {
     pub fn explanation_error(&self, a: usize, revision: u64) -> Option<&str> {
         Derived::get(&self.explanation, a, revision)
             .and_then(|r| r.as_ref().err().map(String::as_str))
+    }
+
+    /// Derives what activity `a` would have caused at the start its
+    /// explanation reports, when it failed in placement on energy or peak power
+    /// (once per activity and plan revision: it replays the schedule).
+    pub fn would_cause_for(&mut self, plan: &Plan, analysis: &Analysis, revision: u64, a: usize) {
+        if Derived::get(&self.would_cause, a, revision).is_none() {
+            let value = self
+                .explanation_for(plan, analysis, revision, a)
+                .and_then(|ex| would_cause(plan, analysis, ex));
+            self.would_cause = Some(Derived {
+                activity: a,
+                revision,
+                value,
+            });
+        }
+    }
+
+    /// What `a` would have caused, if derived at `revision` and it failed on
+    /// energy or peak power.
+    pub fn would_cause(&self, a: usize, revision: u64) -> Option<&WouldCause> {
+        Derived::get(&self.would_cause, a, revision).and_then(Option::as_ref)
     }
 
     /// Derives the valid intervals of activity `a` at its own step (over the whole
@@ -199,6 +227,76 @@ impl DerivedCache {
 /// The profiles as of step `k`, as plot points.
 pub fn step_view(analysis: &Analysis, k: usize) -> StepView {
     StepView::from_profiles(k, &analysis.schedule.profiles_after(k))
+}
+
+/// What the activity of `ex`, failed in placement, would have caused at the
+/// start of its first energy or peak-power reason (the start the explanation
+/// evaluated that reason's numbers at), in the state of its failure step: the
+/// profile with it placed, the reason's violation point and the culprits.
+/// `None` for any other explanation.
+pub fn would_cause(plan: &Plan, analysis: &Analysis, ex: &Explanation) -> Option<WouldCause> {
+    if ex.phase != Some(Phase::Placement) {
+        return None;
+    }
+    let k = ex.failure_step?;
+    let r = ex.reasons.iter().find(|r| {
+        matches!(
+            r.reason,
+            Phase2Reason::MinSoc { .. }
+                | Phase2Reason::HandoverSoc { .. }
+                | Phase2Reason::MaxPeakPower { .. }
+        )
+    })?;
+    let wh_mj = |wh: f64| (wh * MJ_PER_WH).round() as i128;
+    let (plot, at, value, label) = match r.reason {
+        Phase2Reason::MinSoc { at, soc_mj } => {
+            let min = plan.battery.min_soc;
+            let label = format!(
+                "would reach {} < min_soc {}",
+                format_wh(i128::from(soc_mj)),
+                format_wh(wh_mj(min))
+            );
+            (OverlayPlot::Soc, at, soc_mj as f64 / MJ_PER_WH, label)
+        }
+        Phase2Reason::HandoverSoc { soc_mj } => {
+            let h = plan.handover?;
+            let label = format!(
+                "would reach {} at handover < handover min_soc {}",
+                format_wh(i128::from(soc_mj)),
+                format_wh(wh_mj(h.min_soc.unwrap_or_default()))
+            );
+            (OverlayPlot::Soc, h.time, soc_mj as f64 / MJ_PER_WH, label)
+        }
+        Phase2Reason::MaxPeakPower { at, peak_mw } => {
+            let max = plan.power.max_peak.unwrap_or_default();
+            let label = format!(
+                "would reach {} > max_peak {}",
+                format_watts(peak_mw),
+                format_watts((max * MW_PER_W).round() as i64)
+            );
+            (OverlayPlot::Peak, at, peak_mw as f64 / MW_PER_W, label)
+        }
+        _ => return None,
+    };
+    let profiles = analysis
+        .schedule
+        .profiles_if_placed(k, ex.activity, r.probe, r.duration)?;
+    let view = StepView::from_profiles(k, &profiles);
+    let points = match plot {
+        OverlayPlot::Soc => view.soc,
+        OverlayPlot::Peak => view.peak,
+    };
+    Some(WouldCause {
+        activity: ex.activity,
+        plot,
+        start: r.probe,
+        duration: r.duration,
+        points,
+        at,
+        value,
+        label,
+        culprits: involved(ex).iter().map(|c| c.activity).collect(),
+    })
 }
 
 /// What an execution is derived for: the plan revision and the actuals choice

@@ -154,6 +154,41 @@ impl StepView {
     }
 }
 
+/// Which plot a [`WouldCause`] overlay goes on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OverlayPlot {
+    /// The state of charge (a `min_soc` or `handover_soc` failure).
+    Soc,
+    /// The peak power (a `max_peak_power` failure).
+    Peak,
+}
+
+/// What an activity that failed in placement on energy or peak power would
+/// have caused at the start its explanation reports: the plot's profile with
+/// it placed, the violation point and the culprits to highlight.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WouldCause {
+    /// The failed activity.
+    pub activity: usize,
+    /// The plot it is drawn on.
+    pub plot: OverlayPlot,
+    /// The start and duration tried (plan seconds).
+    pub start: i64,
+    /// The duration tried (seconds).
+    pub duration: i64,
+    /// The profile with it placed `[t, Wh or W]` (peak power as pairs of points).
+    pub points: Vec<[f64; 2]>,
+    /// The violation: time (plan seconds) and value (Wh or W).
+    pub at: i64,
+    /// The value reached there (Wh or W).
+    pub value: f64,
+    /// "would reach 894.0 Wh < min_soc 900.0 Wh".
+    pub label: String,
+    /// The culprits every view names (`solscope_engine::involved`), activity
+    /// indices.
+    pub culprits: Vec<usize>,
+}
+
 /// What the window shows: the plan's schedule, or its execution.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Mode {

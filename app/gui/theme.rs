@@ -88,6 +88,12 @@ pub struct Theme {
     pub error_mark: Color32,
     /// The outline of the bars the search and filters match.
     pub highlight: Color32,
+    /// What a failed activity would have caused: its profile over a plot and
+    /// the violation point.
+    pub would_cause: Color32,
+    /// The outline of the culprits of the selected failed activity's energy or
+    /// peak-power failure.
+    pub culprit: Color32,
 }
 
 /// Least distance between two labelled value grid lines on a plot (points).
@@ -195,6 +201,12 @@ pub const LIMIT_LINE_STROKE: f32 = 1.5;
 pub const WHISKER_STROKE: f32 = 1.0;
 /// Height of the ticks at the ends of a whisker (points: the same at every zoom).
 pub const WHISKER_TICK: f32 = 8.0;
+/// Outline width of the culprits' bars of the selected failed activity.
+pub const CULPRIT_STROKE: f32 = 2.0;
+/// Width of the line of what a failed activity would have caused on a plot.
+pub const WOULD_CAUSE_STROKE: f32 = 1.5;
+/// Radius of the violation point's marker on a plot.
+pub const VIOLATION_RADIUS: f32 = 4.0;
 /// Outline width of the selected activity's dispatchable neighbours.
 pub const NEIGHBOUR_STROKE: f32 = 1.5;
 /// Outline width of the ghost of a dragged bar.
@@ -248,6 +260,8 @@ impl Theme {
                 ghost: Color32::from_rgba_unmultiplied(255, 255, 255, 40),
                 error_mark: Color32::from_rgba_unmultiplied(255, 110, 100, 70),
                 highlight: Color32::from_rgb(200, 255, 80),
+                would_cause: Color32::from_rgba_unmultiplied(255, 170, 60, 200),
+                culprit: Color32::from_rgb(255, 170, 60),
             }
         } else {
             Self {
@@ -280,6 +294,8 @@ impl Theme {
                 ghost: Color32::from_rgba_unmultiplied(0, 0, 0, 35),
                 error_mark: Color32::from_rgba_unmultiplied(190, 30, 20, 50),
                 highlight: Color32::from_rgb(20, 140, 20),
+                would_cause: Color32::from_rgba_unmultiplied(210, 110, 0, 210),
+                culprit: Color32::from_rgb(210, 110, 0),
             }
         }
     }

@@ -236,3 +236,70 @@ fn bundled_plans_and_examples_are_explained_consistently() {
         check(&text).unwrap_or_else(|e| panic!("{path}: {e}"));
     }
 }
+
+/// The profiles `Schedule::profiles_if_placed` gives for an energy or peak
+/// reason's start reach the reason's numbers: the lowest state of charge
+/// (first at `at`), the handover state of charge, or the peak at `at`.
+#[test]
+fn profiles_if_placed_reach_the_reasons_numbers() {
+    use solscope_engine::{Phase2Reason, watts, wh};
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut seen = 0;
+    for path in [
+        "assets/default-plan.json",
+        "assets/tutorial-plan.json",
+        "assets/examples/drill-sol.json",
+        "assets/examples/pitfall.json",
+    ] {
+        let text = std::fs::read_to_string(root.join(path)).expect("read plan");
+        let plan = load_plan(&text).expect("valid").plan;
+        let sched = schedule(&plan).expect("schedules");
+        let opts = ExplainOptions {
+            no_suggestions: true,
+            ..ExplainOptions::default()
+        };
+        for ex in explain(&plan, &sched, &opts).expect("explains") {
+            let k = ex.failure_step.expect("failure step");
+            for r in &ex.reasons {
+                let placed = || {
+                    sched
+                        .profiles_if_placed(k, ex.activity, r.probe, r.duration)
+                        .expect("no structural reason")
+                };
+                match r.reason {
+                    Phase2Reason::MinSoc { at, soc_mj } => {
+                        let p = placed();
+                        let lowest = p.soc.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
+                        assert_eq!(lowest, wh(i128::from(soc_mj)), "{path}: {}", ex.activity);
+                        let first = p.soc.iter().find(|x| x.1 == lowest).map(|x| x.0);
+                        assert_eq!(first, Some(at), "{path}: {}", ex.activity);
+                    }
+                    Phase2Reason::HandoverSoc { soc_mj } => {
+                        let p = placed();
+                        let t = plan.handover.expect("handover").time;
+                        // Linear between points.
+                        let i = p.soc.partition_point(|x| x.0 <= t).max(1);
+                        let ((t0, v0), (t1, v1)) = (p.soc[i - 1], p.soc[i.min(p.soc.len() - 1)]);
+                        let there = if t1 > t0 {
+                            v0 + (v1 - v0) * (t - t0) as f64 / (t1 - t0) as f64
+                        } else {
+                            v0
+                        };
+                        let want = wh(i128::from(soc_mj));
+                        assert!((there - want).abs() < 1e-6, "{path}: {there} != {want}");
+                    }
+                    Phase2Reason::MaxPeakPower { at, peak_mw } => {
+                        let p = placed();
+                        // Constant from each point to the next.
+                        let i = p.peak_power.partition_point(|x| x.0 <= at);
+                        let there = p.peak_power[i.saturating_sub(1)].1;
+                        assert!(there >= watts(peak_mw), "{path}: {there} at {at}");
+                    }
+                    _ => continue,
+                }
+                seen += 1;
+            }
+        }
+    }
+    assert!(seen > 0, "no energy or peak reason in the bundled plans");
+}

@@ -20,10 +20,11 @@ use crate::gui::document::Analysis;
 use crate::gui::execution::{CycleRun, ExecutionRun};
 use crate::gui::state::Mode;
 use crate::gui::theme::{
-    BAR_FONT_SIZE, BAR_ROUNDING, BASELINE_HEIGHT, CURRENT_STROKE, CYCLE_LINE_STROKE, DIMMED,
-    GHOST_STROKE, HATCH_GAP, HATCH_STROKE, LABEL_MIN_WIDTH, LABEL_WIDTH, LANE_GAP, LANE_HEIGHT,
-    MARKER_WIDTH, MATCH_STROKE, NEIGHBOUR_STROKE, PROBE_LINE_STROKE, RULER_HEIGHT,
-    SELECTION_STROKE, SOL_LINE_STROKE, TICK_GAP, TICK_LENGTH, WINDOW_FILL, WINDOW_HATCH,
+    BAR_FONT_SIZE, BAR_ROUNDING, BASELINE_HEIGHT, CULPRIT_STROKE, CURRENT_STROKE,
+    CYCLE_LINE_STROKE, DIMMED, GHOST_STROKE, HATCH_GAP, HATCH_STROKE, LABEL_MIN_WIDTH, LABEL_WIDTH,
+    LANE_GAP, LANE_HEIGHT, MARKER_WIDTH, MATCH_STROKE, NEIGHBOUR_STROKE, PROBE_LINE_STROKE,
+    RULER_HEIGHT, SELECTION_STROKE, SOL_LINE_STROKE, TICK_GAP, TICK_LENGTH, WINDOW_FILL,
+    WINDOW_HATCH,
 };
 use crate::gui::time_axis::ticks;
 
@@ -882,6 +883,8 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
         (Some(f), Some(a)) => flex::neighbours(f, a),
         _ => Vec::new(),
     };
+    // The culprits of the selected activity's energy or peak-power failure.
+    let culprits: &[usize] = m.would_cause.map_or(&[], |w| w.culprits.as_slice());
     // Where each placed bar is drawn this frame (what a drag picks up).
     let mut drawn: Vec<(usize, Rect)> = Vec::new();
     let mut offset = 0.0_f32;
@@ -1065,6 +1068,14 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
             if bar.placed {
                 if let Some(a) = bar.activity {
                     drawn.push((a, r));
+                    if culprits.contains(&a) && !is_selected {
+                        painter.rect_stroke(
+                            r,
+                            BAR_ROUNDING,
+                            Stroke::new(CULPRIT_STROKE, m.theme.culprit),
+                            StrokeKind::Outside,
+                        );
+                    }
                     if neighbours.contains(&a) && !is_selected {
                         painter.rect_stroke(
                             r,
@@ -1314,6 +1325,7 @@ mod tests {
             explanation: None,
             explanation_error: None,
             valid: None,
+            would_cause: None,
             flex: None,
             nav: &app.ui.nav,
             messages: &app.ui.messages,

@@ -54,6 +54,10 @@ pub struct Model<'a> {
     pub explanation_error: Option<&'a str>,
     /// Valid intervals of the selected activity at its own step (full horizon).
     pub valid: Option<&'a [solscope_engine::CategoryIntervals]>,
+    /// What the selected activity, failed on energy or peak power, would have
+    /// caused at its explanation's start (drawn over the plots, its culprits
+    /// highlighted on the Gantt).
+    pub would_cause: Option<&'a crate::gui::state::WouldCause>,
     /// The flexible schedule of this revision, or why there is none, once
     /// derived (`None` meanwhile).
     pub flex: Option<&'a Result<std::sync::Arc<solscope_engine::Flex>, String>>,

@@ -6,21 +6,22 @@
 
 use eframe::egui::{self, Color32, RichText};
 use egui_plot::{
-    GridInput, GridMark, HLine, HoverPosition, Line, LineStyle, Plot, PlotPoint, PlotPoints, Text,
-    VLine,
+    GridInput, GridMark, HLine, HoverPosition, Line, LineStyle, MarkerShape, Plot, PlotPoint,
+    PlotPoints, Points, Text, VLine,
 };
 use solscope_engine::{
-    Consumer, MJ_PER_WH, MW_PER_W, ViolationKind, energy_consumers, format_local, format_watts,
-    format_wh, peak_users,
+    Consumer, MJ_PER_WH, MW_PER_W, ViolationKind, energy_consumers, format_local, format_span,
+    format_watts, format_wh, peak_users,
 };
 
 use super::execution::kind_name;
 use super::{Model, ViewCache};
 use crate::gui::commands::Command;
 use crate::gui::execution::ExecutionRun;
-use crate::gui::state::{Mode, StepView};
+use crate::gui::state::{Mode, OverlayPlot, StepView, WouldCause};
 use crate::gui::theme::{
     CYCLE_LINE_STROKE, LABEL_WIDTH, LIMIT_FONT_SIZE, PLOT_HEIGHT, TICK_GAP, VALUE_GRID_GAP,
+    VIOLATION_RADIUS, WOULD_CAUSE_STROKE,
 };
 use crate::gui::time_axis::{TimeAxis, tick_label, ticks};
 
@@ -30,6 +31,8 @@ struct Series<'a> {
     points: &'a [[f64; 2]],
     color: Color32,
     dashed: bool,
+    /// Line width, when not egui_plot's default.
+    width: Option<f32>,
 }
 
 /// Which of a [`StepView`]'s series.
@@ -42,8 +45,9 @@ struct Mark {
     color: Color32,
 }
 
-/// One plot: its series over the shared time axis, horizontal limit lines and
-/// vertical marks.
+/// One plot: its series over the shared time axis, horizontal limit lines,
+/// vertical marks and the violation point of what a failed activity would have
+/// caused.
 #[allow(clippy::too_many_arguments)]
 fn plot_ui(
     ui: &mut egui::Ui,
@@ -53,6 +57,7 @@ fn plot_ui(
     series: &[Series<'_>],
     limits: &[(&str, f64)],
     marks: &[Mark],
+    violation: Option<&WouldCause>,
     cmds: &mut Vec<Command>,
 ) {
     let limit_color = m.theme.limit;
@@ -71,6 +76,10 @@ fn plot_ui(
             let line = Line::new(s.name.as_str(), points)
                 .color(s.color)
                 .allow_band(false);
+            let line = match s.width {
+                Some(w) => line.width(w),
+                None => line,
+            };
             if s.dashed {
                 line.style(LineStyle::dashed_loose())
             } else {
@@ -113,6 +122,7 @@ fn plot_ui(
         .include_y(0.0)
         // Room above the highest limit for its label.
         .include_y(limits.iter().map(|l| l.1).fold(0.0, f64::max) * LIMIT_HEADROOM)
+        .include_y(violation.map_or(0.0, |w| w.value * LIMIT_HEADROOM))
         .y_axis_label(id)
         .y_axis_min_width(LABEL_WIDTH - 30.0);
     let resp = plot.show(ui, |plot_ui| {
@@ -154,6 +164,31 @@ fn plot_ui(
         }
         if let Some(t) = probe {
             plot_ui.vline(VLine::new("probe", t as f64));
+        }
+        if let Some(w) = violation {
+            let at = PlotPoint::new(w.at as f64, w.value);
+            plot_ui.points(
+                Points::new("violation", vec![[w.at as f64, w.value]])
+                    .shape(MarkerShape::Circle)
+                    .radius(VIOLATION_RADIUS)
+                    .color(m.theme.would_cause),
+            );
+            // The label below the point (a line down, clear of the limit
+            // labels next to the limit it breaks), on the side with more room.
+            let anchor = if w.at as f64 > axis.start + axis.span() / 2.0 {
+                egui::Align2::RIGHT_TOP
+            } else {
+                egui::Align2::LEFT_TOP
+            };
+            plot_ui.text(
+                Text::new(
+                    "violation",
+                    at,
+                    RichText::new(format!("\n  {}  ", w.label)).size(LIMIT_FONT_SIZE),
+                )
+                .anchor(anchor)
+                .color(m.theme.would_cause),
+            );
         }
         plot_ui.pointer_coordinate()
     });
@@ -290,8 +325,41 @@ fn limits(m: &Model<'_>) -> [Vec<(&'static str, f64)>; 3] {
     [soc, peak, data]
 }
 
+/// The name of the line of what `w`'s activity would have caused.
+fn would_cause_name(m: &Model<'_>, w: &WouldCause) -> String {
+    let id = m
+        .doc
+        .plan
+        .activities
+        .get(w.activity)
+        .map_or("", |a| a.id.as_str());
+    format!("{id} if placed at {}", m.time(w.start))
+}
+
+/// The line above a plot that says what the selected failed activity would
+/// have caused on it (its accessible name too).
+fn would_cause_label(ui: &mut egui::Ui, m: &Model<'_>, w: Option<&WouldCause>) {
+    if let Some(w) = w {
+        ui.label(
+            RichText::new(format!(
+                "Dashed: {} for {}: {} at {}",
+                would_cause_name(m, w),
+                format_span(w.duration),
+                w.label,
+                m.time(w.at)
+            ))
+            .color(m.theme.would_cause),
+        );
+    }
+}
+
 /// The three plots and the consumers at the probed time.
-pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &mut Vec<Command>) {
+pub fn plots_ui<'a>(
+    ui: &mut egui::Ui,
+    m: &'a Model<'_>,
+    cache: &mut ViewCache,
+    cmds: &mut Vec<Command>,
+) {
     if m.nav.mode == Mode::Execution {
         if let Some(run) = m.exec.ready() {
             execution_plots_ui(ui, m, run, cache, cmds);
@@ -300,34 +368,52 @@ pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
     }
     let sv = m.step_view;
     let [soc_limits, peak_limits, data_limits] = limits(m);
-    let one = |name: &str, points| {
-        [Series {
-            name: name.into(),
-            points,
-            color: m.theme.scheduled,
-            dashed: false,
-        }]
+    let one = |name: &str, points| Series {
+        name: name.into(),
+        points,
+        color: m.theme.scheduled,
+        dashed: false,
+        width: None,
+    };
+    // What the selected failed activity would have caused, on its plot.
+    let on = |plot: OverlayPlot| m.would_cause.filter(|w| w.plot == plot);
+    let with_overlay = |base: Series<'a>, plot: OverlayPlot| -> Vec<Series<'a>> {
+        let mut series = vec![base];
+        if let Some(w) = on(plot) {
+            series.push(Series {
+                name: would_cause_name(m, w),
+                points: &w.points,
+                color: m.theme.would_cause,
+                dashed: true,
+                width: Some(WOULD_CAUSE_STROKE),
+            });
+        }
+        series
     };
     ui.label(RichText::new(format!("State of charge (Wh) after step {}", sv.step)).strong());
+    would_cause_label(ui, m, on(OverlayPlot::Soc));
     plot_ui(
         ui,
         m,
         cache,
         SOC,
-        &one(SOC, &sv.soc),
+        &with_overlay(one(SOC, &sv.soc), OverlayPlot::Soc),
         &soc_limits,
         &[],
+        on(OverlayPlot::Soc),
         cmds,
     );
     ui.label(RichText::new(PEAK).strong());
+    would_cause_label(ui, m, on(OverlayPlot::Peak));
     plot_ui(
         ui,
         m,
         cache,
         PEAK,
-        &one(PEAK, &sv.peak),
+        &with_overlay(one(PEAK, &sv.peak), OverlayPlot::Peak),
         &peak_limits,
         &[],
+        on(OverlayPlot::Peak),
         cmds,
     );
     ui.label(RichText::new(DATA).strong());
@@ -336,9 +422,10 @@ pub fn plots_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
         m,
         cache,
         DATA,
-        &one(DATA, &sv.data),
+        &[one(DATA, &sv.data)],
         &data_limits,
         &[],
+        None,
         cmds,
     );
 
@@ -415,6 +502,7 @@ fn execution_plots_ui(
             points: pick(&run.executed),
             color: m.theme.scheduled,
             dashed: false,
+            width: None,
         }];
         if let Some(p) = predicted {
             out.push(Series {
@@ -422,6 +510,7 @@ fn execution_plots_ui(
                 points: pick(p),
                 color: m.theme.predicted,
                 dashed: true,
+                width: None,
             });
         }
         if let Some(v) = cycle_view {
@@ -430,6 +519,7 @@ fn execution_plots_ui(
                 points: pick(v),
                 color: m.theme.current,
                 dashed: false,
+                width: None,
             });
         }
         out
@@ -467,6 +557,7 @@ fn execution_plots_ui(
         &series(|v| &v.soc),
         &soc_limits,
         &soc_marks,
+        None,
         cmds,
     );
     legend_ui(ui, PEAK, &series(|v| &v.peak));
@@ -479,6 +570,7 @@ fn execution_plots_ui(
         &series(|v| &v.peak),
         &peak_limits,
         &peak_marks,
+        None,
         cmds,
     );
     legend_ui(ui, DATA, &series(|v| &v.data));
@@ -491,6 +583,7 @@ fn execution_plots_ui(
         &series(|v| &v.data),
         &data_limits,
         &data_marks,
+        None,
         cmds,
     );
 

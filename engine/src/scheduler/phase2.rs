@@ -358,6 +358,19 @@ impl State<'_> {
         (margin, soc_reason)
     }
 
+    /// The load pieces (as [`Self::load_pieces`]) of placing activity `a` at
+    /// `s` for `d` whatever its peak and energy checks say, or the structural
+    /// reason it cannot be placed there at all.
+    pub(super) fn load_if_placed(
+        &self,
+        a: usize,
+        s: i64,
+        d: i64,
+    ) -> Result<Vec<(i64, i64, i64, i64)>, Phase2Reason> {
+        let g = self.structure(a, s, d)?;
+        Ok(self.load_pieces(a, s, d, &g.retire, g.new_awake, &g.preheats))
+    }
+
     /// The charge drain `(from, to, mW)` of placement `p` in this state.
     pub fn drain_of(&self, p: &Placement) -> Vec<(i64, i64, i64)> {
         self.load_pieces(

@@ -299,6 +299,19 @@ impl RateTimeline {
         self.levels().local_budget(drain, floor)
     }
 
+    /// The profile ([`Self::profile`]) the levels would have if `drain` (sorted,
+    /// disjoint `[a, b)` pieces with a rate subtracted from the timeline's rate,
+    /// as for [`Self::check`]) were added: what a placement that was not made
+    /// would have done to the level (the app draws it over the plot). Integrated
+    /// afresh, so it costs one full integration.
+    pub fn profile_with_drain(&self, drain: &[(i64, i64, i64)]) -> Vec<(i64, i128)> {
+        let mut drained = Self::new(self.rate.clone(), self.initial, self.cap);
+        for &(a, b, r) in drain {
+            drained.add_rate(a, b, -r);
+        }
+        drained.profile()
+    }
+
     /// Lowest level, and level at `probe`, if `drain` (sorted, disjoint `[a, b)`
     /// pieces with a rate subtracted from the timeline's rate) were added.
     pub fn check(&self, drain: &[(i64, i64, i64)], probe: Option<i64>) -> LevelCheck {
@@ -796,6 +809,30 @@ impl Levels {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn profile_with_drain_matches_check_and_leaves_the_timeline_alone() {
+        let mut rate = StepFn::constant(0, 100, 5);
+        rate.add(40, 60, -20);
+        let tl = RateTimeline::new(rate, 500, 600);
+        let before = tl.profile();
+        let drain = [(10, 30, 7), (50, 70, 3)];
+        let drained = tl.profile_with_drain(&drain);
+        let check = tl.check(&drain, Some(65));
+        let lowest = drained.iter().map(|p| p.1).min();
+        assert_eq!(lowest, Some(check.min));
+        let at = |t: i64| drained.iter().find(|p| p.0 == t).map(|p| p.1);
+        assert_eq!(at(check.min_at), Some(check.min));
+        // Per-second simulation at every profile point.
+        let mut r = StepFn::constant(0, 100, 5);
+        r.add(40, 60, -20);
+        let brute = brute(&r, &drain, 500, 600);
+        for &(t, level) in &drained {
+            assert_eq!(level, brute[usize::try_from(t).unwrap_or(0)], "at {t}");
+        }
+        assert_eq!(tl.profile(), before);
+        assert_eq!(tl.profile_with_drain(&[]), before);
+    }
 
     /// Brute force: per-second simulation.
     fn brute(rate: &StepFn, drain: &[(i64, i64, i64)], initial: i128, cap: i128) -> Vec<i128> {
