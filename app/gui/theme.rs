@@ -177,6 +177,9 @@ pub const CYCLE_SLIDER_WIDTH: f32 = 240.0;
 pub const PROMPT_WIDTH: f32 = 480.0;
 /// Width of the step slider's rail.
 pub const STEP_SLIDER_WIDTH: f32 = 320.0;
+/// The least room left beside the step slider for the step's label to stay on
+/// the slider's line (cut with an ellipsis there) rather than wrap below it.
+pub const STEP_LABEL_MIN_WIDTH: f32 = 160.0;
 /// Height of a failure tick on the step slider.
 pub const FAILURE_TICK_HEIGHT: f32 = 5.0;
 /// Width of a failure tick on the step slider.

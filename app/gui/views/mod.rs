@@ -28,7 +28,7 @@ use crate::gui::montecarlo::{CampaignResult, Progress, Stopped};
 use crate::gui::state::{Messages, Mode, Navigation, Pending, Persisted, StepView, TextBuffers};
 use crate::gui::theme::{
     FAILURE_TICK_HEIGHT, FAILURE_TICK_STROKE, INSPECTOR_WIDTH, LIST_WIDTH, MESSAGE_MARGIN,
-    PROMPT_WIDTH, RANGE_FIELD_WIDTH, STEP_SLIDER_WIDTH, Theme,
+    PROMPT_WIDTH, RANGE_FIELD_WIDTH, STEP_LABEL_MIN_WIDTH, STEP_SLIDER_WIDTH, Theme,
 };
 use crate::gui::time_axis::TimeAxis;
 
@@ -598,7 +598,18 @@ fn step_row_ui(
                 Mode::Execution => Command::SetCycleStep(k),
             });
         }
-        ui.label(what(k));
+        // On the slider's line whenever a little room is left there: cut
+        // with an ellipsis, the whole text on hover.
+        let room = ui.available_size_before_wrap().x;
+        let label = egui::Label::new(what(k)).truncate();
+        if room >= STEP_LABEL_MIN_WIDTH {
+            ui.scope(|ui| {
+                ui.set_max_width(room);
+                ui.add(label)
+            });
+        } else {
+            ui.add(label);
+        }
     });
 }
 
