@@ -79,6 +79,36 @@ fn clicking_a_failed_activity_shows_its_explanation() {
     );
 }
 
+/// The scheduling terms explain themselves in plain words on hover.
+#[test]
+fn scheduling_terms_have_hover_help() {
+    let mut h = harness(tutorial(), SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    let a = index(h.state(), "sky_flats_mast_busy");
+    let step = h.state().analysis.schedule.step_of(a).unwrap().step;
+    h.get_by_label(&format!("x {step:>3} sky_flats_mast_busy"))
+        .click();
+    h.run_steps(3);
+    assert!(
+        h.query_by_label_contains("every timing rule at once")
+            .is_none()
+    );
+    h.get_by_label("Why it did not schedule").hover();
+    h.run_steps(60);
+    assert!(
+        h.query_by_label_contains("every timing rule at once")
+            .is_some(),
+        "the failure's help"
+    );
+    h.get_by_label_contains("Valid starts per constraint")
+        .hover();
+    h.run_steps(60);
+    assert!(
+        h.query_by_label_contains("only start where every row is green")
+            .is_some(),
+        "the valid starts' help"
+    );
+}
+
 #[test]
 fn applying_a_suggestion_makes_it_schedule_and_undo_restores() {
     let mut h = tutorial_with_selected("sky_flats_mast_busy");

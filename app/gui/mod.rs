@@ -9,7 +9,7 @@
 //! saved by the eframe host ([`SolscopeHost`]).
 //!
 //! Modules, lowest first (each uses only those before it):
-//! `time_axis`, `theme` → `document`, `repair` → `state`, `commands` → `execution`,
+//! `time_axis`, `theme`, `help` → `document`, `repair` → `state`, `commands` → `execution`,
 //! `export` → `montecarlo` → `derived` → `views` → `app` → `host`.
 
 pub mod app;
@@ -18,6 +18,7 @@ mod derived;
 pub mod document;
 pub mod execution;
 pub mod export;
+pub mod help;
 pub mod host;
 pub mod montecarlo;
 pub mod repair;

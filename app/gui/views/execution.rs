@@ -493,7 +493,8 @@ fn cycle_step_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Vec<Comm
                 step.step
             ))
             .strong(),
-        );
+        )
+        .on_hover_text(crate::gui::help::VALID_STARTS);
         inspector::intervals_ui(ui, m, &step.categories);
     }
     let failing: Vec<ReasonRange> = cr

@@ -299,7 +299,8 @@ pub fn hover_line(m: &Model<'_>, fa: &FlexActivity) -> String {
 pub fn flex_section_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Vec<Command>) {
     let flex: &Flex = match m.flex {
         None => {
-            ui.label(RichText::new("Flexibility").strong());
+            ui.label(RichText::new("Flexibility").strong())
+                .on_hover_text(crate::gui::help::FLEXIBILITY);
             ui.horizontal(|ui| {
                 ui.spinner();
                 ui.label("computing the flexible schedule…");
@@ -307,7 +308,8 @@ pub fn flex_section_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Ve
             return;
         }
         Some(Err(e)) => {
-            ui.label(RichText::new("Flexibility").strong());
+            ui.label(RichText::new("Flexibility").strong())
+                .on_hover_text(crate::gui::help::FLEXIBILITY);
             ui.colored_label(m.theme.error, e);
             return;
         }
@@ -316,7 +318,8 @@ pub fn flex_section_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Ve
     let Some(fa) = flex.activity(a) else {
         return;
     };
-    ui.label(RichText::new("Flexibility").strong());
+    ui.label(RichText::new("Flexibility").strong())
+        .on_hover_text(crate::gui::help::FLEXIBILITY);
     let s = fa.start;
     ui.label(format!("Scheduled at {}.", m.time(s.nom)));
     ui.label(format!(

@@ -8,6 +8,7 @@ use solscope_engine::{CategoryIntervals, Phase, explanation_notes, reason_line, 
 
 use super::{Model, Status, command_button, editor, execution, flex};
 use crate::gui::commands::{Command, UiCommand};
+use crate::gui::help;
 use crate::gui::state::{Mode, TextBuffers};
 use crate::gui::theme::{
     FIELD_WIDTH, LABEL_WIDTH, TRACK_FONT_SIZE, TRACK_LINE_STROKE, TRACK_ROW_GAP, TRACK_ROW_HEIGHT,
@@ -126,7 +127,8 @@ fn activity_ui(
                 "Valid starts per constraint (as seen after step {seen_at})"
             ))
             .strong(),
-        );
+        )
+        .on_hover_text(help::VALID_STARTS);
         intervals_ui(ui, m, &cats);
     }
 
@@ -136,9 +138,14 @@ fn activity_ui(
     }
     if let Some(ex) = m.explanation {
         ui.separator();
-        ui.label(RichText::new("Why it did not schedule").strong());
+        ui.label(RichText::new("Why it did not schedule").strong())
+            .on_hover_text(help::WHY);
         if let Some(k) = ex.failure_step {
-            if ui.button(format!("Go to failure step {k}")).clicked() {
+            if ui
+                .button(format!("Go to failure step {k}"))
+                .on_hover_text(help::FAILURE_STEP)
+                .clicked()
+            {
                 cmds.push(Command::GoToFailureStep(a));
             }
         }
@@ -155,7 +162,8 @@ fn activity_ui(
             ui.label(note);
         }
         if !ex.culprits.is_empty() {
-            ui.label(RichText::new("Involved (click to select and jump to its step)").strong());
+            ui.label(RichText::new("Involved (click to select and jump to its step)").strong())
+                .on_hover_text(help::INVOLVED);
             for c in solscope_engine::involved(ex) {
                 let text = format!(
                     "{} (step {}, {})",
@@ -169,7 +177,8 @@ fn activity_ui(
                 }
             }
         }
-        ui.label(RichText::new("Suggestions (verified by rescheduling)").strong());
+        ui.label(RichText::new("Suggestions (verified by rescheduling)").strong())
+            .on_hover_text(help::SUGGESTIONS);
         match m.suggestions {
             None => {
                 ui.horizontal(|ui| {
@@ -208,10 +217,18 @@ fn activity_ui(
 pub(super) fn intervals_ui(ui: &mut egui::Ui, m: &Model<'_>, cats: &[CategoryIntervals]) {
     let row_h = TRACK_ROW_HEIGHT;
     let n = cats.len() + 1;
-    let (rect, _) = ui.allocate_exact_size(
+    let (rect, resp) = ui.allocate_exact_size(
         egui::vec2(ui.available_width(), n as f32 * (row_h + TRACK_ROW_GAP)),
         Sense::hover(),
     );
+    // The row under the pointer says what its rule is.
+    if let Some(pos) = resp.hover_pos() {
+        let row = ((pos.y - rect.top()) / (row_h + TRACK_ROW_GAP)).max(0.0) as usize;
+        let text = cats
+            .get(row)
+            .map_or(help::ALL_TOGETHER, |c| help::category(c.category));
+        resp.on_hover_text(text);
+    }
     let painter = ui.painter_at(rect);
     let label_w = LABEL_WIDTH.min(rect.width() / 3.0);
     let track = Rect::from_min_max(Pos2::new(rect.left() + label_w, rect.top()), rect.max);

@@ -589,7 +589,8 @@ fn step_row_ui(
         let resp = ui.add(slider);
         failure_ticks(ui, m, resp.rect, n, failed);
         let resp = resp.on_hover_text(format!(
-            "{} failure(s), marked under the slider",
+            "{}\n\n{} failure(s), marked under the slider",
+            crate::gui::help::STEP,
             failed.len()
         ));
         if resp.changed() {
