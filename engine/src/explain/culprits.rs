@@ -278,8 +278,10 @@ pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
             }
         }
         Some(Phase::Placement) => {
-            // Energy reasons at one time blame the same consumers: ranked once.
-            let mut energy_at: std::collections::HashSet<i64> = std::collections::HashSet::new();
+            // Energy reasons of one kind at one time blame the same consumers
+            // (for the same reason kind): ranked once.
+            let mut energy_at: std::collections::HashSet<(i64, Blame)> =
+                std::collections::HashSet::new();
             for r in &ex.reasons {
                 let kind = Blame::Reason(r.reason.kind());
                 match r.reason {
@@ -298,7 +300,7 @@ pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
                             Phase2Reason::MinSoc { at, .. } => at,
                             _ => problem.handover_time.unwrap_or(problem.h1),
                         };
-                        if !energy_at.insert(t) {
+                        if !energy_at.insert((t, kind)) {
                             continue;
                         }
                         let from = last_full_before(state, t).unwrap_or(problem.h0);

@@ -305,10 +305,7 @@ impl RunEffects {
     ) -> usize {
         let problem = state.problem;
         let never = usize::MAX;
-        let act = &problem.acts[ev.placement.act];
-        let handover = problem
-            .handover_soc
-            .filter(|_| !act.mandatory && problem.handover_time.is_some());
+        let handover = problem.handover_soc_of(ev.placement.act).map(|h| h.1);
         let (lo, _) = ev.footprint(problem);
         let floors = self
             .floors
@@ -442,8 +439,8 @@ fn next_check(
         other = first;
     }
     // The state of charge: every later placement counted against the margin,
-    // or (when that runs out first) those near enough in time against the
-    // local budget.
+    // or (when that runs out first) the lowest levels after each step and the
+    // local budget (`RunEffects::soc_due`).
     let mut soc = RunEffects::exhausted(&fx.energy, k, ev.margin);
     if soc < other {
         soc = soc.max(fx.soc_due(state, ev, drain, k));

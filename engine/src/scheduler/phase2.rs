@@ -332,14 +332,7 @@ impl State<'_> {
     /// energy reason when it is negative.
     fn soc_margin(&self, a: usize, drain: &[(i64, i64, i64)]) -> (i128, Option<Phase2Reason>) {
         let problem = self.problem;
-        let handover = match (
-            problem.acts[a].mandatory,
-            problem.handover_time,
-            problem.handover_soc,
-        ) {
-            (false, Some(t), Some(min)) => Some((t, min)),
-            _ => None,
-        };
+        let handover = problem.handover_soc_of(a);
         let check = self.soc.check(drain, handover.map(|h| h.0));
         let mut margin = check.min - problem.min_soc;
         let mut soc_reason = (margin < 0).then(|| Phase2Reason::MinSoc {
@@ -406,15 +399,9 @@ impl State<'_> {
         let problem = self.problem;
         let p = &ev.placement;
         let (budget, until) = self.soc.local_budget(drain, problem.min_soc)?;
-        let handover = match (
-            problem.acts[p.act].mandatory,
-            problem.handover_time,
-            problem.handover_soc,
-        ) {
-            (false, Some(t), Some(min)) => {
-                Some((t, self.soc.check(drain, Some(t)).at_probe? - min))
-            }
-            _ => None,
+        let handover = match problem.handover_soc_of(p.act) {
+            Some((t, min)) => Some((t, self.soc.check(drain, Some(t)).at_probe? - min)),
+            None => None,
         };
         Some(SocBudget {
             budget,

@@ -250,6 +250,19 @@ impl Problem {
         i.checked_sub(1).map_or(0, |i| table[i].1)
     }
 
+    /// The handover state-of-charge minimum activity `a` must keep, as
+    /// `(handover time, minimum)`: the mandatory ones are exempt.
+    pub fn handover_soc_of(&self, a: usize) -> Option<(i64, i128)> {
+        match (
+            self.acts[a].mandatory,
+            self.handover_time,
+            self.handover_soc,
+        ) {
+            (false, Some(t), Some(min)) => Some((t, min)),
+            _ => None,
+        }
+    }
+
     /// Whether activity `a` starting at `s` finds its own preheat of zone `z`
     /// already running (a cycle of an execution).
     pub fn preheat_running(&self, a: usize, z: usize, s: i64) -> bool {
