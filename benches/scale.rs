@@ -6,8 +6,8 @@
 //!
 //! `cargo bench -- --quick` measures only 100 and 1,000 activities;
 //! `--profile standard|realistic` only one generator profile (default: both);
-//! `--sweep N` schedules seeds 1..=N of each size and profile once and reports the
-//! median and the worst (the plan of a sweep that costs most, not only the seed-1
+//! `--sweep N` schedules seeds 1..=N of each size and profile once, explains
+//! every failure without suggestions, and reports for each the median and the worst (the plan of a sweep that costs most, not only the seed-1
 //! plan the table measures). `--execution` measures executions instead: the bundled
 //! plan (nominal and sampled), 1,000 activities of both profiles, and a Monte Carlo
 //! campaign of 1,000 runs of the bundled plan. `--flex` measures flexible schedules:
@@ -169,25 +169,38 @@ fn median_worst(times: &mut [(Duration, u64)]) -> (Duration, Duration, u64) {
     (median, worst, seed)
 }
 
-/// Schedules seeds `1..=seeds` of every size once: median and worst time.
+/// Schedules seeds `1..=seeds` of every size once, and explains every failure
+/// without suggestions: the median and worst time of each.
 fn sweep(profiles: &[(&str, Profile)], sizes: &[(usize, usize, usize)], seeds: u64) {
-    println!("| profile | activities | sols | seeds | median schedule | worst schedule (seed) |");
-    println!("|---|---:|---:|---:|---:|---:|");
+    println!(
+        "| profile | activities | sols | seeds | median schedule | worst schedule (seed) | median explain (no suggestions) | worst explain (seed) |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    let opts = ExplainOptions {
+        activity: None,
+        no_suggestions: true,
+    };
     for &(name, profile) in profiles {
         for &(n, sols, _) in sizes {
-            let mut times: Vec<(Duration, u64)> = (1..=seeds)
+            let (mut scheduling, mut explaining): (Vec<_>, Vec<_>) = (1..=seeds)
                 .map(|seed| {
                     let plan = generate_plan_with(profile, n, sols, seed);
                     let t = Instant::now();
-                    std::hint::black_box(schedule(&plan).expect("schedules"));
-                    (t.elapsed(), seed)
+                    let sched = std::hint::black_box(schedule(&plan).expect("schedules"));
+                    let scheduled = t.elapsed();
+                    let t = Instant::now();
+                    std::hint::black_box(explain(&plan, &sched, &opts).expect("explains"));
+                    ((scheduled, seed), (t.elapsed(), seed))
                 })
-                .collect();
-            let (median, worst, seed) = median_worst(&mut times);
+                .unzip();
+            let (median, worst, seed) = median_worst(&mut scheduling);
+            let (e_median, e_worst, e_seed) = median_worst(&mut explaining);
             println!(
-                "| {name} | {n} | {sols} | {seeds} | {} | {} ({seed}) |",
+                "| {name} | {n} | {sols} | {seeds} | {} | {} ({seed}) | {} | {} ({e_seed}) |",
                 ms(median),
-                ms(worst)
+                ms(worst),
+                ms(e_median),
+                ms(e_worst)
             );
         }
     }
