@@ -406,10 +406,32 @@ fn explain_streamed(
         );
     }
     let plan_ref = &loaded.plan;
-    let outcome = solscope_engine::explain_each(
+    let sched_ref = &schedule;
+    // Each explanation is formatted on the thread that built it (the entry as
+    // the whole document's pretty form nests it: two levels, four spaces, in),
+    // and written here in order.
+    let render = |ex: solscope_engine::Explanation| -> Result<String, String> {
+        if text {
+            return Ok(solscope_engine::explanation_text(plan_ref, sched_ref, &ex));
+        }
+        let entry = solscope_engine::explanation_entry(plan_ref, sched_ref, &ex);
+        let json = serde_json::to_string_pretty(&entry)
+            .map_err(|e| format!("could not write the document as JSON: {e}"))?;
+        let mut piece = String::with_capacity(json.len() + json.len() / 8);
+        for (i, line) in json.lines().enumerate() {
+            if i > 0 {
+                piece.push('\n');
+            }
+            piece.push_str("    ");
+            piece.push_str(line);
+        }
+        Ok(piece)
+    };
+    let outcome = solscope_engine::explain_rendered(
         plan_ref,
-        &schedule,
+        sched_ref,
         opts,
+        render,
         &mut |done, _| {
             bar.set_position(done as u64);
             if terminal && !shown && started.elapsed() > std::time::Duration::from_secs(1) {
@@ -417,35 +439,19 @@ fn explain_streamed(
                 bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
             }
         },
-        &mut |ex| {
-            let piece = if text {
-                solscope_engine::explanation_text(plan_ref, &schedule, &ex)
-            } else {
-                let entry = solscope_engine::explanation_entry(plan_ref, &schedule, &ex);
-                match serde_json::to_string_pretty(&entry) {
-                    // The entry as the whole document's pretty form nests it:
-                    // two levels (four spaces) in.
-                    Ok(json) => {
-                        let first = matches!(written, Ok(1));
-                        let mut piece = String::from(if first { "\n" } else { ",\n" });
-                        for (i, line) in json.lines().enumerate() {
-                            if i > 0 {
-                                piece.push('\n');
-                            }
-                            piece.push_str("    ");
-                            piece.push_str(line);
-                        }
-                        piece
-                    }
-                    Err(e) => {
-                        written = Err(std::io::Error::other(format!(
-                            "could not write the document as JSON: {e}"
-                        )));
-                        return;
-                    }
+        &mut |piece| match piece {
+            Ok(piece) => {
+                if !text {
+                    let first = matches!(written, Ok(1));
+                    write(if first { "\n" } else { ",\n" }, &mut written);
                 }
-            };
-            write(&piece, &mut written);
+                write(&piece, &mut written);
+            }
+            Err(e) => {
+                if written.is_ok() {
+                    written = Err(std::io::Error::other(e));
+                }
+            }
         },
     );
     bar.finish_and_clear();

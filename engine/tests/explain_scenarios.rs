@@ -715,6 +715,45 @@ fn explanations_stream_in_step_order_as_the_replay_passes_them() {
     assert!(log.windows(2).all(|w| w[0] <= w[1]));
 }
 
+/// The replay's lanes (one per thread) and the rendering in parallel do not
+/// change the explanations or their order: on a plan of several replay blocks,
+/// `explain_rendered` on 1, 2 and 3 threads renders what `explain` gives, in
+/// the same order.
+#[test]
+fn explanations_do_not_depend_on_the_thread_count() {
+    let plan = solscope_engine::generate_plan(1200, 3, 7);
+    let sched = schedule(&plan).unwrap();
+    let opts = ExplainOptions {
+        activity: None,
+        no_suggestions: true,
+    };
+    let whole: Vec<String> = explain(&plan, &sched, &opts)
+        .unwrap()
+        .iter()
+        .map(|ex| serde_json::to_string(ex).unwrap())
+        .collect();
+    assert!(whole.len() > 100, "a plan with many failures");
+    for threads in [1, 2, 3] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let mut rendered = Vec::new();
+        pool.install(|| {
+            solscope_engine::explain_rendered(
+                &plan,
+                &sched,
+                &opts,
+                |ex| serde_json::to_string(&ex).unwrap(),
+                &mut |_, _| {},
+                &mut |json| rendered.push(json),
+            )
+        })
+        .unwrap();
+        assert!(rendered == whole, "{threads} thread(s) changed the output");
+    }
+}
+
 /// An empty `windows` list allows no start (the loader warns): removing it fixes
 /// the failure.
 #[test]

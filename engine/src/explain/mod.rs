@@ -169,6 +169,21 @@ pub fn explain_each(
     progress: &mut dyn FnMut(usize, usize),
     each: &mut dyn FnMut(Explanation),
 ) -> Result<(), Error> {
+    explain_rendered(plan, sched, opts, |ex| ex, progress, each)
+}
+
+/// [`explain_each`], handing on `render(explanation)` instead of the
+/// explanation: `render` runs on the thread that built the explanation, in
+/// parallel with the others (e.g. formatting it as a document entry), and
+/// `each` gets the results in step order on the caller's thread.
+pub fn explain_rendered<R: Send>(
+    plan: &Plan,
+    sched: &Schedule,
+    opts: &ExplainOptions,
+    render: impl Fn(Explanation) -> R + Sync,
+    progress: &mut dyn FnMut(usize, usize),
+    each: &mut dyn FnMut(R),
+) -> Result<(), Error> {
     let targets: Vec<usize> = match &opts.activity {
         Some(id) => {
             let a = plan
@@ -188,23 +203,28 @@ pub fn explain_each(
     let step_of = &sched.problem.step_of;
     let total = sched.steps.len();
     // Without suggestions each explanation goes out once it and those before it
-    // are done; with them they are kept for the verification at the end.
-    let mut kept: Vec<Explanation> = Vec::new();
+    // are done (the ready ones rendered in parallel); with them they are kept
+    // for the verification at the end.
     let stream = opts.no_suggestions;
+    let mut kept: Vec<Explanation> = Vec::new();
     // The explanation of targets[i] once complete (taken when handed on).
     let found: std::cell::RefCell<Vec<Option<Explanation>>> =
         std::cell::RefCell::new(vec![None; targets.len()]);
     let next = std::cell::Cell::new(0usize);
     // Hands on the complete explanations at the front, in step order.
-    let flush = |each: &mut dyn FnMut(Explanation), kept: &mut Vec<Explanation>| {
-        let mut found = found.borrow_mut();
-        while let Some(ex) = found.get_mut(next.get()).and_then(Option::take) {
-            next.set(next.get() + 1);
-            if stream {
-                each(ex);
-            } else {
-                kept.push(ex);
+    let flush = |each: &mut dyn FnMut(R), kept: &mut Vec<Explanation>| {
+        let mut ready = Vec::new();
+        {
+            let mut found = found.borrow_mut();
+            while let Some(ex) = found.get_mut(next.get()).and_then(Option::take) {
+                next.set(next.get() + 1);
+                ready.push(ex);
             }
+        }
+        if stream {
+            render_each(ready, &render, each);
+        } else {
+            kept.append(&mut ready);
         }
     };
     // Culprits need the state at the failure step: take it from the replay that
@@ -242,13 +262,42 @@ pub fn explain_each(
         // In parallel, collected in order, so the output does not depend on the
         // number of threads.
         let lists = suggest::suggestions(plan, sched, &kept);
-        for (mut ex, fixes) in kept.into_iter().zip(lists) {
+        let done = kept.into_iter().zip(lists).map(|(mut ex, fixes)| {
             ex.suggestions = fixes.single;
             ex.together = fixes.together;
-            each(ex);
-        }
+            ex
+        });
+        render_each(done.collect(), &render, each);
     }
     Ok(())
+}
+
+/// Hands `render(explanation)` of each explanation to `each`, in order,
+/// rendering a few at a time in parallel: the output does not depend on the
+/// number of threads, and only a few rendered ones wait at any time.
+fn render_each<R: Send>(
+    exs: Vec<Explanation>,
+    render: &(impl Fn(Explanation) -> R + Sync),
+    each: &mut dyn FnMut(R),
+) {
+    use rayon::prelude::*;
+    /// Explanations rendered together.
+    const CHUNK: usize = 64;
+    let mut exs = exs.into_iter();
+    loop {
+        let chunk: Vec<Explanation> = exs.by_ref().take(CHUNK).collect();
+        if chunk.is_empty() {
+            break;
+        }
+        let rendered: Vec<R> = if chunk.len() > 1 {
+            chunk.into_par_iter().with_min_len(8).map(render).collect()
+        } else {
+            chunk.into_iter().map(render).collect()
+        };
+        for r in rendered {
+            each(r);
+        }
+    }
 }
 
 /// The verified suggestions for an explained failure (what [`explain`] adds unless

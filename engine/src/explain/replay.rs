@@ -486,6 +486,14 @@ fn overlap(a: (i64, i64), b: (i64, i64)) -> i128 {
 /// passing probe it keeps the placement found (its witness) and is due again at the
 /// first later step that could disturb it ([`next_check`]); then a quick check of
 /// the witness, and a search only when the witness stopped fitting.
+///
+/// Targets do not depend on one another, so they are dealt round-robin to one
+/// lane per thread (at most [`MAX_LANES`]), each replaying the run on its own
+/// state; the lanes go through the run in blocks of [`BLOCK_STEPS`] steps
+/// together, and each block's failures are handed on in order before the next
+/// block starts, so the values waiting at any time are one block's. A target's
+/// probes, and so its value, do not depend on its lane: the output does not
+/// depend on the number of threads.
 pub(super) fn failure_probes<T: Send>(
     sched: &Schedule,
     targets: &[usize],
@@ -493,80 +501,166 @@ pub(super) fn failure_probes<T: Send>(
     mut on_failure: impl FnMut(usize, T),
     mut stepped: impl FnMut(usize),
 ) {
-    use std::cmp::Reverse;
     let problem = &sched.problem;
     let fx = RunEffects::new(sched);
     let inclusion = Inclusion::new(problem);
     let thresholds: Vec<Thresholds> = targets.iter().map(|&a| inclusion.thresholds(a)).collect();
-    let mut witness: Vec<Option<Witness>> = (0..targets.len()).map(|_| None).collect();
-    // (due step, target); a target is in the queue at most once.
-    let mut queue: std::collections::BinaryHeap<Reverse<(usize, usize)>> = targets
-        .iter()
-        .enumerate()
-        .filter(|&(_, &a)| sched.placement(a).is_none())
-        .map(|(i, _)| Reverse((0, i)))
+    let open: Vec<usize> = (0..targets.len())
+        .filter(|&i| sched.placement(targets[i]).is_none())
         .collect();
-    let mut state = State::new(problem);
-    for k in 0..sched.steps.len() {
-        if queue.is_empty() {
-            break;
-        }
-        // Debug builds (the tests) check every skip against a full check.
-        #[cfg(debug_assertions)]
-        for (i, w) in witness.iter().enumerate() {
-            if let Some(w) = w
-                .as_ref()
-                .filter(|w| w.due > k && k < problem.step_of[targets[i]])
-            {
-                let scope = thresholds[i].scope_at(k);
-                let p = &w.ev.placement;
-                debug_assert!(
-                    state.fits(targets[i], p.start, p.duration, &scope),
-                    "a skipped witness stopped fitting"
-                );
+    let count = rayon::current_num_threads()
+        .clamp(1, MAX_LANES)
+        .min(open.len())
+        .max(1);
+    let mut lanes: Vec<Lane<'_>> = (0..count)
+        .map(|l| Lane::new(problem, open.iter().copied().skip(l).step_by(count)))
+        .collect();
+    let ctx = LaneContext {
+        sched,
+        targets,
+        fx: &fx,
+        thresholds: &thresholds,
+        build: &build,
+    };
+    let mut k = 0;
+    while k < sched.steps.len() && lanes.iter().any(|l| !l.queue.is_empty()) {
+        let end = (k + BLOCK_STEPS).min(sched.steps.len());
+        let mut failed: Vec<(usize, usize, T)> = if lanes.len() > 1 {
+            use rayon::prelude::*;
+            lanes
+                .par_iter_mut()
+                .map(|lane| lane.run(&ctx, k, end))
+                .reduce(Vec::new, |mut x, mut y| {
+                    x.append(&mut y);
+                    x
+                })
+        } else {
+            lanes
+                .iter_mut()
+                .flat_map(|lane| lane.run(&ctx, k, end))
+                .collect()
+        };
+        failed.sort_by_key(|&(step, i, _)| (step, i));
+        let mut failed = failed.into_iter().peekable();
+        for step in k..end {
+            while let Some((_, i, value)) = failed.next_if(|f| f.0 == step) {
+                on_failure(i, value);
             }
+            stepped(step + 1);
         }
-        // The targets due at this step, probed in parallel against the same
-        // state; their results are taken in target order, so the output does
-        // not depend on the thread count.
-        let mut batch: Vec<(usize, Option<Witness>)> = Vec::new();
-        while let Some(&Reverse((due, i))) = queue.peek() {
-            if due > k {
+        k = end;
+    }
+}
+
+/// The most lanes (replay states) [`failure_probes`] uses, however many threads
+/// there are: each holds a full scheduler state.
+const MAX_LANES: usize = 8;
+
+/// Steps the lanes of [`failure_probes`] replay between two hand-overs: large
+/// enough that the lanes rarely wait for one another, small enough that one
+/// block's failures (the values waiting to be handed on) stay a small part of
+/// the run's.
+const BLOCK_STEPS: usize = 256;
+
+/// What every lane of [`failure_probes`] reads.
+struct LaneContext<'c, B> {
+    sched: &'c Schedule,
+    targets: &'c [usize],
+    fx: &'c RunEffects,
+    thresholds: &'c [Thresholds],
+    build: &'c B,
+}
+
+/// One lane of [`failure_probes`]: its own replay of the run, and its targets'
+/// witnesses and due steps.
+struct Lane<'p> {
+    state: State<'p>,
+    /// Witness of target `i` (indexed by target), for this lane's targets.
+    witness: std::collections::HashMap<usize, Witness>,
+    /// (due step, target); a target is in the queue at most once.
+    queue: std::collections::BinaryHeap<std::cmp::Reverse<(usize, usize)>>,
+}
+
+impl<'p> Lane<'p> {
+    /// A lane for targets `mine`, each due at step 0.
+    fn new(problem: &'p Problem, mine: impl Iterator<Item = usize>) -> Self {
+        Self {
+            state: State::new(problem),
+            witness: std::collections::HashMap::new(),
+            queue: mine.map(|i| std::cmp::Reverse((0, i))).collect(),
+        }
+    }
+
+    /// Probes this lane's targets due at steps `from..to` (the lane's state is
+    /// the one after step `from`) and replays those steps: `(failure step,
+    /// target, value)` of the targets that failed.
+    fn run<T: Send, B>(
+        &mut self,
+        ctx: &LaneContext<'_, B>,
+        from: usize,
+        to: usize,
+    ) -> Vec<(usize, usize, T)>
+    where
+        B: Fn(usize, usize, Step, Vec<Try>, &State<'_>) -> T + Sync,
+    {
+        use std::cmp::Reverse;
+        let (sched, targets) = (ctx.sched, ctx.targets);
+        let mut failed = Vec::new();
+        for k in from..to {
+            if self.queue.is_empty() {
                 break;
             }
-            queue.pop();
-            if witness[i].as_ref().is_some_and(|w| w.due != due) {
-                continue; // stale entry (not expected: a target is queued once)
-            }
-            batch.push((i, witness[i].take()));
-        }
-        let probe = |(i, w): (usize, Option<Witness>)| {
-            let a = targets[i];
-            let probed = match probe_target(&state, &fx, &thresholds[i], a, w, k) {
-                Probed::Kept(w) => Ok(w),
-                Probed::Failed(step, tries) => Err(build(i, k, step, tries, &state)),
-            };
-            (i, probed)
-        };
-        let results: Vec<(usize, Result<Witness, T>)> = if batch.len() > 1 {
-            use rayon::prelude::*;
-            batch.into_par_iter().with_min_len(4).map(probe).collect()
-        } else {
-            batch.into_iter().map(probe).collect()
-        };
-        for (i, probed) in results {
-            match probed {
-                Ok(w) => {
-                    if w.due != usize::MAX {
-                        queue.push(Reverse((w.due, i)));
-                    }
-                    witness[i] = Some(w);
+            // Debug builds (the tests) check every skip against a full check.
+            #[cfg(debug_assertions)]
+            for (&i, w) in &self.witness {
+                if w.due > k && k < sched.problem.step_of[targets[i]] {
+                    let scope = ctx.thresholds[i].scope_at(k);
+                    let p = &w.ev.placement;
+                    debug_assert!(
+                        self.state.fits(targets[i], p.start, p.duration, &scope),
+                        "a skipped witness stopped fitting"
+                    );
                 }
-                Err(value) => on_failure(i, value),
             }
+            // The targets due at this step, probed in parallel against the same
+            // state; their results are taken in target order.
+            let mut batch: Vec<(usize, Option<Witness>)> = Vec::new();
+            while let Some(&Reverse((due, i))) = self.queue.peek() {
+                if due > k {
+                    break;
+                }
+                self.queue.pop();
+                batch.push((i, self.witness.remove(&i)));
+            }
+            let state = &self.state;
+            let probe = |(i, w): (usize, Option<Witness>)| {
+                let a = targets[i];
+                let probed = match probe_target(state, ctx.fx, &ctx.thresholds[i], a, w, k) {
+                    Probed::Kept(w) => Ok(w),
+                    Probed::Failed(step, tries) => Err((ctx.build)(i, k, step, tries, state)),
+                };
+                (i, probed)
+            };
+            let results: Vec<(usize, Result<Witness, T>)> = if batch.len() > 1 {
+                use rayon::prelude::*;
+                batch.into_par_iter().with_min_len(4).map(probe).collect()
+            } else {
+                batch.into_iter().map(probe).collect()
+            };
+            for (i, probed) in results {
+                match probed {
+                    Ok(w) => {
+                        if w.due != usize::MAX {
+                            self.queue.push(Reverse((w.due, i)));
+                        }
+                        self.witness.insert(i, w);
+                    }
+                    Err(value) => failed.push((k, i, value)),
+                }
+            }
+            self.state.replay(&sched.steps[k]);
         }
-        state.replay(&sched.steps[k]);
-        stepped(k + 1);
+        failed
     }
 }
 

@@ -425,8 +425,9 @@ impl State<'_> {
         let problem = self.problem;
         let act = &problem.acts[a];
         let e = s + d;
-        // Load pieces: (t, +energy, +peak) boundary events.
-        let mut events: Vec<(i64, i64, i64)> = Vec::new();
+        // Load pieces: (t, +energy, +peak) boundary events (the activity, an
+        // awake period and a zone or two: room for them without regrowing).
+        let mut events: Vec<(i64, i64, i64)> = Vec::with_capacity(8);
         let mut piece = |x: i64, y: i64, energy: i64, peak: i64| {
             if x < y && (energy != 0 || peak != 0) {
                 events.push((x, energy, peak));
@@ -455,7 +456,7 @@ impl State<'_> {
             }
         }
         events.sort_unstable();
-        let mut pieces: Vec<(i64, i64, i64, i64)> = Vec::new();
+        let mut pieces: Vec<(i64, i64, i64, i64)> = Vec::with_capacity(events.len());
         let (mut energy, mut peak) = (0i64, 0i64);
         for (k, &(t, de, dp)) in events.iter().enumerate() {
             energy += de;
