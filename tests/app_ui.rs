@@ -2493,7 +2493,9 @@ fn an_energy_failure_draws_what_it_would_have_caused() {
             .expect("an overlay for a min_soc failure");
         assert_eq!(w.activity, a);
         assert!(!w.points.is_empty());
-        (w.plot, w.at, w.value, w.label.clone(), w.culprits.clone())
+        assert_eq!(w.reasons.len(), 1, "one range of starts, on min_soc");
+        let r = w.shown().unwrap();
+        (r.plot, r.at, r.value, r.label.clone(), w.culprits.clone())
     };
     assert_eq!(plot, solscope::gui::OverlayPlot::Soc);
     // The explanation's numbers: lowest 921.5 Wh at t=164050, below min_soc.
@@ -2530,10 +2532,11 @@ fn a_peak_power_failure_draws_on_the_peak_plot() {
         .state()
         .would_cause()
         .expect("an overlay for a max_peak failure");
-    assert_eq!(w.plot, solscope::gui::OverlayPlot::Peak);
-    assert_eq!(w.at, 149_350);
-    assert!((w.value - 923.0).abs() < 1e-9);
-    assert_eq!(w.label, "would reach 923.0 W > max_peak 750.0 W");
+    let r = w.shown().unwrap();
+    assert_eq!(r.plot, solscope::gui::OverlayPlot::Peak);
+    assert_eq!(r.at, 149_350);
+    assert!((r.value - 923.0).abs() < 1e-9);
+    assert_eq!(r.label, "would reach 923.0 W > max_peak 750.0 W");
     // The step function with it placed reaches the reported peak there.
     assert!(
         w.points
@@ -2542,4 +2545,89 @@ fn a_peak_power_failure_draws_on_the_peak_plot() {
     );
     let xband = index(h.state(), "xband_dte_413");
     assert!(w.culprits.contains(&xband));
+}
+
+/// X fails on the battery for its early starts and on the peak power beside
+/// H for the later ones: two reasons, one on each plot.
+const TWO_LIMITS: &str = r#"{
+  "format": "solscope.plan/1",
+  "name": "Two limits",
+  "horizon": { "start": 0, "end": 7200 },
+  "battery": { "capacity": 1000.0, "initial": 380.0, "min_soc": 300.0 },
+  "power": { "rtg": 100.0, "asleep": 10.0, "awake": 60.0, "max_peak": 500.0 },
+  "activities": [
+    { "id": "H", "priority": 1, "duration": 600, "peak_power": 300.0, "energy_rate": 10.0,
+      "windows": [ { "start": 1000, "end": 1000 } ] },
+    { "id": "X", "priority": 2, "duration": 600, "peak_power": 300.0, "energy_rate": 600.0,
+      "windows": [ { "start": 0, "end": 1500 } ] }
+  ]
+}"#;
+
+#[test]
+fn every_energy_and_peak_reason_is_marked_and_each_can_be_drawn() {
+    use solscope::gui::OverlayPlot;
+    let app = SolscopeApp::from_text(TWO_LIMITS, None).unwrap();
+    let view = View {
+        select: Some("X".into()),
+        ..View::default()
+    };
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &view).unwrap();
+    h.run_steps(3);
+    {
+        let w = h.state().would_cause().expect("an overlay");
+        let plots: Vec<OverlayPlot> = w.reasons.iter().map(|r| r.plot).collect();
+        assert_eq!(plots, [OverlayPlot::Soc, OverlayPlot::Peak]);
+        assert_eq!(w.shown, 0, "the first reason is drawn first");
+        assert_eq!(
+            w.reasons
+                .iter()
+                .map(|r| (r.first, r.last))
+                .collect::<Vec<_>>(),
+            [(0, 400), (401, 1500)]
+        );
+    }
+    // The first reason's profile (at the start its numbers were evaluated
+    // at) on the state of charge; the peak plot marks the other reason's
+    // violation.
+    assert!(
+        h.query_by_label_contains("Dashed: X if placed at Sol 0 00:06:40 (t=400)")
+            .is_some()
+    );
+    assert!(
+        h.query_by_label_contains("Hollow circles: where 1 reason(s) of X on this plot")
+            .is_some()
+    );
+    assert!(h.query_by_label_contains("reason 1 of 2").is_some());
+    h.get_by_label("Next reason").click();
+    h.run_steps(3);
+    {
+        let w = h.state().would_cause().unwrap();
+        assert_eq!(w.shown, 1);
+        let r = w.shown().unwrap();
+        assert_eq!(r.plot, OverlayPlot::Peak);
+        assert_eq!(r.label, "would reach 660.0 W > max_peak 500.0 W");
+        // The profile drawn is the one with X placed at this reason's start:
+        // the peak reaches 660 W at H's start.
+        assert!(
+            w.points
+                .iter()
+                .any(|p| p[0] == 1000.0 && (p[1] - 660.0).abs() < 1e-9),
+            "{:?}",
+            w.points
+        );
+    }
+    assert!(h.query_by_label_contains("reason 2 of 2").is_some());
+    assert!(
+        h.query_by_label_contains("Hollow circles: where 1 reason(s) of X on this plot")
+            .is_some(),
+        "the state of charge now marks the first reason"
+    );
+    // The reason picked is X's alone: another activity starts from its first.
+    let (x, hh) = (index(h.state(), "X"), index(h.state(), "H"));
+    assert_eq!(h.state().ui.nav.overlay_reason_of(x), 1);
+    assert_eq!(h.state().ui.nav.overlay_reason_of(hh), 0);
+    // The inspector's reason lines pick one too.
+    h.get_all_by_label("Show on plot").next().unwrap().click();
+    h.run_steps(3);
+    assert_eq!(h.state().would_cause().unwrap().shown, 0);
 }

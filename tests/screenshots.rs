@@ -42,6 +42,37 @@ fn failed_activity_explanation() {
 }
 
 #[test]
+fn peak_power_failure_draws_on_the_peak_plot() {
+    check(
+        "explain_peak_power",
+        app(),
+        View {
+            select: Some("supercam_libs_413".into()),
+            ..View::default()
+        },
+    );
+}
+
+#[test]
+fn energy_failure_in_the_light_theme() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/tutorial-plan.json"
+    ))
+    .unwrap();
+    let mut app = SolscopeApp::from_text(&text, None).expect("tutorial plan");
+    app.apply(Command::SetDark(false));
+    check(
+        "explain_light_theme",
+        app,
+        View {
+            select: Some("libs_raster_low_battery".into()),
+            ..View::default()
+        },
+    );
+}
+
+#[test]
 fn clicked_energy_plot_lists_consumers() {
     check(
         "energy_probe",

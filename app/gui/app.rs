@@ -216,8 +216,9 @@ impl SolscopeApp {
             self.explanation_for(a);
             self.suggestions_for(a);
             self.derived.valid_for(&self.analysis, self.revision, a);
+            let shown = self.ui.nav.overlay_reason_of(a);
             self.derived
-                .would_cause_for(&self.doc.plan, &self.analysis, self.revision, a);
+                .would_cause_for(&self.doc.plan, &self.analysis, self.revision, (a, shown));
         }
         self.reap_worker();
         // A selection made by a command given outside a frame.
@@ -596,6 +597,9 @@ impl SolscopeApp {
             }
             Command::ProbePlot(t) => self.ui.nav.probe = t,
             Command::SetSinceFull(on) => self.ui.nav.since_full = on,
+            Command::ShowReason { activity, index } => {
+                self.ui.nav.overlay_reason = Some((activity, index));
+            }
             Command::Edit {
                 target,
                 set,

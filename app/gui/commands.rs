@@ -260,6 +260,15 @@ pub enum Command {
     ProbePlot(Option<i64>),
     /// Energy consumers since the last full battery instead of since the start.
     SetSinceFull(bool),
+    /// Draw the profile of energy or peak-power reason `index` of `activity`'s
+    /// explanation (what it would have caused at that reason's start) over the
+    /// plots.
+    ShowReason {
+        /// The failed activity.
+        activity: usize,
+        /// The index among its energy and peak-power reasons.
+        index: usize,
+    },
     /// Apply an edit in the spec's format, rerun and show the outcome diff.
     Edit {
         /// `plan` or `activity:ID`.

@@ -34,8 +34,8 @@ pub use execution::{ActualsSource, CycleRun, ExecutionRun};
 pub use host::{SolscopeHost, run, save_color_image};
 pub use montecarlo::{CampaignResult, Progress, StopReason, Stopped};
 pub use state::{
-    History, LAST_STEP, ListFilter, Mode, OverlayPlot, PathPrompt, Pending, Persisted, Place,
-    StatusFilter, StepView, UiState, WouldCause,
+    History, LAST_STEP, ListFilter, Mode, OverlayPlot, OverlayReason, PathPrompt, Pending,
+    Persisted, Place, StatusFilter, StepView, UiState, WouldCause,
 };
 pub use theme::Theme;
 pub use time_axis::TimeAxis;

@@ -210,6 +210,8 @@ pub const CULPRIT_STROKE: f32 = 2.0;
 pub const WOULD_CAUSE_STROKE: f32 = 1.5;
 /// Radius of the violation point's marker on a plot.
 pub const VIOLATION_RADIUS: f32 = 4.0;
+/// Radius of the hollow markers of the other reasons' violations.
+pub const OTHER_VIOLATION_RADIUS: f32 = 3.5;
 /// Outline width of the selected activity's dispatchable neighbours.
 pub const NEIGHBOUR_STROKE: f32 = 1.5;
 /// Outline width of the ghost of a dragged bar.

@@ -155,8 +155,46 @@ fn activity_ui(
                 ui.label(format!("Conflict: {}", names.join(" + ")));
             }
         }
-        for r in ex.reasons.iter().take(4) {
-            ui.label(reason_line(&m.doc.plan, &m.analysis.schedule.problem, r));
+        for (i, r) in ex.reasons.iter().enumerate().take(4) {
+            let line = reason_line(&m.doc.plan, &m.analysis.schedule.problem, r);
+            // An energy or peak-power reason can be drawn over its plot (when
+            // there is more than one to choose from).
+            let overlay = m.would_cause.filter(|w| w.reasons.len() > 1).and_then(|w| {
+                let j = w.reasons.iter().position(|o| o.reason == i)?;
+                Some((w, j))
+            });
+            match overlay {
+                Some((w, j)) => {
+                    ui.horizontal_wrapped(|ui| {
+                        ui.label(line);
+                        if ui
+                            .selectable_label(w.shown == j, "Show on plot")
+                            .on_hover_text(help::OVERLAY_REASONS)
+                            .clicked()
+                        {
+                            cmds.push(Command::ShowReason {
+                                activity: a,
+                                index: j,
+                            });
+                        }
+                    });
+                }
+                None => {
+                    ui.label(line);
+                }
+            }
+        }
+        if ex.reasons.len() > 4 {
+            let more = ex.reasons.len() - 4;
+            let text = if m.would_cause.is_some() {
+                format!(
+                    "and {more} more range(s) of starts (Next reason on the plots goes \
+                     through the energy and peak-power ones)"
+                )
+            } else {
+                format!("and {more} more range(s) of starts")
+            };
+            ui.label(RichText::new(text).color(m.theme.muted));
         }
         for note in explanation_notes(&m.doc.plan, &m.analysis.schedule.problem, ex) {
             ui.label(note);
