@@ -2631,3 +2631,191 @@ fn every_energy_and_peak_reason_is_marked_and_each_can_be_drawn() {
     h.run_steps(3);
     assert_eq!(h.state().would_cause().unwrap().shown, 0);
 }
+
+/// The tutorial plan's file.
+const TUTORIAL_PATH: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/tutorial-plan.json");
+
+/// The app as the desktop starts it on `plan`, with these persisted settings,
+/// in a harness.
+fn started_on(
+    plan: &str,
+    persisted: solscope::gui::Persisted,
+) -> egui_kittest::Harness<'static, SolscopeApp> {
+    let mut app = SolscopeApp::open_or_default(Some(std::path::Path::new(plan))).unwrap();
+    app.restore_persisted(persisted);
+    harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap()
+}
+
+/// The page of the guided tour shown (0-based), if it is shown.
+fn tour_page(h: &egui_kittest::Harness<'static, SolscopeApp>) -> Option<usize> {
+    h.state().ui.messages.tour.as_ref().map(|t| t.page)
+}
+
+#[test]
+fn the_tutorial_plan_opens_with_the_guided_tour_and_next_selects_its_first_failure() {
+    let mut h = started_on(TUTORIAL_PATH, Default::default());
+    assert_eq!(tour_page(&h), Some(0));
+    assert!(h.query_by_label("Guided tour (1 of 6)").is_some());
+    assert!(h.query_by_label("The scheduler works in steps").is_some());
+    assert!(h.query_by_label("← Back").is_some());
+    // The failure it follows: the first one of the schedule, in step order.
+    let first = h
+        .state()
+        .analysis
+        .schedule
+        .steps
+        .iter()
+        .find(|s| s.outcome.status() == "failed")
+        .map(|s| s.activity)
+        .unwrap();
+    assert_eq!(
+        h.state().doc.plan.activities[first].id,
+        "sky_flats_mast_busy"
+    );
+    assert_eq!(h.state().ui.nav.selected, None);
+    h.get_by_label("Next →").click();
+    h.run_steps(3);
+    assert_eq!(tour_page(&h), Some(1));
+    assert_eq!(h.state().ui.nav.selected, Some(first), "Next selected it");
+    let own = h.state().analysis.schedule.step_of(first).unwrap().step;
+    assert_eq!(h.state().ui.nav.step, own, "at the step that tried it");
+    assert!(
+        h.query_by_label_contains("At step 9 the scheduler tried sky_flats_mast_busy")
+            .is_some()
+    );
+    // Why: the slider moves to its failure step, the text reads it.
+    h.get_by_label("Next →").click();
+    h.run_steps(3);
+    assert_eq!(tour_page(&h), Some(2));
+    let fs = h
+        .state_mut()
+        .explanation_for(first)
+        .unwrap()
+        .failure_step
+        .unwrap();
+    assert_eq!(h.state().ui.nav.step, fs);
+    assert!(
+        h.query_by_label_contains(&format!("The slider now shows step {fs}, its failure step"))
+            .is_some()
+    );
+    // Back goes to the page before, and selects the failure again.
+    h.state_mut().push(Command::Select(None));
+    h.run_steps(2);
+    h.get_by_label("← Back").click();
+    h.run_steps(3);
+    assert_eq!(tour_page(&h), Some(1));
+    assert_eq!(h.state().ui.nav.selected, Some(first));
+    // The default plan does not open with it.
+    let h = started_on(
+        concat!(env!("CARGO_MANIFEST_DIR"), "/assets/default-plan.json"),
+        Default::default(),
+    );
+    assert_eq!(tour_page(&h), None);
+    assert!(h.query_by_label_contains("Guided tour (").is_none());
+}
+
+#[test]
+fn the_tour_applies_its_suggestion_and_undoes_it() {
+    let mut h = started_on(TUTORIAL_PATH, Default::default());
+    for _ in 0..4 {
+        h.get_by_label("Next →").click();
+        h.run_steps(3);
+    }
+    assert_eq!(tour_page(&h), Some(4));
+    let a = index(h.state(), "sky_flats_mast_busy");
+    assert!(h.state().analysis.placement(a).is_none());
+    assert!(
+        h.query_by_label_contains("(its window becomes Sol 0 10:20:00 to Sol 0 10:45:00)")
+            .is_some()
+    );
+    h.get_by_label("Apply it").click();
+    h.run_steps(3);
+    assert!(
+        h.state().analysis.placement(a).is_some(),
+        "the suggestion applied"
+    );
+    assert!(
+        h.query_by_label_contains("sky_flats_mast_busy is scheduled now, at Sol 0 10:20:00")
+            .is_some()
+    );
+    h.get_by_label("Next →").click();
+    h.run_steps(3);
+    assert_eq!(tour_page(&h), Some(5));
+    assert!(h.query_by_label("Next →").is_none(), "the last page");
+    h.get_by_label("Undo the change").click();
+    h.run_steps(3);
+    assert!(h.state().analysis.placement(a).is_none(), "undone");
+    assert!(!h.state().doc.dirty);
+}
+
+#[test]
+fn ending_the_tour_is_remembered_and_the_help_menu_restarts_and_resets_it() {
+    let mut h = started_on(TUTORIAL_PATH, Default::default());
+    h.get_by_label("End tour").click();
+    h.run_steps(3);
+    assert_eq!(tour_page(&h), None);
+    assert!(h.query_by_label_contains("Guided tour (").is_none());
+    let persisted = h.state().persisted.clone();
+    assert!(persisted.tour_dismissed);
+    // Started again with what was saved: the tutorial opens without it.
+    let mut h = started_on(TUTORIAL_PATH, persisted);
+    assert_eq!(tour_page(&h), None);
+    // Help > Guided tour shows it again.
+    h.get_by_label("Help").click();
+    h.run_steps(3);
+    h.get_by_label("Guided tour").click();
+    h.run_steps(3);
+    assert_eq!(tour_page(&h), Some(0));
+    assert!(h.query_by_label("Guided tour (1 of 6)").is_some());
+    // Help > Reset guided tour: it opens by itself again with the tutorial.
+    h.get_by_label("End tour").click();
+    h.run_steps(3);
+    h.get_by_label("Help").click();
+    h.run_steps(3);
+    h.get_by_label("Reset guided tour").click();
+    h.run_steps(3);
+    assert!(!h.state().persisted.tour_dismissed);
+    let h = started_on(TUTORIAL_PATH, h.state().persisted.clone());
+    assert_eq!(tour_page(&h), Some(0));
+}
+
+#[test]
+fn the_help_menu_opens_the_tutorial_for_the_tour_from_another_plan() {
+    let dismissed = solscope::gui::Persisted {
+        tour_dismissed: true,
+        ..Default::default()
+    };
+    let mut app = SolscopeApp::with_default_plan().unwrap();
+    app.restore_persisted(dismissed);
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    // An unsaved edit is guarded.
+    h.state_mut().push(Command::Edit {
+        target: "plan".into(),
+        set: serde_json::from_str(r#"{"name": "edited"}"#).unwrap(),
+        description: "rename".into(),
+    });
+    h.run_steps(3);
+    assert!(h.state().doc.dirty);
+    h.get_by_label("Help").click();
+    h.run_steps(3);
+    h.get_by_label("Guided tour").click();
+    h.run_steps(3);
+    assert_eq!(
+        tour_page(&h),
+        None,
+        "waiting for the unsaved-changes answer"
+    );
+    assert!(
+        h.query_by_label_contains("discard them and open the tutorial plan")
+            .is_some()
+    );
+    h.get_by_label("Discard changes").click();
+    h.run_steps(3);
+    assert!(solscope::gui::tour::is_tutorial(&h.state().doc.plan));
+    assert_eq!(h.state().doc.path, None, "the bundled plan, not a file");
+    assert_eq!(
+        tour_page(&h),
+        Some(0),
+        "dismissed or not, the menu starts it"
+    );
+}

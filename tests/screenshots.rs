@@ -390,3 +390,16 @@ fn the_screenshot_command_is_quiet_without_xdg_runtime_dir() {
         1
     );
 }
+
+#[test]
+fn guided_tour_on_why_the_tutorials_failure_did_not_fit() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/tutorial-plan.json"
+    ))
+    .unwrap();
+    let mut app = SolscopeApp::from_text(&text, None).expect("tutorial plan");
+    app.apply(Command::Ui(UiCommand::GuidedTour));
+    app.apply(Command::TourPage(2));
+    check("tour_why", app, View::default());
+}

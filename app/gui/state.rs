@@ -31,6 +31,11 @@ pub struct Persisted {
     /// alone.
     #[serde(default)]
     pub compare_policies: bool,
+    /// The guided tour was ended: it no longer opens by itself with the
+    /// tutorial plan (Help > Guided tour still shows it; Help > Reset guided
+    /// tour makes it open by itself again).
+    #[serde(default)]
+    pub tour_dismissed: bool,
 }
 
 impl Persisted {
@@ -115,6 +120,8 @@ pub struct PathPrompt {
 pub enum Pending {
     /// Open this file.
     Open(PathBuf),
+    /// Open the bundled tutorial plan and start the guided tour.
+    OpenTutorial,
     /// Quit.
     Quit,
 }
@@ -473,6 +480,18 @@ pub struct Messages {
     /// A plan file that did not load, being repaired (its text is
     /// [`TextBuffers::repair_text`]); the plan open stays until it loads.
     pub repair: Option<Repair>,
+    /// The guided tour, while it is shown.
+    pub tour: Option<Tour>,
+}
+
+/// Where the guided tour is (see `gui::tour`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Tour {
+    /// The page shown (0-based).
+    pub page: usize,
+    /// The id of the failed activity it follows (picked when it started: the
+    /// first failure of the schedule), none when the plan had no failure.
+    pub target: Option<String>,
 }
 
 /// An activity dragged on the Gantt to a start outside its slack, offered to be

@@ -6,7 +6,7 @@ use eframe::egui::{self, Pos2, Rect, RichText, Sense, Stroke};
 use serde_json::{Map, Value};
 use solscope_engine::{CategoryIntervals, Phase, explanation_notes, reason_line, suggestion_line};
 
-use super::{Model, Status, command_button, editor, execution, flex};
+use super::{Model, Status, TourAnchors, command_button, editor, execution, flex};
 use crate::gui::commands::{Command, UiCommand};
 use crate::gui::help;
 use crate::gui::state::{Mode, TextBuffers};
@@ -19,6 +19,7 @@ pub fn inspector_ui(
     ui: &mut egui::Ui,
     m: &Model<'_>,
     st: &mut TextBuffers,
+    anchors: &mut TourAnchors,
     cmds: &mut Vec<Command>,
 ) {
     ui.heading("Inspector");
@@ -38,7 +39,7 @@ pub fn inspector_ui(
             ui.label("Select an activity in the list or on the Gantt chart.");
             command_button(ui, UiCommand::AddActivity, true, cmds);
         }
-        (Mode::Schedule, Some(a)) => activity_ui(ui, m, st, a, cmds),
+        (Mode::Schedule, Some(a)) => activity_ui(ui, m, st, a, anchors, cmds),
     }
     ui.separator();
     egui::CollapsingHeader::new("Plan limits")
@@ -81,6 +82,7 @@ fn activity_ui(
     m: &Model<'_>,
     st: &mut TextBuffers,
     a: usize,
+    anchors: &mut TourAnchors,
     cmds: &mut Vec<Command>,
 ) {
     let act = &m.doc.plan.activities[a];
@@ -138,8 +140,10 @@ fn activity_ui(
     }
     if let Some(ex) = m.explanation {
         ui.separator();
-        ui.label(RichText::new("Why it did not schedule").strong())
+        let why = ui
+            .label(RichText::new("Why it did not schedule").strong())
             .on_hover_text(help::WHY);
+        anchors.why = Some(why.rect);
         if let Some(k) = ex.failure_step {
             if ui
                 .button(format!("Go to failure step {k}"))
@@ -200,8 +204,10 @@ fn activity_ui(
             ui.label(note);
         }
         if !ex.culprits.is_empty() {
-            ui.label(RichText::new("Involved (click to select and jump to its step)").strong())
+            let involved = ui
+                .label(RichText::new("Involved (click to select and jump to its step)").strong())
                 .on_hover_text(help::INVOLVED);
+            anchors.involved = Some(involved.rect);
             for c in solscope_engine::involved(ex) {
                 let text = format!(
                     "{} (step {}, {})",
@@ -215,8 +221,10 @@ fn activity_ui(
                 }
             }
         }
-        ui.label(RichText::new("Suggestions (verified by rescheduling)").strong())
+        let suggestions = ui
+            .label(RichText::new("Suggestions (verified by rescheduling)").strong())
             .on_hover_text(help::SUGGESTIONS);
+        anchors.suggestions = Some(suggestions.rect);
         match m.suggestions {
             None => {
                 ui.horizontal(|ui| {
