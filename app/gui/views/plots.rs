@@ -435,7 +435,8 @@ fn would_cause_label(
             if on_plot > 1 {
                 ui.label(
                     RichText::new(format!(
-                        "Hollow circles: where the other {} reason(s) on this plot would                          break the limit, each at its own start",
+                        "Hollow circles: where the other {} reason(s) on this plot would \
+                         break the limit, each at its own start",
                         on_plot - 1
                     ))
                     .color(m.theme.would_cause),
@@ -445,7 +446,8 @@ fn would_cause_label(
         None if on_plot > 0 => {
             ui.label(
                 RichText::new(format!(
-                    "Hollow circles: where {on_plot} reason(s) of {} on this plot would break                      the limit (Next reason draws each one's profile)",
+                    "Hollow circles: where {on_plot} reason(s) of {} on this plot would break \
+                     the limit (Next reason draws each one's profile)",
                     m.doc
                         .plan
                         .activities
