@@ -2549,19 +2549,7 @@ fn a_peak_power_failure_draws_on_the_peak_plot() {
 
 /// X fails on the battery for its early starts and on the peak power beside
 /// H for the later ones: two reasons, one on each plot.
-const TWO_LIMITS: &str = r#"{
-  "format": "solscope.plan/1",
-  "name": "Two limits",
-  "horizon": { "start": 0, "end": 7200 },
-  "battery": { "capacity": 1000.0, "initial": 380.0, "min_soc": 300.0 },
-  "power": { "rtg": 100.0, "asleep": 10.0, "awake": 60.0, "max_peak": 500.0 },
-  "activities": [
-    { "id": "H", "priority": 1, "duration": 600, "peak_power": 300.0, "energy_rate": 10.0,
-      "windows": [ { "start": 1000, "end": 1000 } ] },
-    { "id": "X", "priority": 2, "duration": 600, "peak_power": 300.0, "energy_rate": 600.0,
-      "windows": [ { "start": 0, "end": 1500 } ] }
-  ]
-}"#;
+const TWO_LIMITS: &str = include_str!("plans/two-limits.json");
 
 #[test]
 fn every_energy_and_peak_reason_is_marked_and_each_can_be_drawn() {

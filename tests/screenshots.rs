@@ -54,6 +54,27 @@ fn peak_power_failure_draws_on_the_peak_plot() {
 }
 
 #[test]
+fn a_failure_on_two_limits_marks_both_and_draws_the_one_picked() {
+    // X breaks the battery minimum for its early starts and the peak power
+    // beside H for the later ones: the second reason drawn on the peak plot,
+    // the first marked hollow on the state of charge.
+    let plan = include_str!("plans/two-limits.json");
+    let mut app = SolscopeApp::from_text(plan, None).expect("two-limits plan");
+    app.apply(Command::ShowReason {
+        activity: 1,
+        index: 1,
+    });
+    check(
+        "explain_two_reasons",
+        app,
+        View {
+            select: Some("X".into()),
+            ..View::default()
+        },
+    );
+}
+
+#[test]
 fn energy_failure_in_the_light_theme() {
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
