@@ -2782,6 +2782,7 @@ fn the_help_menu_opens_the_tutorial_for_the_tour_from_another_plan() {
         set: serde_json::from_str(r#"{"name": "edited"}"#).unwrap(),
         description: "rename".into(),
     });
+    h.state_mut().push(Command::Ui(UiCommand::ShowExecution));
     h.run_steps(3);
     assert!(h.state().doc.dirty);
     h.get_by_label("Help").click();

@@ -110,19 +110,22 @@ pub enum Anchor {
 }
 
 /// The commands page `page` gives when it is shown, for the failed activity
-/// `target` (none when the plan has no failure): it selects the failure and
-/// moves the step slider to where the page needs it.
+/// `target` (none when the plan has no failure): schedule mode (the tour is
+/// about the schedule), then it selects the failure and moves the step slider
+/// to where the page needs it.
 pub fn enter(page: Page, analysis: &Analysis, target: Option<usize>) -> Vec<Command> {
+    let mut cmds = vec![Command::Ui(UiCommand::ShowSchedule)];
     let Some(a) = target else {
-        return Vec::new();
+        return cmds;
     };
     let own_step = analysis.schedule.step_of(a).map_or(0, |s| s.step);
-    match page {
+    cmds.extend(match page {
         Page::Steps | Page::Undo => Vec::new(),
         Page::Failed => vec![Command::Select(Some(a)), Command::SetStep(own_step)],
         Page::Why | Page::Involved => vec![Command::GoToFailureStep(a)],
         Page::Suggestion => vec![Command::Select(Some(a)), Command::Ui(UiCommand::LastStep)],
-    }
+    });
+    cmds
 }
 
 /// What a page says, and the action it offers besides Back / Next / End tour.
@@ -462,6 +465,7 @@ mod tests {
         assert_eq!(
             enter(Page::Failed, &analysis, Some(a)),
             [
+                Command::Ui(UiCommand::ShowSchedule),
                 Command::Select(Some(a)),
                 Command::SetStep(analysis.schedule.step_of(a).unwrap().step)
             ]
