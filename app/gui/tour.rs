@@ -192,6 +192,16 @@ pub fn text(page: Page, facts: &Facts<'_>) -> Text {
     // another activity meanwhile.
     let ex = facts.explanation.filter(|e| e.activity == a);
     let reselect = "(Next or Back selects it again if you clicked elsewhere.)";
+    let placed = facts.analysis.placement(a).map(|p| p.0);
+    if let (Some(t), Page::Failed | Page::Why | Page::Involved) = (placed, page) {
+        // A change made since (a suggestion applied) gave it room.
+        paragraphs.push(format!(
+            "{id} is scheduled now, at {}: a change made since gave it room. Undo (the last \
+             page) takes the change back, and this page then shows the failure again.",
+            facts.time(t)
+        ));
+        return Text { paragraphs, action };
+    }
     match page {
         Page::Steps => {
             paragraphs.push(
@@ -315,7 +325,6 @@ pub fn text(page: Page, facts: &Facts<'_>) -> Text {
                  tried every one by scheduling the whole plan again, and says what else \
                  would then stop fitting."
             ));
-            let placed = facts.analysis.placement(a).map(|p| p.0);
             match facts.suggestions {
                 _ if placed.is_some() => paragraphs.push(format!(
                     "{id} is scheduled now, at {}: the banner at the top lists what the change \
@@ -460,6 +469,24 @@ mod tests {
         let failed = text(Page::Failed, &facts).paragraphs.join(" ");
         assert!(
             failed.contains("allows starts from Sol 0 10:30:00 to Sol 0 10:45:00"),
+            "{failed}"
+        );
+        // Once a change gives it room, the pages about its failure say so.
+        let widened = solscope_engine::apply_edit(
+            &plan,
+            "activity:sky_flats_mast_busy",
+            &serde_json::from_str(r#"{"windows": [{"start": 37200, "end": 38700}]}"#).unwrap(),
+        )
+        .unwrap();
+        let after = Analysis::of(&widened).unwrap();
+        let now = Facts {
+            plan: &widened,
+            analysis: &after,
+            ..facts
+        };
+        let failed = text(Page::Failed, &now).paragraphs.join(" ");
+        assert!(
+            failed.starts_with("sky_flats_mast_busy is scheduled now, at Sol 0 10:20:00"),
             "{failed}"
         );
         assert_eq!(
