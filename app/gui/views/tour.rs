@@ -95,8 +95,14 @@ pub fn tour_ui(ui: &egui::Ui, m: &Model<'_>, anchors: &TourAnchors, cmds: &mut V
         Anchor::Involved => beside_inspector(anchors.involved, anchors.suggestions),
         Anchor::Suggestions => beside_inspector(anchors.suggestions, None),
     };
+    // Only the part in view (the inspector scrolls).
+    let outline = outline
+        .map(|r| {
+            r.shrink2(egui::vec2(TOUR_OUTLINE * 2.0, 0.0))
+                .intersect(inspector)
+        })
+        .filter(|r| r.is_positive());
     if let Some(r) = outline {
-        let r = r.shrink2(egui::vec2(TOUR_OUTLINE * 2.0, 0.0));
         ui.ctx()
             .layer_painter(egui::LayerId::new(
                 egui::Order::Foreground,
