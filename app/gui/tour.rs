@@ -171,7 +171,14 @@ pub fn text(page: Page, facts: &Facts<'_>) -> Text {
     let mut paragraphs = Vec::new();
     let mut action = None;
     let steps = facts.analysis.steps();
-    let failed = facts.analysis.failed();
+    // The steps the slider's red ticks mark.
+    let failed = facts
+        .analysis
+        .schedule
+        .steps
+        .iter()
+        .filter(|s| matches!(s.outcome, solscope_engine::Outcome::Failed(_)))
+        .count();
     let Some(a) = facts.target else {
         paragraphs.push(match page {
             Page::Steps => format!(
@@ -213,7 +220,8 @@ pub fn text(page: Page, facts: &Facts<'_>) -> Text {
             paragraphs.push(format!(
                 "The slider at the top replays them: step 0 is the empty plan, step {steps} \
                  the finished schedule. Red ticks under it mark the steps where an activity \
-                 could not be placed: {failed} in this plan."
+                 could not be placed: {failed} in this plan. Drag it, or press Left and \
+                 Right, to watch the schedule being built."
             ));
         }
         Page::Failed => {
@@ -262,7 +270,7 @@ pub fn text(page: Page, facts: &Facts<'_>) -> Text {
                                 .unwrap_or_default();
                             format!(
                                 "{id} fails in the first round: no start time is green in \
-                                 every row at once. {} cannot all hold together.",
+                                 every row at once. {} rule each other out.",
                                 sentence_list(&rules)
                             )
                         }
@@ -457,7 +465,7 @@ mod tests {
         let why = text(Page::Why, &facts).paragraphs.join(" ");
         assert!(
             why.contains(
-                "Its window and the instruments other activities hold cannot all hold together"
+                "Its window and the instruments other activities hold rule each other out"
             ),
             "{why}"
         );
