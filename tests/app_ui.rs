@@ -2493,7 +2493,9 @@ fn an_energy_failure_draws_what_it_would_have_caused() {
             .expect("an overlay for a min_soc failure");
         assert_eq!(w.activity, a);
         assert!(!w.points.is_empty());
-        (w.plot, w.at, w.value, w.label.clone(), w.culprits.clone())
+        assert_eq!(w.reasons.len(), 1, "one range of starts, on min_soc");
+        let r = w.shown().unwrap();
+        (r.plot, r.at, r.value, r.label.clone(), w.culprits.clone())
     };
     assert_eq!(plot, solscope::gui::OverlayPlot::Soc);
     // The explanation's numbers: lowest 921.5 Wh at t=164050, below min_soc.
@@ -2530,10 +2532,11 @@ fn a_peak_power_failure_draws_on_the_peak_plot() {
         .state()
         .would_cause()
         .expect("an overlay for a max_peak failure");
-    assert_eq!(w.plot, solscope::gui::OverlayPlot::Peak);
-    assert_eq!(w.at, 149_350);
-    assert!((w.value - 923.0).abs() < 1e-9);
-    assert_eq!(w.label, "would reach 923.0 W > max_peak 750.0 W");
+    let r = w.shown().unwrap();
+    assert_eq!(r.plot, solscope::gui::OverlayPlot::Peak);
+    assert_eq!(r.at, 149_350);
+    assert!((r.value - 923.0).abs() < 1e-9);
+    assert_eq!(r.label, "would reach 923.0 W > max_peak 750.0 W");
     // The step function with it placed reaches the reported peak there.
     assert!(
         w.points
@@ -2542,4 +2545,266 @@ fn a_peak_power_failure_draws_on_the_peak_plot() {
     );
     let xband = index(h.state(), "xband_dte_413");
     assert!(w.culprits.contains(&xband));
+}
+
+/// X fails on the battery for its early starts and on the peak power beside
+/// H for the later ones: two reasons, one on each plot.
+const TWO_LIMITS: &str = include_str!("plans/two-limits.json");
+
+#[test]
+fn every_energy_and_peak_reason_is_marked_and_each_can_be_drawn() {
+    use solscope::gui::OverlayPlot;
+    let app = SolscopeApp::from_text(TWO_LIMITS, None).unwrap();
+    let view = View {
+        select: Some("X".into()),
+        ..View::default()
+    };
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &view).unwrap();
+    h.run_steps(3);
+    {
+        let w = h.state().would_cause().expect("an overlay");
+        let plots: Vec<OverlayPlot> = w.reasons.iter().map(|r| r.plot).collect();
+        assert_eq!(plots, [OverlayPlot::Soc, OverlayPlot::Peak]);
+        assert_eq!(w.shown, 0, "the first reason is drawn first");
+        assert_eq!(
+            w.reasons
+                .iter()
+                .map(|r| (r.first, r.last))
+                .collect::<Vec<_>>(),
+            [(0, 400), (401, 1500)]
+        );
+    }
+    // The first reason's profile (at the start its numbers were evaluated
+    // at) on the state of charge; the peak plot marks the other reason's
+    // violation.
+    assert!(
+        h.query_by_label_contains("Dashed: X if placed at Sol 0 00:06:40 (t=400)")
+            .is_some()
+    );
+    assert!(
+        h.query_by_label_contains("Hollow circles: where 1 reason(s) of X on this plot")
+            .is_some()
+    );
+    assert!(h.query_by_label_contains("reason 1 of 2").is_some());
+    h.get_by_label("Next reason").click();
+    h.run_steps(3);
+    {
+        let w = h.state().would_cause().unwrap();
+        assert_eq!(w.shown, 1);
+        let r = w.shown().unwrap();
+        assert_eq!(r.plot, OverlayPlot::Peak);
+        assert_eq!(r.label, "would reach 660.0 W > max_peak 500.0 W");
+        // The profile drawn is the one with X placed at this reason's start:
+        // the peak reaches 660 W at H's start.
+        assert!(
+            w.points
+                .iter()
+                .any(|p| p[0] == 1000.0 && (p[1] - 660.0).abs() < 1e-9),
+            "{:?}",
+            w.points
+        );
+    }
+    assert!(h.query_by_label_contains("reason 2 of 2").is_some());
+    assert!(
+        h.query_by_label_contains("Hollow circles: where 1 reason(s) of X on this plot")
+            .is_some(),
+        "the state of charge now marks the first reason"
+    );
+    // The reason picked is X's alone: another activity starts from its first.
+    let (x, hh) = (index(h.state(), "X"), index(h.state(), "H"));
+    assert_eq!(h.state().ui.nav.overlay_reason_of(x), 1);
+    assert_eq!(h.state().ui.nav.overlay_reason_of(hh), 0);
+    // The inspector's reason lines pick one too.
+    h.get_all_by_label("Show on plot").next().unwrap().click();
+    h.run_steps(3);
+    assert_eq!(h.state().would_cause().unwrap().shown, 0);
+}
+
+/// The tutorial plan's file.
+const TUTORIAL_PATH: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/tutorial-plan.json");
+
+/// The app as the desktop starts it on `plan`, with these persisted settings,
+/// in a harness.
+fn started_on(
+    plan: &str,
+    persisted: solscope::gui::Persisted,
+) -> egui_kittest::Harness<'static, SolscopeApp> {
+    let mut app = SolscopeApp::open_or_default(Some(std::path::Path::new(plan))).unwrap();
+    app.restore_persisted(persisted);
+    harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap()
+}
+
+/// The page of the guided tour shown (0-based), if it is shown.
+fn tour_page(h: &egui_kittest::Harness<'static, SolscopeApp>) -> Option<usize> {
+    h.state().ui.messages.tour.as_ref().map(|t| t.page)
+}
+
+#[test]
+fn the_tutorial_plan_opens_with_the_guided_tour_and_next_selects_its_first_failure() {
+    let mut h = started_on(TUTORIAL_PATH, Default::default());
+    assert_eq!(tour_page(&h), Some(0));
+    assert!(h.query_by_label("Guided tour (1 of 6)").is_some());
+    assert!(h.query_by_label("The scheduler works in steps").is_some());
+    assert!(h.query_by_label("← Back").is_some());
+    // The failure it follows: the first one of the schedule, in step order.
+    let first = h
+        .state()
+        .analysis
+        .schedule
+        .steps
+        .iter()
+        .find(|s| s.outcome.status() == "failed")
+        .map(|s| s.activity)
+        .unwrap();
+    assert_eq!(
+        h.state().doc.plan.activities[first].id,
+        "sky_flats_mast_busy"
+    );
+    assert_eq!(h.state().ui.nav.selected, None);
+    h.get_by_label("Next →").click();
+    h.run_steps(3);
+    assert_eq!(tour_page(&h), Some(1));
+    assert_eq!(h.state().ui.nav.selected, Some(first), "Next selected it");
+    let own = h.state().analysis.schedule.step_of(first).unwrap().step;
+    assert_eq!(h.state().ui.nav.step, own, "at the step that tried it");
+    assert!(
+        h.query_by_label_contains("At step 9 the scheduler tried sky_flats_mast_busy")
+            .is_some()
+    );
+    // Why: the slider moves to its failure step, the text reads it.
+    h.get_by_label("Next →").click();
+    h.run_steps(3);
+    assert_eq!(tour_page(&h), Some(2));
+    let fs = h
+        .state_mut()
+        .explanation_for(first)
+        .unwrap()
+        .failure_step
+        .unwrap();
+    assert_eq!(h.state().ui.nav.step, fs);
+    assert!(
+        h.query_by_label_contains(&format!("The slider now shows step {fs}, its failure step"))
+            .is_some()
+    );
+    // Back goes to the page before, and selects the failure again.
+    h.state_mut().push(Command::Select(None));
+    h.run_steps(2);
+    h.get_by_label("← Back").click();
+    h.run_steps(3);
+    assert_eq!(tour_page(&h), Some(1));
+    assert_eq!(h.state().ui.nav.selected, Some(first));
+    // The default plan does not open with it.
+    let h = started_on(
+        concat!(env!("CARGO_MANIFEST_DIR"), "/assets/default-plan.json"),
+        Default::default(),
+    );
+    assert_eq!(tour_page(&h), None);
+    assert!(h.query_by_label_contains("Guided tour (").is_none());
+}
+
+#[test]
+fn the_tour_applies_its_suggestion_and_undoes_it() {
+    let mut h = started_on(TUTORIAL_PATH, Default::default());
+    for _ in 0..4 {
+        h.get_by_label("Next →").click();
+        h.run_steps(3);
+    }
+    assert_eq!(tour_page(&h), Some(4));
+    let a = index(h.state(), "sky_flats_mast_busy");
+    assert!(h.state().analysis.placement(a).is_none());
+    assert!(
+        h.query_by_label_contains("(its window becomes Sol 0 10:20:00 to Sol 0 10:45:00)")
+            .is_some()
+    );
+    h.get_by_label("Apply it").click();
+    h.run_steps(3);
+    assert!(
+        h.state().analysis.placement(a).is_some(),
+        "the suggestion applied"
+    );
+    assert!(
+        h.query_by_label_contains("sky_flats_mast_busy is scheduled now, at Sol 0 10:20:00")
+            .is_some()
+    );
+    h.get_by_label("Next →").click();
+    h.run_steps(3);
+    assert_eq!(tour_page(&h), Some(5));
+    assert!(h.query_by_label("Next →").is_none(), "the last page");
+    h.get_by_label("Undo the change").click();
+    h.run_steps(3);
+    assert!(h.state().analysis.placement(a).is_none(), "undone");
+    assert!(!h.state().doc.dirty);
+}
+
+#[test]
+fn ending_the_tour_is_remembered_and_the_help_menu_restarts_and_resets_it() {
+    let mut h = started_on(TUTORIAL_PATH, Default::default());
+    h.get_by_label("End tour").click();
+    h.run_steps(3);
+    assert_eq!(tour_page(&h), None);
+    assert!(h.query_by_label_contains("Guided tour (").is_none());
+    let persisted = h.state().persisted.clone();
+    assert!(persisted.tour_dismissed);
+    // Started again with what was saved: the tutorial opens without it.
+    let mut h = started_on(TUTORIAL_PATH, persisted);
+    assert_eq!(tour_page(&h), None);
+    // Help > Guided tour shows it again.
+    h.get_by_label("Help").click();
+    h.run_steps(3);
+    h.get_by_label("Guided tour").click();
+    h.run_steps(3);
+    assert_eq!(tour_page(&h), Some(0));
+    assert!(h.query_by_label("Guided tour (1 of 6)").is_some());
+    // Help > Reset guided tour: it opens by itself again with the tutorial.
+    h.get_by_label("End tour").click();
+    h.run_steps(3);
+    h.get_by_label("Help").click();
+    h.run_steps(3);
+    h.get_by_label("Reset guided tour").click();
+    h.run_steps(3);
+    assert!(!h.state().persisted.tour_dismissed);
+    let h = started_on(TUTORIAL_PATH, h.state().persisted.clone());
+    assert_eq!(tour_page(&h), Some(0));
+}
+
+#[test]
+fn the_help_menu_opens_the_tutorial_for_the_tour_from_another_plan() {
+    let dismissed = solscope::gui::Persisted {
+        tour_dismissed: true,
+        ..Default::default()
+    };
+    let mut app = SolscopeApp::with_default_plan().unwrap();
+    app.restore_persisted(dismissed);
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    // An unsaved edit is guarded.
+    h.state_mut().push(Command::Edit {
+        target: "plan".into(),
+        set: serde_json::from_str(r#"{"name": "edited"}"#).unwrap(),
+        description: "rename".into(),
+    });
+    h.state_mut().push(Command::Ui(UiCommand::ShowExecution));
+    h.run_steps(3);
+    assert!(h.state().doc.dirty);
+    h.get_by_label("Help").click();
+    h.run_steps(3);
+    h.get_by_label("Guided tour").click();
+    h.run_steps(3);
+    assert_eq!(
+        tour_page(&h),
+        None,
+        "waiting for the unsaved-changes answer"
+    );
+    assert!(
+        h.query_by_label_contains("discard them and open the tutorial plan")
+            .is_some()
+    );
+    h.get_by_label("Discard changes").click();
+    h.run_steps(3);
+    assert!(solscope::gui::tour::is_tutorial(&h.state().doc.plan));
+    assert_eq!(h.state().doc.path, None, "the bundled plan, not a file");
+    assert_eq!(
+        tour_page(&h),
+        Some(0),
+        "dismissed or not, the menu starts it"
+    );
 }

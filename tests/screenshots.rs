@@ -42,6 +42,58 @@ fn failed_activity_explanation() {
 }
 
 #[test]
+fn peak_power_failure_draws_on_the_peak_plot() {
+    check(
+        "explain_peak_power",
+        app(),
+        View {
+            select: Some("supercam_libs_413".into()),
+            ..View::default()
+        },
+    );
+}
+
+#[test]
+fn a_failure_on_two_limits_marks_both_and_draws_the_one_picked() {
+    // X breaks the battery minimum for its early starts and the peak power
+    // beside H for the later ones: the second reason drawn on the peak plot,
+    // the first marked hollow on the state of charge.
+    let plan = include_str!("plans/two-limits.json");
+    let mut app = SolscopeApp::from_text(plan, None).expect("two-limits plan");
+    app.apply(Command::ShowReason {
+        activity: 1,
+        index: 1,
+    });
+    check(
+        "explain_two_reasons",
+        app,
+        View {
+            select: Some("X".into()),
+            ..View::default()
+        },
+    );
+}
+
+#[test]
+fn energy_failure_in_the_light_theme() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/tutorial-plan.json"
+    ))
+    .unwrap();
+    let mut app = SolscopeApp::from_text(&text, None).expect("tutorial plan");
+    app.apply(Command::SetDark(false));
+    check(
+        "explain_light_theme",
+        app,
+        View {
+            select: Some("libs_raster_low_battery".into()),
+            ..View::default()
+        },
+    );
+}
+
+#[test]
 fn clicked_energy_plot_lists_consumers() {
     check(
         "energy_probe",
@@ -358,4 +410,17 @@ fn the_screenshot_command_is_quiet_without_xdg_runtime_dir() {
             .count(),
         1
     );
+}
+
+#[test]
+fn guided_tour_on_why_the_tutorials_failure_did_not_fit() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/tutorial-plan.json"
+    ))
+    .unwrap();
+    let mut app = SolscopeApp::from_text(&text, None).expect("tutorial plan");
+    app.apply(Command::Ui(UiCommand::GuidedTour));
+    app.apply(Command::TourPage(2));
+    check("tour_why", app, View::default());
 }

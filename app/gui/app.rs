@@ -20,11 +20,12 @@ use super::montecarlo::{CampaignResult, MAX_RUNS, Progress, Stopped};
 use super::repair::{self, Repair};
 pub use super::state::Dialog;
 use super::state::{
-    LAST_STEP, Mode, Navigation, PathPrompt, Pending, Persisted, PinOffer, StepView, UiState,
+    LAST_STEP, Mode, Navigation, PathPrompt, Pending, Persisted, PinOffer, StepView, Tour, UiState,
     WouldCause,
 };
 use super::theme::Theme;
 use super::time_axis::TimeAxis;
+use super::tour;
 use super::views::{self, CampaignModel, ExecModel, Model, ViewCache, Widgets};
 
 /// The plan the app opens without arguments.
@@ -74,6 +75,10 @@ pub struct SolscopeApp {
     /// The selection changed by a link or key: the time range is moved to
     /// show it before the next frame is drawn.
     reveal: bool,
+    /// The tutorial plan was just opened: the guided tour starts with the next
+    /// frame unless it was dismissed (known only once the host has restored
+    /// the persisted settings).
+    offer_tour: bool,
     commands: Vec<Command>,
 }
 
@@ -116,6 +121,7 @@ impl SolscopeApp {
             quit_now: false,
             png_to: None,
             reveal: false,
+            offer_tour: false,
             commands: Vec::new(),
         })
     }
@@ -162,6 +168,9 @@ impl SolscopeApp {
             egui::Theme::Dark
         });
         self.theme = Theme::new(!self.persisted.light);
+        if std::mem::take(&mut self.offer_tour) && !self.persisted.tour_dismissed {
+            self.start_tour();
+        }
         let mut cmds = std::mem::take(&mut self.commands);
         if self.ui.messages.repair.is_none() {
             // The repair view edits text: no undo, stepping or saving of the
@@ -216,8 +225,9 @@ impl SolscopeApp {
             self.explanation_for(a);
             self.suggestions_for(a);
             self.derived.valid_for(&self.analysis, self.revision, a);
+            let shown = self.ui.nav.overlay_reason_of(a);
             self.derived
-                .would_cause_for(&self.doc.plan, &self.analysis, self.revision, a);
+                .would_cause_for(&self.doc.plan, &self.analysis, self.revision, (a, shown));
         }
         self.reap_worker();
         // A selection made by a command given outside a frame.
@@ -596,6 +606,9 @@ impl SolscopeApp {
             }
             Command::ProbePlot(t) => self.ui.nav.probe = t,
             Command::SetSinceFull(on) => self.ui.nav.since_full = on,
+            Command::ShowReason { activity, index } => {
+                self.ui.nav.overlay_reason = Some((activity, index));
+            }
             Command::Edit {
                 target,
                 set,
@@ -656,6 +669,47 @@ impl SolscopeApp {
                     self.go_on(pending);
                 }
             }
+            Command::TourPage(k) => self.tour_page(k),
+        }
+    }
+
+    /// Starts the guided tour on the plan open, following its first failure.
+    fn start_tour(&mut self) {
+        let target = tour::first_failure(&self.analysis)
+            .and_then(|a| self.doc.plan.activities.get(a))
+            .map(|a| a.id.clone());
+        self.ui.messages.tour = Some(Tour { page: 0, target });
+        self.tour_page(0);
+    }
+
+    /// Shows page `k` of the guided tour (when it is shown) and gives the
+    /// commands of that page.
+    fn tour_page(&mut self, k: usize) {
+        let Some(t) = self.ui.messages.tour.as_mut() else {
+            return;
+        };
+        t.page = k.min(tour::Page::ALL.len() - 1);
+        let page = tour::Page::at(t.page);
+        let target = t
+            .target
+            .as_ref()
+            .and_then(|id| self.doc.plan.activities.iter().position(|a| &a.id == id));
+        for cmd in tour::enter(page, &self.analysis, target) {
+            self.apply(cmd);
+        }
+    }
+
+    /// Opens the bundled tutorial plan (without a file: saving asks where)
+    /// and starts the guided tour.
+    fn open_tutorial(&mut self) {
+        match Self::from_text(tour::TUTORIAL_PLAN, None) {
+            Ok(fresh) => {
+                self.become_(fresh);
+                self.start_tour();
+            }
+            Err(e) => {
+                self.ui.messages.error = Some(format!("Could not open the tutorial plan: {e}"));
+            }
         }
     }
 
@@ -663,6 +717,7 @@ impl SolscopeApp {
     fn go_on(&mut self, pending: Option<Pending>) {
         match pending {
             Some(Pending::Open(p)) => self.open_now(&p),
+            Some(Pending::OpenTutorial) => self.open_tutorial(),
             Some(Pending::Quit) => self.quit_now = true,
             None => {}
         }
@@ -887,6 +942,20 @@ impl SolscopeApp {
             }
             UiCommand::Search => self.ui.text.focus_search = true,
             UiCommand::ClearFilters => self.ui.nav.filter = Default::default(),
+            UiCommand::GuidedTour => {
+                if tour::is_tutorial(&self.doc.plan) {
+                    self.start_tour();
+                } else if self.doc.dirty {
+                    self.ui.messages.confirm = Some(Pending::OpenTutorial);
+                } else {
+                    self.open_tutorial();
+                }
+            }
+            UiCommand::EndTour => {
+                self.ui.messages.tour = None;
+                self.persisted.tour_dismissed = true;
+            }
+            UiCommand::ResetTour => self.persisted.tour_dismissed = false,
             UiCommand::ShowSchedule => self.ui.nav.mode = Mode::Schedule,
             UiCommand::ShowExecution => self.ui.nav.mode = Mode::Execution,
             UiCommand::OpenActuals => self.dialog = Some(Dialog::OpenActuals),
@@ -1082,7 +1151,11 @@ impl SolscopeApp {
             }
         };
         match Self::from_text(&text, Some(path.to_path_buf())) {
-            Ok(fresh) => self.become_(fresh),
+            Ok(fresh) => {
+                self.become_(fresh);
+                // The guided tour opens with the tutorial plan.
+                self.offer_tour = tour::is_tutorial(&self.doc.plan);
+            }
             Err(e) => {
                 // Keep the current plan; repair the file's text in the repair
                 // view (every error listed), or say what is wrong when there

@@ -102,6 +102,15 @@ pub enum UiCommand {
     PreviousMatch,
     /// Show every activity again: empty the search, clear the filters.
     ClearFilters,
+    /// Start the guided tour of one failure on the tutorial plan (opening the
+    /// bundled tutorial plan unless it is the plan open, guarded when there
+    /// are unsaved changes).
+    GuidedTour,
+    /// End the guided tour; it no longer opens by itself with the tutorial
+    /// plan.
+    EndTour,
+    /// Let the guided tour open by itself again with the tutorial plan.
+    ResetTour,
 }
 
 impl UiCommand {
@@ -182,6 +191,9 @@ impl UiCommand {
             Self::NextMatch => "Next match",
             Self::PreviousMatch => "Previous match",
             Self::ClearFilters => "Clear filters",
+            Self::GuidedTour => "Guided tour",
+            Self::EndTour => "End tour",
+            Self::ResetTour => "Reset guided tour",
         }
     }
 
@@ -233,7 +245,10 @@ impl UiCommand {
             | Self::NominalActuals
             | Self::CancelCampaign
             | Self::ToggleComparePolicies
-            | Self::ClearFilters => None,
+            | Self::ClearFilters
+            | Self::GuidedTour
+            | Self::EndTour
+            | Self::ResetTour => None,
         }
     }
 }
@@ -260,6 +275,15 @@ pub enum Command {
     ProbePlot(Option<i64>),
     /// Energy consumers since the last full battery instead of since the start.
     SetSinceFull(bool),
+    /// Draw the profile of energy or peak-power reason `index` of `activity`'s
+    /// explanation (what it would have caused at that reason's start) over the
+    /// plots.
+    ShowReason {
+        /// The failed activity.
+        activity: usize,
+        /// The index among its energy and peak-power reasons.
+        index: usize,
+    },
     /// Apply an edit in the spec's format, rerun and show the outcome diff.
     Edit {
         /// `plan` or `activity:ID`.
@@ -370,6 +394,9 @@ pub enum Command {
     DismissError,
     /// Answer the unsaved-changes question (true: discard and go on).
     ConfirmDiscard(bool),
+    /// Show page `k` of the guided tour, and give the commands that page gives
+    /// (select its failure, move the step slider).
+    TourPage(usize),
 }
 
 impl From<UiCommand> for Command {

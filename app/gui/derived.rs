@@ -13,13 +13,13 @@ use std::sync::mpsc::{self, Receiver, TryRecvError};
 
 use solscope_engine::{
     CategoryIntervals, Explanation, Flex, Loss, MJ_PER_WH, MW_PER_W, Phase, Phase2Reason, Plan,
-    RunOutcome, Suggestion, format_watts, format_wh, involved,
+    ReasonRange, RunOutcome, Suggestion, format_watts, format_wh, involved,
 };
 
 use super::document::Analysis;
 use super::execution::{ActualsSource, CycleRun, ExecutionRun};
 use super::montecarlo::{CampaignResult, Progress, StopReason, Stopped, total_runs};
-use super::state::{OverlayPlot, StepView, WouldCause};
+use super::state::{OverlayPlot, OverlayReason, StepView, WouldCause};
 
 /// A value derived for one activity at one plan revision (its explanation, valid
 /// intervals, verified suggestions, or the worker computing them). It is read back
@@ -91,14 +91,25 @@ impl DerivedCache {
             .and_then(|r| r.as_ref().err().map(String::as_str))
     }
 
-    /// Derives what activity `a` would have caused at the start its
-    /// explanation reports, when it failed in placement on energy or peak power
-    /// (once per activity and plan revision: it replays the schedule).
-    pub fn would_cause_for(&mut self, plan: &Plan, analysis: &Analysis, revision: u64, a: usize) {
-        if Derived::get(&self.would_cause, a, revision).is_none() {
+    /// Derives what activity `a` would have caused at the start of its
+    /// explanation's energy or peak-power reason `shown`, when it failed in
+    /// placement on energy or peak power (once per activity, plan revision and
+    /// reason shown: it replays the schedule).
+    pub fn would_cause_for(
+        &mut self,
+        plan: &Plan,
+        analysis: &Analysis,
+        revision: u64,
+        (a, shown): (usize, usize),
+    ) {
+        let same = Derived::get(&self.would_cause, a, revision).is_some_and(|w| {
+            w.as_ref()
+                .is_none_or(|w| w.shown == shown.min(w.reasons.len().saturating_sub(1)))
+        });
+        if !same {
             let value = self
                 .explanation_for(plan, analysis, revision, a)
-                .and_then(|ex| would_cause(plan, analysis, ex));
+                .and_then(|ex| would_cause(plan, analysis, ex, shown));
             self.would_cause = Some(Derived {
                 activity: a,
                 revision,
@@ -229,24 +240,52 @@ pub fn step_view(analysis: &Analysis, k: usize) -> StepView {
     StepView::from_profiles(k, &analysis.schedule.profiles_after(k))
 }
 
-/// What the activity of `ex`, failed in placement, would have caused at the
-/// start of its first energy or peak-power reason (the start the explanation
-/// evaluated that reason's numbers at), in the state of its failure step: the
-/// profile with it placed, the reason's violation point and the culprits.
-/// `None` for any other explanation.
-pub fn would_cause(plan: &Plan, analysis: &Analysis, ex: &Explanation) -> Option<WouldCause> {
+/// What the activity of `ex`, failed in placement, would have caused: every
+/// energy or peak-power reason of its explanation (each evaluated at its own
+/// start), and for reason `shown` of them (the last when there are fewer) the
+/// profile of its plot had it been placed at that start, in the state of its
+/// failure step. `None` for an explanation without such a reason.
+pub fn would_cause(
+    plan: &Plan,
+    analysis: &Analysis,
+    ex: &Explanation,
+    shown: usize,
+) -> Option<WouldCause> {
     if ex.phase != Some(Phase::Placement) {
         return None;
     }
     let k = ex.failure_step?;
-    let r = ex.reasons.iter().find(|r| {
-        matches!(
-            r.reason,
-            Phase2Reason::MinSoc { .. }
-                | Phase2Reason::HandoverSoc { .. }
-                | Phase2Reason::MaxPeakPower { .. }
-        )
-    })?;
+    let reasons: Vec<OverlayReason> = ex
+        .reasons
+        .iter()
+        .enumerate()
+        .filter_map(|(i, r)| overlay_reason(plan, i, r))
+        .collect();
+    let shown = shown.min(reasons.len().checked_sub(1)?);
+    let r = &reasons[shown];
+    let points = analysis
+        .schedule
+        .profiles_if_placed(k, ex.activity, r.start, r.duration)
+        .map(|profiles| {
+            let view = StepView::from_profiles(k, &profiles);
+            match r.plot {
+                OverlayPlot::Soc => view.soc,
+                OverlayPlot::Peak => view.peak,
+            }
+        })
+        .unwrap_or_default();
+    Some(WouldCause {
+        activity: ex.activity,
+        reasons,
+        shown,
+        points,
+        culprits: involved(ex).iter().map(|c| c.activity).collect(),
+    })
+}
+
+/// Reason `i` of an explanation as the plots mark it, when it broke an energy
+/// or peak-power limit: its plot, its violation point and label.
+fn overlay_reason(plan: &Plan, i: usize, r: &ReasonRange) -> Option<OverlayReason> {
     let wh_mj = |wh: f64| (wh * MJ_PER_WH).round() as i128;
     let (plot, at, value, label) = match r.reason {
         Phase2Reason::MinSoc { at, soc_mj } => {
@@ -278,24 +317,16 @@ pub fn would_cause(plan: &Plan, analysis: &Analysis, ex: &Explanation) -> Option
         }
         _ => return None,
     };
-    let profiles = analysis
-        .schedule
-        .profiles_if_placed(k, ex.activity, r.probe, r.duration)?;
-    let view = StepView::from_profiles(k, &profiles);
-    let points = match plot {
-        OverlayPlot::Soc => view.soc,
-        OverlayPlot::Peak => view.peak,
-    };
-    Some(WouldCause {
-        activity: ex.activity,
+    Some(OverlayReason {
+        reason: i,
         plot,
+        first: r.first,
+        last: r.last,
         start: r.probe,
         duration: r.duration,
-        points,
         at,
         value,
         label,
-        culprits: involved(ex).iter().map(|c| c.activity).collect(),
     })
 }
 

@@ -34,6 +34,12 @@ pub const SUGGESTIONS: &str = "Single changes to the plan that make this activit
     schedule. Each one was tried by scheduling the whole plan again, and lists what else \
     it would change.";
 
+/// The would-have-caused overlay's reasons.
+pub const OVERLAY_REASONS: &str = "The scheduler tried this activity at many start times. \
+    Each reason is a range of those starts that broke the same limit (the battery's minimum, \
+    the minimum at handover, or the peak power). The dashed line is what one start of the \
+    range would have done to the plot; Previous and Next go through the others.";
+
 /// The flexibility section.
 pub const FLEXIBILITY: &str = "How far this activity's start could move on board without \
     breaking the plan's timing rules (its start bounds), and the part of that where every \

@@ -9,8 +9,8 @@
 //! saved by the eframe host ([`SolscopeHost`]).
 //!
 //! Modules, lowest first (each uses only those before it):
-//! `time_axis`, `theme`, `help` → `document`, `repair` → `state`, `commands` → `execution`,
-//! `export` → `montecarlo` → `derived` → `views` → `app` → `host`.
+//! `time_axis`, `theme`, `help` → `document`, `repair` → `state`, `commands` → `tour`,
+//! `execution`, `export` → `montecarlo` → `derived` → `views` → `app` → `host`.
 
 pub mod app;
 pub mod commands;
@@ -25,6 +25,7 @@ pub mod repair;
 pub mod state;
 pub mod theme;
 pub mod time_axis;
+pub mod tour;
 mod views;
 
 pub use app::{DEFAULT_PLAN, Dialog, SolscopeApp};
@@ -34,8 +35,8 @@ pub use execution::{ActualsSource, CycleRun, ExecutionRun};
 pub use host::{SolscopeHost, run, save_color_image};
 pub use montecarlo::{CampaignResult, Progress, StopReason, Stopped};
 pub use state::{
-    History, LAST_STEP, ListFilter, Mode, OverlayPlot, PathPrompt, Pending, Persisted, Place,
-    StatusFilter, StepView, UiState, WouldCause,
+    History, LAST_STEP, ListFilter, Mode, OverlayPlot, OverlayReason, PathPrompt, Pending,
+    Persisted, Place, StatusFilter, StepView, Tour, UiState, WouldCause,
 };
 pub use theme::Theme;
 pub use time_axis::TimeAxis;

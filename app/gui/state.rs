@@ -31,6 +31,11 @@ pub struct Persisted {
     /// alone.
     #[serde(default)]
     pub compare_policies: bool,
+    /// The guided tour was ended: it no longer opens by itself with the
+    /// tutorial plan (Help > Guided tour still shows it; Help > Reset guided
+    /// tour makes it open by itself again).
+    #[serde(default)]
+    pub tour_dismissed: bool,
 }
 
 impl Persisted {
@@ -115,6 +120,8 @@ pub struct PathPrompt {
 pub enum Pending {
     /// Open this file.
     Open(PathBuf),
+    /// Open the bundled tutorial plan and start the guided tour.
+    OpenTutorial,
     /// Quit.
     Quit,
 }
@@ -163,30 +170,56 @@ pub enum OverlayPlot {
     Peak,
 }
 
-/// What an activity that failed in placement on energy or peak power would
-/// have caused at the start its explanation reports: the plot's profile with
-/// it placed, the violation point and the culprits to highlight.
+/// One energy or peak-power reason of a failed activity's explanation: the
+/// start it was evaluated at and the limit it broke there.
 #[derive(Clone, Debug, PartialEq)]
-pub struct WouldCause {
-    /// The failed activity.
-    pub activity: usize,
+pub struct OverlayReason {
+    /// Its index in the explanation's `reasons`.
+    pub reason: usize,
     /// The plot it is drawn on.
     pub plot: OverlayPlot,
-    /// The start and duration tried (plan seconds).
+    /// The starts of its range (plan seconds).
+    pub first: i64,
+    /// The last start of its range (plan seconds).
+    pub last: i64,
+    /// The start its numbers were evaluated at (plan seconds).
     pub start: i64,
     /// The duration tried (seconds).
     pub duration: i64,
-    /// The profile with it placed `[t, Wh or W]` (peak power as pairs of points).
-    pub points: Vec<[f64; 2]>,
-    /// The violation: time (plan seconds) and value (Wh or W).
+    /// The violation: time (plan seconds).
     pub at: i64,
     /// The value reached there (Wh or W).
     pub value: f64,
     /// "would reach 894.0 Wh < min_soc 900.0 Wh".
     pub label: String,
+}
+
+/// What an activity that failed in placement on energy or peak power would
+/// have caused: every such reason of its explanation (each range of starts
+/// with the limit it broke), and for the one shown the plot's profile with it
+/// placed at that reason's start; the culprits to highlight.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WouldCause {
+    /// The failed activity.
+    pub activity: usize,
+    /// Its energy and peak-power reasons, in the explanation's order (never
+    /// empty).
+    pub reasons: Vec<OverlayReason>,
+    /// The index in `reasons` of the one drawn with its profile.
+    pub shown: usize,
+    /// The profile with it placed at the shown reason's start `[t, Wh or W]`
+    /// (peak power as pairs of points); empty when it could not be placed.
+    pub points: Vec<[f64; 2]>,
     /// The culprits every view names (`solscope_engine::involved`), activity
     /// indices.
     pub culprits: Vec<usize>,
+}
+
+impl WouldCause {
+    /// The reason drawn with its profile.
+    pub fn shown(&self) -> Option<&OverlayReason> {
+        self.reasons.get(self.shown)
+    }
 }
 
 /// What the window shows: the plan's schedule, or its execution.
@@ -231,6 +264,7 @@ impl UiState {
                 mode: Mode::Schedule,
                 cycle: 0,
                 cycle_step: LAST_STEP,
+                overlay_reason: None,
             },
             messages: Messages::default(),
             text: TextBuffers::default(),
@@ -278,9 +312,20 @@ pub struct Navigation {
     /// Execution mode: the step shown inside that cycle's scheduler run (clamped
     /// to its steps when read; [`LAST_STEP`] shows its last).
     pub cycle_step: usize,
+    /// The failed activity and the index of its energy or peak-power reason
+    /// whose profile the plots draw (the first when none was picked for it).
+    pub overlay_reason: Option<(usize, usize)>,
 }
 
 impl Navigation {
+    /// The index of the energy or peak-power reason of activity `a` whose
+    /// profile the plots draw.
+    pub fn overlay_reason_of(&self, a: usize) -> usize {
+        self.overlay_reason
+            .filter(|&(b, _)| b == a)
+            .map_or(0, |(_, i)| i)
+    }
+
     /// Where the user is, as Back and Forward restore it.
     pub fn place(&self) -> Place {
         Place {
@@ -435,6 +480,18 @@ pub struct Messages {
     /// A plan file that did not load, being repaired (its text is
     /// [`TextBuffers::repair_text`]); the plan open stays until it loads.
     pub repair: Option<Repair>,
+    /// The guided tour, while it is shown.
+    pub tour: Option<Tour>,
+}
+
+/// Where the guided tour is (see `gui::tour`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Tour {
+    /// The page shown (0-based).
+    pub page: usize,
+    /// The id of the failed activity it follows (picked when it started: the
+    /// first failure of the schedule), none when the plan had no failure.
+    pub target: Option<String>,
 }
 
 /// An activity dragged on the Gantt to a start outside its slack, offered to be

@@ -94,6 +94,8 @@ pub struct Theme {
     /// The outline of the culprits of the selected failed activity's energy or
     /// peak-power failure.
     pub culprit: Color32,
+    /// The guided tour: the outline of what its page talks about.
+    pub tour: Color32,
 }
 
 /// Least distance between two labelled value grid lines on a plot (points).
@@ -210,6 +212,17 @@ pub const CULPRIT_STROKE: f32 = 2.0;
 pub const WOULD_CAUSE_STROKE: f32 = 1.5;
 /// Radius of the violation point's marker on a plot.
 pub const VIOLATION_RADIUS: f32 = 4.0;
+/// Width of the guided tour's window.
+pub const TOUR_WIDTH: f32 = 340.0;
+/// Gap between the guided tour's window and what it points at.
+pub const TOUR_GAP: f32 = 12.0;
+/// Height of the inspector section the guided tour outlines when no heading
+/// follows it (points).
+pub const TOUR_SECTION: f32 = 240.0;
+/// Outline width of what the guided tour's page talks about.
+pub const TOUR_OUTLINE: f32 = 2.0;
+/// Radius of the hollow markers of the other reasons' violations.
+pub const OTHER_VIOLATION_RADIUS: f32 = 3.5;
 /// Outline width of the selected activity's dispatchable neighbours.
 pub const NEIGHBOUR_STROKE: f32 = 1.5;
 /// Outline width of the ghost of a dragged bar.
@@ -265,6 +278,7 @@ impl Theme {
                 highlight: Color32::from_rgb(200, 255, 80),
                 would_cause: Color32::from_rgba_unmultiplied(255, 170, 60, 200),
                 culprit: Color32::from_rgb(255, 170, 60),
+                tour: Color32::from_rgb(120, 200, 255),
             }
         } else {
             Self {
@@ -299,6 +313,7 @@ impl Theme {
                 highlight: Color32::from_rgb(20, 140, 20),
                 would_cause: Color32::from_rgba_unmultiplied(210, 110, 0, 210),
                 culprit: Color32::from_rgb(210, 110, 0),
+                tour: Color32::from_rgb(0, 110, 200),
             }
         }
     }

@@ -6,7 +6,7 @@ use eframe::egui::{self, Pos2, Rect, RichText, Sense, Stroke};
 use serde_json::{Map, Value};
 use solscope_engine::{CategoryIntervals, Phase, explanation_notes, reason_line, suggestion_line};
 
-use super::{Model, Status, command_button, editor, execution, flex};
+use super::{Model, Status, TourAnchors, command_button, editor, execution, flex};
 use crate::gui::commands::{Command, UiCommand};
 use crate::gui::help;
 use crate::gui::state::{Mode, TextBuffers};
@@ -19,6 +19,7 @@ pub fn inspector_ui(
     ui: &mut egui::Ui,
     m: &Model<'_>,
     st: &mut TextBuffers,
+    anchors: &mut TourAnchors,
     cmds: &mut Vec<Command>,
 ) {
     ui.heading("Inspector");
@@ -38,7 +39,7 @@ pub fn inspector_ui(
             ui.label("Select an activity in the list or on the Gantt chart.");
             command_button(ui, UiCommand::AddActivity, true, cmds);
         }
-        (Mode::Schedule, Some(a)) => activity_ui(ui, m, st, a, cmds),
+        (Mode::Schedule, Some(a)) => activity_ui(ui, m, st, a, anchors, cmds),
     }
     ui.separator();
     egui::CollapsingHeader::new("Plan limits")
@@ -81,6 +82,7 @@ fn activity_ui(
     m: &Model<'_>,
     st: &mut TextBuffers,
     a: usize,
+    anchors: &mut TourAnchors,
     cmds: &mut Vec<Command>,
 ) {
     let act = &m.doc.plan.activities[a];
@@ -138,8 +140,10 @@ fn activity_ui(
     }
     if let Some(ex) = m.explanation {
         ui.separator();
-        ui.label(RichText::new("Why it did not schedule").strong())
+        let why = ui
+            .label(RichText::new("Why it did not schedule").strong())
             .on_hover_text(help::WHY);
+        anchors.why = Some(why.rect);
         if let Some(k) = ex.failure_step {
             if ui
                 .button(format!("Go to failure step {k}"))
@@ -155,15 +159,55 @@ fn activity_ui(
                 ui.label(format!("Conflict: {}", names.join(" + ")));
             }
         }
-        for r in ex.reasons.iter().take(4) {
-            ui.label(reason_line(&m.doc.plan, &m.analysis.schedule.problem, r));
+        for (i, r) in ex.reasons.iter().enumerate().take(4) {
+            let line = reason_line(&m.doc.plan, &m.analysis.schedule.problem, r);
+            // An energy or peak-power reason can be drawn over its plot (when
+            // there is more than one to choose from).
+            let overlay = m.would_cause.filter(|w| w.reasons.len() > 1).and_then(|w| {
+                let j = w.reasons.iter().position(|o| o.reason == i)?;
+                Some((w, j))
+            });
+            match overlay {
+                Some((w, j)) => {
+                    ui.horizontal_wrapped(|ui| {
+                        ui.label(line);
+                        if ui
+                            .selectable_label(w.shown == j, "Show on plot")
+                            .on_hover_text(help::OVERLAY_REASONS)
+                            .clicked()
+                        {
+                            cmds.push(Command::ShowReason {
+                                activity: a,
+                                index: j,
+                            });
+                        }
+                    });
+                }
+                None => {
+                    ui.label(line);
+                }
+            }
+        }
+        if ex.reasons.len() > 4 {
+            let more = ex.reasons.len() - 4;
+            let text = if m.would_cause.is_some() {
+                format!(
+                    "and {more} more range(s) of starts (Next reason on the plots goes \
+                     through the energy and peak-power ones)"
+                )
+            } else {
+                format!("and {more} more range(s) of starts")
+            };
+            ui.label(RichText::new(text).color(m.theme.muted));
         }
         for note in explanation_notes(&m.doc.plan, &m.analysis.schedule.problem, ex) {
             ui.label(note);
         }
         if !ex.culprits.is_empty() {
-            ui.label(RichText::new("Involved (click to select and jump to its step)").strong())
+            let involved = ui
+                .label(RichText::new("Involved (click to select and jump to its step)").strong())
                 .on_hover_text(help::INVOLVED);
+            anchors.involved = Some(involved.rect);
             for c in solscope_engine::involved(ex) {
                 let text = format!(
                     "{} (step {}, {})",
@@ -177,8 +221,10 @@ fn activity_ui(
                 }
             }
         }
-        ui.label(RichText::new("Suggestions (verified by rescheduling)").strong())
+        let suggestions = ui
+            .label(RichText::new("Suggestions (verified by rescheduling)").strong())
             .on_hover_text(help::SUGGESTIONS);
+        anchors.suggestions = Some(suggestions.rect);
         match m.suggestions {
             None => {
                 ui.horizontal(|ui| {

@@ -17,6 +17,8 @@ pub use list::{Listed, SearchIndex};
 mod montecarlo;
 mod plots;
 mod repair;
+mod tour;
+pub use tour::TourAnchors;
 
 use eframe::egui::{self, RichText};
 use solscope_engine::{Outcome, Suggestion, parse_local};
@@ -154,6 +156,8 @@ pub struct ViewCache {
     /// How each activity bar drawn last frame looked with the search and
     /// filters (every bar plain without them).
     pub looks: Vec<(usize, Look)>,
+    /// Where the parts the guided tour points at were drawn this frame.
+    pub tour_anchors: TourAnchors,
 }
 
 /// How the Gantt draws an activity's bar against the search and filters.
@@ -332,7 +336,8 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
     }
     // What the search and filters select, for the list and the Gantt alike.
     w.cache.listed(&m.doc.plan, m.analysis, m.nav, m.revision);
-    egui::Panel::top("toolbar").show(ui, |ui| {
+    w.cache.tour_anchors = TourAnchors::default();
+    let top = egui::Panel::top("toolbar").show(ui, |ui| {
         toolbar_ui(ui, m, cmds);
         match m.nav.mode {
             Mode::Schedule => steps_ui(ui, m, cmds),
@@ -344,22 +349,26 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
         }
         banner_ui(ui, m, cmds);
     });
-    egui::Panel::left("activities")
+    w.cache.tour_anchors.top = Some(top.response.rect);
+    let list = egui::Panel::left("activities")
         .resizable(true)
         .default_size(LIST_WIDTH)
         .show(ui, |ui| {
             list::activities_ui(ui, m, w, cmds);
         });
-    egui::Panel::right("inspector")
+    w.cache.tour_anchors.list = Some(list.response.rect);
+    let anchors = &mut w.cache.tour_anchors;
+    let inspector = egui::Panel::right("inspector")
         .resizable(false)
         .exact_size(INSPECTOR_WIDTH)
         .show(ui, |ui| {
             egui::ScrollArea::vertical()
                 .auto_shrink([false; 2])
                 .show(ui, |ui| {
-                    inspector::inspector_ui(ui, m, w.text, cmds);
+                    inspector::inspector_ui(ui, m, w.text, anchors, cmds);
                 });
         });
+    w.cache.tour_anchors.inspector = Some(inspector.response.rect);
     if m.nav.mode == Mode::Execution {
         // Under the Gantt and plots, between the side panels.
         egui::Panel::bottom("monte_carlo")
@@ -378,6 +387,7 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
                 plots::plots_ui(ui, m, w.cache, cmds);
             });
     });
+    tour::tour_ui(ui, m, &w.cache.tour_anchors, cmds);
     confirm_ui(ui, m, cmds);
     pin_ui(ui, m, cmds);
     path_prompt_ui(ui, m, &mut w.text.path_text, cmds);
@@ -462,6 +472,30 @@ fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
             }
             ui.separator();
             menu_item(ui, UiCommand::Quit, cmds);
+        });
+        ui.menu_button("Help", |ui| {
+            let tour = UiCommand::GuidedTour;
+            if ui
+                .button(tour.label())
+                .on_hover_text(
+                    "A short tour of one failure on the tutorial plan: steps, why it failed, \
+                     what took its place, a checked fix and undo",
+                )
+                .clicked()
+            {
+                cmds.push(tour.into());
+            }
+            let reset = UiCommand::ResetTour;
+            if ui
+                .add_enabled(m.persisted.tour_dismissed, egui::Button::new(reset.label()))
+                .on_hover_text(
+                    "The tour opens by itself again the next time the tutorial plan is opened",
+                )
+                .on_disabled_hover_text("The tour opens by itself with the tutorial plan")
+                .clicked()
+            {
+                cmds.push(reset.into());
+            }
         });
         shortcut_button(ui, UiCommand::Back, m.nav.history.can_back(), cmds);
         shortcut_button(ui, UiCommand::Forward, m.nav.history.can_forward(), cmds);
@@ -749,6 +783,10 @@ fn confirm_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
     };
     let (what, save_and) = match pending {
         Pending::Open(p) => (format!("open {}", p.display()), "Save and open"),
+        Pending::OpenTutorial => (
+            "open the tutorial plan for the guided tour".to_string(),
+            "Save and open",
+        ),
         Pending::Quit => ("quit".to_string(), "Save and quit"),
     };
     egui::Modal::new(egui::Id::unique("confirm_discard")).show(ui.ctx(), |ui| {

@@ -18,10 +18,10 @@ use super::execution::kind_name;
 use super::{Model, ViewCache};
 use crate::gui::commands::Command;
 use crate::gui::execution::ExecutionRun;
-use crate::gui::state::{Mode, OverlayPlot, StepView, WouldCause};
+use crate::gui::state::{Mode, OverlayPlot, OverlayReason, StepView, WouldCause};
 use crate::gui::theme::{
-    CYCLE_LINE_STROKE, LABEL_WIDTH, LIMIT_FONT_SIZE, PLOT_HEIGHT, TICK_GAP, VALUE_GRID_GAP,
-    VIOLATION_RADIUS, WOULD_CAUSE_STROKE,
+    CYCLE_LINE_STROKE, LABEL_WIDTH, LIMIT_FONT_SIZE, OTHER_VIOLATION_RADIUS, PLOT_HEIGHT, TICK_GAP,
+    VALUE_GRID_GAP, VIOLATION_RADIUS, WOULD_CAUSE_STROKE,
 };
 use crate::gui::time_axis::{TimeAxis, tick_label, ticks};
 
@@ -46,8 +46,9 @@ struct Mark {
 }
 
 /// One plot: its series over the shared time axis, horizontal limit lines,
-/// vertical marks and the violation point of what a failed activity would have
-/// caused.
+/// vertical marks and the violation points of what a failed activity would
+/// have caused on it (`overlay`: the shown reason's filled and labelled, the
+/// others' hollow).
 #[allow(clippy::too_many_arguments)]
 fn plot_ui(
     ui: &mut egui::Ui,
@@ -57,9 +58,22 @@ fn plot_ui(
     series: &[Series<'_>],
     limits: &[(&str, f64)],
     marks: &[Mark],
-    violation: Option<&WouldCause>,
+    overlay: Option<(&WouldCause, OverlayPlot)>,
     cmds: &mut Vec<Command>,
 ) {
+    // The failed activity's reasons on this plot, with whether it is the
+    // one whose profile is drawn.
+    let violations: Vec<(&OverlayReason, bool)> = overlay
+        .map(|(w, plot)| {
+            w.reasons
+                .iter()
+                .enumerate()
+                .filter(|(_, r)| r.plot == plot)
+                .map(|(i, r)| (r, i == w.shown))
+                .collect()
+        })
+        .unwrap_or_default();
+    let highest_violation = violations.iter().map(|v| v.0.value).fold(0.0, f64::max);
     let limit_color = m.theme.limit;
     let unit = unit_of(id);
     let axis = m.nav.axis;
@@ -122,7 +136,7 @@ fn plot_ui(
         .include_y(0.0)
         // Room above the highest limit for its label.
         .include_y(limits.iter().map(|l| l.1).fold(0.0, f64::max) * LIMIT_HEADROOM)
-        .include_y(violation.map_or(0.0, |w| w.value * LIMIT_HEADROOM))
+        .include_y(highest_violation * LIMIT_HEADROOM)
         .y_axis_label(id)
         .y_axis_min_width(LABEL_WIDTH - 30.0);
     let resp = plot.show(ui, |plot_ui| {
@@ -165,17 +179,33 @@ fn plot_ui(
         if let Some(t) = probe {
             plot_ui.vline(VLine::new("probe", t as f64));
         }
-        if let Some(w) = violation {
-            let at = PlotPoint::new(w.at as f64, w.value);
+        // The other reasons' violations first, hollow, so the shown one is
+        // drawn over them.
+        let others: Vec<[f64; 2]> = violations
+            .iter()
+            .filter(|v| !v.1)
+            .map(|v| [v.0.at as f64, v.0.value])
+            .collect();
+        if !others.is_empty() {
             plot_ui.points(
-                Points::new("violation", vec![[w.at as f64, w.value]])
+                Points::new("other starts' violations", others)
+                    .shape(MarkerShape::Circle)
+                    .filled(false)
+                    .radius(OTHER_VIOLATION_RADIUS)
+                    .color(m.theme.would_cause),
+            );
+        }
+        for (r, _) in violations.iter().filter(|v| v.1) {
+            let at = PlotPoint::new(r.at as f64, r.value);
+            plot_ui.points(
+                Points::new("violation", vec![[r.at as f64, r.value]])
                     .shape(MarkerShape::Circle)
                     .radius(VIOLATION_RADIUS)
                     .color(m.theme.would_cause),
             );
             // The label below the point (a line down, clear of the limit
             // labels next to the limit it breaks), on the side with more room.
-            let anchor = if w.at as f64 > axis.start + axis.span() / 2.0 {
+            let anchor = if r.at as f64 > axis.start + axis.span() / 2.0 {
                 egui::Align2::RIGHT_TOP
             } else {
                 egui::Align2::LEFT_TOP
@@ -184,7 +214,7 @@ fn plot_ui(
                 Text::new(
                     "violation",
                     at,
-                    RichText::new(format!("\n  {}  ", w.label)).size(LIMIT_FONT_SIZE),
+                    RichText::new(format!("\n  {}  ", r.label)).size(LIMIT_FONT_SIZE),
                 )
                 .anchor(anchor)
                 .color(m.theme.would_cause),
@@ -325,31 +355,109 @@ fn limits(m: &Model<'_>) -> [Vec<(&'static str, f64)>; 3] {
     [soc, peak, data]
 }
 
-/// The name of the line of what `w`'s activity would have caused.
-fn would_cause_name(m: &Model<'_>, w: &WouldCause) -> String {
+/// The name of the line of what `w`'s activity would have caused at reason
+/// `r`'s start.
+fn would_cause_name(m: &Model<'_>, w: &WouldCause, r: &OverlayReason) -> String {
     let id = m
         .doc
         .plan
         .activities
         .get(w.activity)
         .map_or("", |a| a.id.as_str());
-    format!("{id} if placed at {}", m.time(w.start))
+    format!("{id} if placed at {}", m.time(r.start))
 }
 
-/// The line above a plot that says what the selected failed activity would
-/// have caused on it (its accessible name too).
-fn would_cause_label(ui: &mut egui::Ui, m: &Model<'_>, w: Option<&WouldCause>) {
-    if let Some(w) = w {
-        ui.label(
-            RichText::new(format!(
-                "Dashed: {} for {}: {} at {}",
-                would_cause_name(m, w),
-                format_span(w.duration),
-                w.label,
-                m.time(w.at)
-            ))
-            .color(m.theme.would_cause),
-        );
+/// The lines above a plot that say what the selected failed activity would
+/// have caused on it (their accessible names too): the dashed profile of the
+/// reason shown when it is on this plot, with Previous / Next reason to go
+/// through the others when there are several; the hollow circles of the
+/// others' violations otherwise.
+fn would_cause_label(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    w: Option<&WouldCause>,
+    plot: OverlayPlot,
+    cmds: &mut Vec<Command>,
+) {
+    let Some(w) = w else {
+        return;
+    };
+    let n = w.reasons.len();
+    let on_plot = w.reasons.iter().filter(|r| r.plot == plot).count();
+    match w.shown().filter(|r| r.plot == plot) {
+        Some(r) => {
+            let profile = if w.points.is_empty() {
+                "(no profile: it could not be placed there)"
+            } else {
+                "Dashed:"
+            };
+            ui.label(
+                RichText::new(format!(
+                    "{profile} {} for {}: {} at {}",
+                    would_cause_name(m, w, r),
+                    format_span(r.duration),
+                    r.label,
+                    m.time(r.at)
+                ))
+                .color(m.theme.would_cause),
+            );
+            if n > 1 {
+                ui.horizontal_wrapped(|ui| {
+                    let go = |index: usize| Command::ShowReason {
+                        activity: w.activity,
+                        index,
+                    };
+                    if ui
+                        .add_enabled(w.shown > 0, egui::Button::new("Previous reason"))
+                        .clicked()
+                    {
+                        cmds.push(go(w.shown - 1));
+                    }
+                    ui.label(
+                        RichText::new(format!(
+                            "reason {} of {n} on energy or peak power: starts {} to {}",
+                            w.shown + 1,
+                            m.time(r.first),
+                            m.time(r.last)
+                        ))
+                        .color(m.theme.would_cause),
+                    );
+                    if ui
+                        .add_enabled(w.shown + 1 < n, egui::Button::new("Next reason"))
+                        .clicked()
+                    {
+                        cmds.push(go(w.shown + 1));
+                    }
+                })
+                .response
+                .on_hover_text(crate::gui::help::OVERLAY_REASONS);
+            }
+            if on_plot > 1 {
+                ui.label(
+                    RichText::new(format!(
+                        "Hollow circles: where the other {} reason(s) on this plot would \
+                         break the limit, each at its own start",
+                        on_plot - 1
+                    ))
+                    .color(m.theme.would_cause),
+                );
+            }
+        }
+        None if on_plot > 0 => {
+            ui.label(
+                RichText::new(format!(
+                    "Hollow circles: where {on_plot} reason(s) of {} on this plot would break \
+                     the limit (Next reason draws each one's profile)",
+                    m.doc
+                        .plan
+                        .activities
+                        .get(w.activity)
+                        .map_or("", |a| a.id.as_str()),
+                ))
+                .color(m.theme.would_cause),
+            );
+        }
+        None => {}
     }
 }
 
@@ -375,13 +483,18 @@ pub fn plots_ui<'a>(
         dashed: false,
         width: None,
     };
-    // What the selected failed activity would have caused, on its plot.
-    let on = |plot: OverlayPlot| m.would_cause.filter(|w| w.plot == plot);
+    // What the selected failed activity would have caused: the shown
+    // reason's profile dashed on its plot, every reason's violation marked.
+    let overlay = |plot: OverlayPlot| m.would_cause.map(|w| (w, plot));
     let with_overlay = |base: Series<'a>, plot: OverlayPlot| -> Vec<Series<'a>> {
         let mut series = vec![base];
-        if let Some(w) = on(plot) {
+        if let Some((w, r)) = m
+            .would_cause
+            .and_then(|w| w.shown().map(|r| (w, r)))
+            .filter(|(_, r)| r.plot == plot)
+        {
             series.push(Series {
-                name: would_cause_name(m, w),
+                name: would_cause_name(m, w, r),
                 points: &w.points,
                 color: m.theme.would_cause,
                 dashed: true,
@@ -391,7 +504,7 @@ pub fn plots_ui<'a>(
         series
     };
     ui.label(RichText::new(format!("State of charge (Wh) after step {}", sv.step)).strong());
-    would_cause_label(ui, m, on(OverlayPlot::Soc));
+    would_cause_label(ui, m, m.would_cause, OverlayPlot::Soc, cmds);
     plot_ui(
         ui,
         m,
@@ -400,11 +513,11 @@ pub fn plots_ui<'a>(
         &with_overlay(one(SOC, &sv.soc), OverlayPlot::Soc),
         &soc_limits,
         &[],
-        on(OverlayPlot::Soc),
+        overlay(OverlayPlot::Soc),
         cmds,
     );
     ui.label(RichText::new(PEAK).strong());
-    would_cause_label(ui, m, on(OverlayPlot::Peak));
+    would_cause_label(ui, m, m.would_cause, OverlayPlot::Peak, cmds);
     plot_ui(
         ui,
         m,
@@ -413,7 +526,7 @@ pub fn plots_ui<'a>(
         &with_overlay(one(PEAK, &sv.peak), OverlayPlot::Peak),
         &peak_limits,
         &[],
-        on(OverlayPlot::Peak),
+        overlay(OverlayPlot::Peak),
         cmds,
     );
     ui.label(RichText::new(DATA).strong());
