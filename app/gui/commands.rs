@@ -12,7 +12,7 @@ use std::path::PathBuf;
 use eframe::egui::{Key, KeyboardShortcut, Modifiers};
 use serde_json::{Map, Value};
 
-use super::state::{Dialog, ListFilter};
+use super::state::{Dialog, ListFilter, StepWindow};
 use super::time_axis::TimeAxis;
 
 /// A command the user gives by name: its label is the button's text (and
@@ -102,6 +102,13 @@ pub enum UiCommand {
     PreviousMatch,
     /// Show every activity again: empty the search, clear the filters.
     ClearFilters,
+    /// Zoom the step slider in about the step shown (fewer steps across the
+    /// rail, so one step of a long run can be picked with the mouse).
+    ZoomStepsIn,
+    /// Zoom the step slider out about the step shown.
+    ZoomStepsOut,
+    /// The step slider spans every step of the run again.
+    AllSteps,
 }
 
 impl UiCommand {
@@ -182,6 +189,9 @@ impl UiCommand {
             Self::NextMatch => "Next match",
             Self::PreviousMatch => "Previous match",
             Self::ClearFilters => "Clear filters",
+            Self::ZoomStepsIn => "Zoom steps in",
+            Self::ZoomStepsOut => "Zoom steps out",
+            Self::AllSteps => "All steps",
         }
     }
 
@@ -233,7 +243,10 @@ impl UiCommand {
             | Self::NominalActuals
             | Self::CancelCampaign
             | Self::ToggleComparePolicies
-            | Self::ClearFilters => None,
+            | Self::ClearFilters
+            | Self::ZoomStepsIn
+            | Self::ZoomStepsOut
+            | Self::AllSteps => None,
         }
     }
 }
@@ -315,6 +328,9 @@ pub enum Command {
     SetCycle(usize),
     /// Execution mode: show the state after this step of the cycle's run.
     SetCycleStep(usize),
+    /// The steps the step slider spans (Ctrl+wheel over it zooms, the wheel
+    /// pans).
+    SetStepsShown(StepWindow),
     /// Execute with the actual durations of this file (the host sends it once a
     /// file is chosen); an invalid file changes nothing and shows its error.
     OpenActuals(PathBuf),

@@ -35,7 +35,7 @@ pub use host::{SolscopeHost, run, save_color_image};
 pub use montecarlo::{CampaignResult, Progress, StopReason, Stopped};
 pub use state::{
     History, LAST_STEP, ListFilter, Mode, OverlayPlot, PathPrompt, Pending, Persisted, Place,
-    StatusFilter, StepView, UiState, WouldCause,
+    StatusFilter, StepView, StepWindow, UiState, WouldCause,
 };
 pub use theme::Theme;
 pub use time_axis::TimeAxis;

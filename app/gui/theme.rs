@@ -180,6 +180,10 @@ pub const STEP_SLIDER_WIDTH: f32 = 320.0;
 /// The least room left beside the step slider for the step's label to stay on
 /// the slider's line (cut with an ellipsis there) rather than wrap below it.
 pub const STEP_LABEL_MIN_WIDTH: f32 = 160.0;
+/// The fewest rail points per step the step slider gives before it offers to
+/// zoom (a longer run gets "Zoom steps in" / "Zoom steps out"), and the
+/// fewest a planner can pick one step at with the mouse.
+pub const STEP_PICK_POINTS: f32 = 4.0;
 /// Height of a failure tick on the step slider.
 pub const FAILURE_TICK_HEIGHT: f32 = 5.0;
 /// Width of a failure tick on the step slider.
