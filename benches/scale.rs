@@ -389,6 +389,25 @@ fn navigation(profiles: &[(&str, Profile)], quick: bool) {
     }
 }
 
+/// CPU time (user + system) of the calling thread so far, from
+/// `/proc/thread-self/stat` (clock ticks of 10 ms: good over many frames).
+fn thread_cpu() -> Option<Duration> {
+    let stat = std::fs::read_to_string("/proc/thread-self/stat").ok()?;
+    // The fields after the command name (which is in parentheses).
+    let rest = stat.rsplit_once(')')?.1;
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks: u64 = f.get(11)?.parse::<u64>().ok()? + f.get(12)?.parse::<u64>().ok()?;
+    Some(Duration::from_millis(ticks * 10))
+}
+
+/// Mean CPU time a frame of `frames` took on this thread since `since`.
+fn cpu_per_frame(since: Option<Duration>, frames: u32) -> String {
+    match (since, thread_cpu()) {
+        (Some(a), Some(b)) => ms((b - a) / frames),
+        _ => "n/a".into(),
+    }
+}
+
 /// Median and worst of `times`.
 fn median_max(times: &mut [Duration]) -> (Duration, Duration) {
     times.sort();
@@ -408,9 +427,9 @@ fn drag(profiles: &[(&str, Profile)], quick: bool) {
         &[(1000, 3), (10_000, 30)]
     };
     println!(
-        "| profile | activities | sols | drag, 1 step change a frame: median | worst | drag, 5 step changes a frame: median | worst | zoom: median | worst | plots at the last step after |"
+        "| profile | activities | sols | drag, 1 step change a frame: median | worst | UI thread CPU a frame | drag, 5 step changes a frame: median | worst | zoom: median | worst | UI thread CPU a frame | plots at the last step after |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for &(name, profile) in profiles {
         for &(n, sols) in sizes {
             let plan = generate_plan_with(profile, n, sols, 1);
@@ -436,9 +455,11 @@ fn drag(profiles: &[(&str, Profile)], quick: bool) {
                 t.elapsed()
             };
             // A drag from the first step to the last, one new step a frame.
+            let cpu = thread_cpu();
             let mut one: Vec<Duration> = (0..60)
                 .map(|i| timed(&mut app, vec![Command::SetStep(steps * i / 59)]))
                 .collect();
+            let one_cpu = cpu_per_frame(cpu, 60);
             // Back, with five changes between two frames (a fast pointer, or
             // key repeats): only the last should cost.
             let mut five: Vec<Duration> = (0..60)
@@ -456,8 +477,15 @@ fn drag(profiles: &[(&str, Profile)], quick: bool) {
                 frame(&ctx, &mut app);
             }
             let caught_up = t.elapsed();
-            // Zoom the time range in about its middle, then out again.
+            // Zoom the time range in about its middle, then out again, at the
+            // last step (every bar and the whole profiles drawn).
+            app.apply(Command::SetStep(steps));
+            let t = Instant::now();
+            while app.step_view.step != steps && t.elapsed() < Duration::from_secs(10) {
+                frame(&ctx, &mut app);
+            }
             let bounds = (plan.horizon.start as f64, plan.horizon.end as f64);
+            let cpu = thread_cpu();
             let mut zoom: Vec<Duration> = (0..30)
                 .map(|i| {
                     let mut axis: TimeAxis = app.ui.nav.axis;
@@ -466,11 +494,12 @@ fn drag(profiles: &[(&str, Profile)], quick: bool) {
                     timed(&mut app, vec![Command::SetAxis(axis)])
                 })
                 .collect();
+            let zoom_cpu = cpu_per_frame(cpu, 30);
             let (om, ow) = median_max(&mut one);
             let (fm, fw) = median_max(&mut five);
             let (zm, zw) = median_max(&mut zoom);
             println!(
-                "| {name} | {n} | {sols} | {} | {} | {} | {} | {} | {} | {} |",
+                "| {name} | {n} | {sols} | {} | {} | {one_cpu} | {} | {} | {} | {} | {zoom_cpu} | {} |",
                 ms(om),
                 ms(ow),
                 ms(fm),
@@ -568,8 +597,32 @@ fn flex(profiles: &[(&str, Profile)], quick: bool, seeds: u64) {
                 if seed == 1 {
                     edges = (f.network_edges, f.dispatchable.len());
                 }
-                // Free slack is quadratic in the placed activities: not at 10,000
-                // (docs/performance.md has the figure measured once).
+                // Free slack is quadratic in the placed activities: at 10,000
+                // (seed 1) a sample of 20 placed activities spread over the run,
+                // timed one by one, for the estimate of the whole.
+                if n > 1000 && seed == 1 {
+                    let sample: Vec<usize> = (0..20)
+                        .map(|i| f.activities[i * f.activities.len() / 20].activity)
+                        .collect();
+                    let mut each: Vec<Duration> = sample
+                        .iter()
+                        .map(|&a| {
+                            let t = Instant::now();
+                            std::hint::black_box(free_slack_of(&sched, a));
+                            t.elapsed()
+                        })
+                        .collect();
+                    let mean = each.iter().sum::<Duration>() / 20;
+                    let (med, worst) = median_max(&mut each);
+                    eprintln!(
+                        "{name} {n}: free slack of 20 sampled activities of {}: median {}, worst {}, mean {} each; the whole, one thread, estimated at {:.0} s",
+                        f.activities.len(),
+                        ms(med),
+                        ms(worst),
+                        ms(mean),
+                        mean.as_secs_f64() * f.activities.len() as f64
+                    );
+                }
                 if n <= 1000 {
                     let t = Instant::now();
                     for fa in &f.activities {
