@@ -678,6 +678,9 @@ pub struct FlexCache {
     /// Seconds the free slack of the revision in `done` was computed for in
     /// runs that ended (stopped or done).
     spent: f64,
+    /// The revision whose free slack worker stopped without finishing (it
+    /// panicked): not started again for it.
+    failed: Option<u64>,
 }
 
 /// The flexible form of `schedule` (with or without free slack); a panic in the
@@ -748,7 +751,7 @@ impl FlexCache {
         let Some((_, schedule)) = self.source.as_ref().filter(|(s, _)| *s == *r) else {
             return;
         };
-        if *r != revision {
+        if *r != revision || self.failed == Some(revision) {
             return;
         }
         let mut todo: Vec<(f64, usize)> = flex
@@ -817,6 +820,7 @@ impl FlexCache {
             total: flex.activities.len(),
             running,
             seconds: (self.spent + now) as u64,
+            failed: self.failed == Some(revision),
         })
     }
 
@@ -866,11 +870,14 @@ impl FlexCache {
         self.free = None;
         match ended {
             Ok(()) => Ok(()),
-            Err(()) => Err(
-                "Computing free slack failed: the worker stopped without a result \
-                 (what it found is shown)"
-                    .into(),
-            ),
+            Err(()) => {
+                self.failed = Some(revision);
+                Err(
+                    "Computing free slack failed: the worker stopped without a result \
+                     (what it found is shown)"
+                        .into(),
+                )
+            }
         }
     }
 

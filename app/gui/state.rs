@@ -165,6 +165,9 @@ pub struct FreeSlackProgress {
     pub running: bool,
     /// How long the computation has run so far (seconds, all its runs).
     pub seconds: u64,
+    /// The worker stopped without finishing (an internal error, shown): it is
+    /// not started again for this revision.
+    pub failed: bool,
 }
 
 impl FreeSlackProgress {

@@ -300,6 +300,12 @@ fn free_slack_status_ui(ui: &mut egui::Ui, m: &Model<'_>) {
 /// left), nearest the time range in view first", or where it stopped.
 pub fn free_slack_status(p: FreeSlackProgress) -> String {
     let spent = format_span(p.seconds as i64);
+    if p.failed {
+        return format!(
+            "free slack: {} of {} activities known (its computation failed after {spent})",
+            p.done, p.total
+        );
+    }
     if !p.running {
         return format!(
             "free slack: {} of {} activities known (stopped after {spent}; it goes on \

@@ -650,7 +650,9 @@ fn step_row_ui(
             command_button(ui, UiCommand::ZoomStepsIn, hi - lo > MIN_STEPS_SHOWN, cmds);
             if (lo, hi) != (0, n) {
                 command_button(ui, UiCommand::AllSteps, true, cmds);
-                ui.label(RichText::new(format!("steps {lo}–{hi} of {n}")).color(m.theme.muted))
+                // One piece: it moves to the next line whole rather than wrap.
+                let span = RichText::new(format!("steps {lo}–{hi} of {n}")).color(m.theme.muted);
+                ui.add(egui::Label::new(span).extend())
                     .on_hover_text(crate::gui::help::STEP_ZOOM);
             }
         }
