@@ -208,6 +208,10 @@ pub const LIMIT_LINE_STROKE: f32 = 1.5;
 pub const WHISKER_STROKE: f32 = 1.0;
 /// Height of the ticks at the ends of a whisker (points: the same at every zoom).
 pub const WHISKER_TICK: f32 = 8.0;
+/// A slack whisker reaching less than this (points) past its bar on both sides
+/// is not drawn: it would not show beside the bar (at a whole-plan zoom of
+/// 10,000 activities, thousands of them cost a frame more than the bars).
+pub const WHISKER_MIN_REACH: f32 = 1.0;
 /// Outline width of the culprits' bars of the selected failed activity.
 pub const CULPRIT_STROKE: f32 = 2.0;
 /// Width of the line of what a failed activity would have caused on a plot.

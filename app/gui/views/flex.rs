@@ -11,7 +11,7 @@ use solscope_engine::{
 use super::Model;
 use crate::gui::commands::Command;
 use crate::gui::state::FreeSlackProgress;
-use crate::gui::theme::{WHISKER_STROKE, WHISKER_TICK};
+use crate::gui::theme::{WHISKER_MIN_REACH, WHISKER_STROKE, WHISKER_TICK};
 use crate::gui::time_axis::TimeAxis;
 
 /// A bound as read: `10 min after zcam_tau_412 starts`, `when drive ends`.
@@ -231,7 +231,14 @@ pub fn underlay(
         shade(&p1.subtract(free), m.theme.slack_phase1);
         shade(free, m.theme.slack_free);
     }
-    if fa.start.ub > fa.start.lb {
+    // Past its bar `[nom, nom + d]` by at least a little on one side.
+    let reach = |a: i64, b: i64| x(b) - x(a) >= WHISKER_MIN_REACH;
+    let seen = reach(fa.start.lb, fa.start.nom)
+        || reach(
+            fa.start.nom.saturating_add(d),
+            fa.start.ub.saturating_add(d),
+        );
+    if fa.start.ub > fa.start.lb && seen {
         let stroke = Stroke::new(WHISKER_STROKE, m.theme.whisker);
         let (x0, x1) = (x(fa.start.lb), x(fa.start.ub.saturating_add(d)));
         let mid = y + h / 2.0;
