@@ -2683,3 +2683,30 @@ fn free_slack_fills_in_off_the_frame_says_how_far_and_stops_with_the_layer() {
     let again = h.state().free_slack_progress().unwrap();
     assert!(again.running && again.done >= stopped.done, "{again:?}");
 }
+
+#[test]
+fn the_selected_activity_s_free_slack_is_computed_ahead_of_the_rest() {
+    // The layer off: no worker computes the plan's free slack.
+    let mut h = generated(solscope_engine::Profile::Realistic, 1_000, 3, false);
+    wait_until(&mut h, "the flexible schedule", |app| app.flex().is_some());
+    let a = h.state().flex().unwrap().activities[500].activity;
+    h.state_mut().push(Command::Select(Some(a)));
+    h.run_steps(2);
+    wait_until(&mut h, "its free slack", |app| {
+        app.flex()
+            .and_then(|f| f.activity(a))
+            .is_some_and(|fa| fa.free_slack.is_some())
+    });
+    let fa = h.state().flex().unwrap().activity(a).unwrap().clone();
+    let one = solscope_engine::free_slack_of(&h.state().analysis.schedule, a).unwrap();
+    assert_eq!(
+        (fa.free_slack_phase1, fa.free_slack),
+        (Some(one.0), Some(one.1))
+    );
+    // Only its: the rest waits for the layer.
+    assert_eq!(h.state().free_slack_progress().map(|p| p.done), Some(1));
+    assert!(
+        h.query_by_label_contains("Free slack (every check, others fixed)")
+            .is_some()
+    );
+}

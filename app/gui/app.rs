@@ -238,6 +238,8 @@ impl SolscopeApp {
             self.derived.valid_for(&self.analysis, self.revision, a);
             self.derived
                 .would_cause_for(&self.doc.plan, &self.analysis, self.revision, a);
+            // Its free slack ahead of the rest (the inspector shows it).
+            self.flex.request_one(self.revision, a);
         }
         self.reap_worker();
         // A selection made by a command given outside a frame.

@@ -681,6 +681,9 @@ pub struct FlexCache {
     /// The revision whose free slack worker stopped without finishing (it
     /// panicked): not started again for it.
     failed: Option<u64>,
+    /// The selected activity's free slack computed on its own, ahead of the
+    /// rest (keyed by revision and activity).
+    one: Option<Job<(u64, usize), Option<solscope_engine::FreeSlack>>>,
 }
 
 /// The flexible form of `schedule` (with or without free slack); a panic in the
@@ -794,6 +797,39 @@ impl FlexCache {
         });
     }
 
+    /// Starts computing activity `a`'s free slack on its own worker (seconds:
+    /// one replay of the schedule), when the flexible schedule at `revision` is
+    /// in without it and no such worker runs: what the inspector shows for the
+    /// selected activity, whether the layer is shown or not, without waiting
+    /// for the rest.
+    pub fn request_one(&mut self, revision: u64, a: usize) {
+        if self.one.is_some() || self.failed == Some(revision) {
+            return;
+        }
+        let Some((r, Ok(flex))) = &self.done else {
+            return;
+        };
+        let Some((_, schedule)) = self.source.as_ref().filter(|(s, _)| *s == *r) else {
+            return;
+        };
+        if *r != revision || flex.activity(a).is_none_or(|fa| fa.free_slack.is_some()) {
+            return;
+        }
+        let schedule = Arc::clone(schedule);
+        self.one = Some(Job::spawn((revision, a), move || {
+            solscope_engine::free_slack_of(&schedule, a)
+        }));
+    }
+
+    /// The activity whose free slack is being computed on its own at
+    /// `revision`, if any.
+    pub fn computing_one(&self, revision: u64) -> Option<usize> {
+        self.one
+            .as_ref()
+            .filter(|j| j.key.0 == revision)
+            .map(|j| j.key.1)
+    }
+
     /// Stops the free slack worker (the layer was turned off): what it found
     /// stays.
     pub fn stop_free_slack(&mut self) {
@@ -821,6 +857,7 @@ impl FlexCache {
             running,
             seconds: (self.spent + now) as u64,
             failed: self.failed == Some(revision),
+            computing: self.computing_one(revision),
         })
     }
 
@@ -842,6 +879,25 @@ impl FlexCache {
                         return Err(e.into());
                     }
                     Err(()) => {}
+                }
+            }
+        }
+        if let Some(job) = &self.one {
+            if let Some(result) = job.poll() {
+                let (r, a) = job.key;
+                self.one = None;
+                match (result, &mut self.done) {
+                    (Ok(Some(fs)), Some((d, Ok(flex)))) if r == revision && *d == r => {
+                        Arc::make_mut(flex).set_free_slack(a, fs);
+                    }
+                    (Ok(_), _) => {}
+                    (Err(()), _) if r == revision => {
+                        self.failed = Some(revision);
+                        return Err("Computing the selected activity's free slack failed: the \
+                                    worker stopped without a result"
+                            .into());
+                    }
+                    (Err(()), _) => {}
                 }
             }
         }
@@ -883,12 +939,13 @@ impl FlexCache {
 
     /// Whether a worker is running (the frame loop polls until it is done).
     pub fn busy(&self) -> bool {
-        self.pending.is_some() || self.free.is_some()
+        self.pending.is_some() || self.free.is_some() || self.one.is_some()
     }
 
-    /// Whether the first stage's worker is running.
+    /// Whether a worker of seconds at most is running: the first stage, or
+    /// one activity's free slack.
     pub fn busy_first_stage(&self) -> bool {
-        self.pending.is_some()
+        self.pending.is_some() || self.one.is_some()
     }
 }
 

@@ -13,8 +13,9 @@ pub const STEP: &str = "The scheduler places activities one at a time, highest p
 pub const FREE_SLACK_PROGRESS: &str = "Free slack tries each activity again at every start \
     with everything else where it is, one activity at a time: on a long plan that takes \
     minutes or more. The shading fills in as each activity is done, those nearest the time \
-    range in view first; the rest of the app works meanwhile. Turning the flexibility layer \
-    off stops it, and an edit starts it again for the plan as it is.";
+    range in view first; the selected activity's is computed on its own, ahead of the \
+    rest, even with the layer off. The rest of the app works meanwhile. Turning the \
+    flexibility layer off stops it, and an edit starts it again for the plan as it is.";
 
 /// The step slider's zoom.
 pub const STEP_ZOOM: &str = "On a long run the slider can span part of the steps: \

@@ -168,6 +168,9 @@ pub struct FreeSlackProgress {
     /// The worker stopped without finishing (an internal error, shown): it is
     /// not started again for this revision.
     pub failed: bool,
+    /// The activity whose free slack is being computed on its own, ahead of
+    /// the rest (the selected one).
+    pub computing: Option<usize>,
 }
 
 impl FreeSlackProgress {
