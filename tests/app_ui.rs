@@ -2691,7 +2691,13 @@ fn the_selected_activity_s_free_slack_is_computed_ahead_of_the_rest() {
     wait_until(&mut h, "the flexible schedule", |app| app.flex().is_some());
     let a = h.state().flex().unwrap().activities[500].activity;
     h.state_mut().push(Command::Select(Some(a)));
-    h.run_steps(2);
+    h.run_steps(1);
+    if h.state().free_slack_progress().unwrap().computing == Some(a) {
+        assert!(
+            h.query_by_label_contains("Computing its free slack")
+                .is_some()
+        );
+    }
     wait_until(&mut h, "its free slack", |app| {
         app.flex()
             .and_then(|f| f.activity(a))

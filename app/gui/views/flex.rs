@@ -409,6 +409,12 @@ pub fn flex_section_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Ve
     if fa.free_slack.is_none() {
         if let Some(p) = m.free_slack {
             ui.horizontal_wrapped(|ui| {
+                if p.computing == Some(a) {
+                    ui.spinner();
+                    ui.label("Computing its free slack (one replay of the schedule)…")
+                        .on_hover_text(crate::gui::help::FREE_SLACK_PROGRESS);
+                    return;
+                }
                 if p.running {
                     ui.spinner();
                 }
