@@ -20,7 +20,12 @@
 //! filters (issue 13) on 1,000 and 10,000 activities: a frame with nothing
 //! filtered, a frame with a search or a status and sol filter standing, the
 //! frame after the search text changes (the list computed again), and "Next
-//! match" with the frame that shows it.
+//! match" with the frame that shows it. `--drag` measures frames while the step
+//! slider is dragged across 1,000 and 10,000 activities (issue 13: 60 frames each
+//! moving the step, as a slider drag gives one new step per frame; the same with
+//! five step changes arriving between two frames; 30 frames zooming the time
+//! range in then out), with the median and worst frame, and how long the plots
+//! take to catch up with the last step once the drag stops.
 
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
@@ -103,6 +108,10 @@ fn main() {
     }
     if std::env::args().any(|a| a == "--navigation") {
         navigation(&profiles, quick);
+        return;
+    }
+    if std::env::args().any(|a| a == "--drag") {
+        drag(&profiles, quick);
         return;
     }
     if std::env::args().any(|a| a == "--flex") {
@@ -380,6 +389,129 @@ fn navigation(profiles: &[(&str, Profile)], quick: bool) {
     }
 }
 
+/// CPU time (user + system) of the calling thread so far, from
+/// `/proc/thread-self/stat` (clock ticks of 10 ms: good over many frames).
+fn thread_cpu() -> Option<Duration> {
+    let stat = std::fs::read_to_string("/proc/thread-self/stat").ok()?;
+    // The fields after the command name (which is in parentheses).
+    let rest = stat.rsplit_once(')')?.1;
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks: u64 = f.get(11)?.parse::<u64>().ok()? + f.get(12)?.parse::<u64>().ok()?;
+    Some(Duration::from_millis(ticks * 10))
+}
+
+/// Mean CPU time a frame of `frames` took on this thread since `since`.
+fn cpu_per_frame(since: Option<Duration>, frames: u32) -> String {
+    match (since, thread_cpu()) {
+        (Some(a), Some(b)) => ms((b - a) / frames),
+        _ => "n/a".into(),
+    }
+}
+
+/// Median and worst of `times`.
+fn median_max(times: &mut [Duration]) -> (Duration, Duration) {
+    times.sort();
+    (times[times.len() / 2], times[times.len() - 1])
+}
+
+/// Frames under a scripted step drag and time zoom (`--drag`): each frame's
+/// time is the commands given since the last frame applied plus the frame
+/// itself (what the desktop app does between two paints). The app runs as the
+/// desktop app does (workers on), the flexibility layer shown once its network
+/// is in; nothing selected.
+fn drag(profiles: &[(&str, Profile)], quick: bool) {
+    use solscope::gui::TimeAxis;
+    let sizes: &[(usize, usize)] = if quick {
+        &[(1000, 3)]
+    } else {
+        &[(1000, 3), (10_000, 30)]
+    };
+    println!(
+        "| profile | activities | sols | drag, 1 step change a frame: median | worst | UI thread CPU a frame | drag, 5 step changes a frame: median | worst | zoom: median | worst | UI thread CPU a frame | plots at the last step after |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for &(name, profile) in profiles {
+        for &(n, sols) in sizes {
+            let plan = generate_plan_with(profile, n, sols, 1);
+            let text = serde_json::to_string(&plan).expect("json");
+            let mut app = SolscopeApp::from_text(&text, None).expect("app");
+            app.background = true;
+            let ctx = egui::Context::default();
+            // The flexible schedule's network first (its free slack may go on
+            // on a worker, as in the app).
+            let t0 = Instant::now();
+            while app.flex().is_none() && t0.elapsed() < Duration::from_secs(120) {
+                frame(&ctx, &mut app);
+                std::thread::sleep(Duration::from_millis(5));
+            }
+            frame(&ctx, &mut app);
+            let steps = app.analysis.steps();
+            let timed = |app: &mut SolscopeApp, cmds: Vec<Command>| {
+                let t = Instant::now();
+                for c in cmds {
+                    app.apply(c);
+                }
+                frame(&ctx, app);
+                t.elapsed()
+            };
+            // A drag from the first step to the last, one new step a frame.
+            let cpu = thread_cpu();
+            let mut one: Vec<Duration> = (0..60)
+                .map(|i| timed(&mut app, vec![Command::SetStep(steps * i / 59)]))
+                .collect();
+            let one_cpu = cpu_per_frame(cpu, 60);
+            // Back, with five changes between two frames (a fast pointer, or
+            // key repeats): only the last should cost.
+            let mut five: Vec<Duration> = (0..60)
+                .map(|i| {
+                    let cmds = (0..5)
+                        .map(|j| Command::SetStep(steps - (steps * (5 * i + j)) / 299))
+                        .collect();
+                    timed(&mut app, cmds)
+                })
+                .collect();
+            // How long until what the frame draws is all of the last step's.
+            let last = app.ui.nav.step;
+            let t = Instant::now();
+            while app.step_view.step != last && t.elapsed() < Duration::from_secs(10) {
+                frame(&ctx, &mut app);
+            }
+            let caught_up = t.elapsed();
+            // Zoom the time range in about its middle, then out again, at the
+            // last step (every bar and the whole profiles drawn).
+            app.apply(Command::SetStep(steps));
+            let t = Instant::now();
+            while app.step_view.step != steps && t.elapsed() < Duration::from_secs(10) {
+                frame(&ctx, &mut app);
+            }
+            let bounds = (plan.horizon.start as f64, plan.horizon.end as f64);
+            let cpu = thread_cpu();
+            let mut zoom: Vec<Duration> = (0..30)
+                .map(|i| {
+                    let mut axis: TimeAxis = app.ui.nav.axis;
+                    let factor = if i < 15 { 1.25 } else { 0.8 };
+                    axis.zoom_about((axis.start + axis.end) / 2.0, factor, bounds);
+                    timed(&mut app, vec![Command::SetAxis(axis)])
+                })
+                .collect();
+            let zoom_cpu = cpu_per_frame(cpu, 30);
+            let (om, ow) = median_max(&mut one);
+            let (fm, fw) = median_max(&mut five);
+            let (zm, zw) = median_max(&mut zoom);
+            println!(
+                "| {name} | {n} | {sols} | {} | {} | {one_cpu} | {} | {} | {} | {} | {zoom_cpu} | {} |",
+                ms(om),
+                ms(ow),
+                ms(fm),
+                ms(fw),
+                ms(zm),
+                ms(zw),
+                ms(caught_up)
+            );
+        }
+    }
+}
+
 /// Executions and Monte Carlo (`--execution`).
 fn execution() {
     use solscope_engine::{
@@ -465,8 +597,32 @@ fn flex(profiles: &[(&str, Profile)], quick: bool, seeds: u64) {
                 if seed == 1 {
                     edges = (f.network_edges, f.dispatchable.len());
                 }
-                // Free slack is quadratic in the placed activities: not at 10,000
-                // (docs/performance.md has the figure measured once).
+                // Free slack is quadratic in the placed activities: at 10,000
+                // (seed 1) a sample of 20 placed activities spread over the run,
+                // timed one by one, for the estimate of the whole.
+                if n > 1000 && seed == 1 {
+                    let sample: Vec<usize> = (0..20)
+                        .map(|i| f.activities[i * f.activities.len() / 20].activity)
+                        .collect();
+                    let mut each: Vec<Duration> = sample
+                        .iter()
+                        .map(|&a| {
+                            let t = Instant::now();
+                            std::hint::black_box(free_slack_of(&sched, a));
+                            t.elapsed()
+                        })
+                        .collect();
+                    let mean = each.iter().sum::<Duration>() / 20;
+                    let (med, worst) = median_max(&mut each);
+                    eprintln!(
+                        "{name} {n}: free slack of 20 sampled activities of {}: median {}, worst {}, mean {} each; the whole, one thread, estimated at {:.0} s",
+                        f.activities.len(),
+                        ms(med),
+                        ms(worst),
+                        ms(mean),
+                        mean.as_secs_f64() * f.activities.len() as f64
+                    );
+                }
                 if n <= 1000 {
                     let t = Instant::now();
                     for fa in &f.activities {

@@ -2808,3 +2808,176 @@ fn the_help_menu_opens_the_tutorial_for_the_tour_from_another_plan() {
         "dismissed or not, the menu starts it"
     );
 }
+
+// ---- Big plans: the zoomable step slider, free slack off the frame (issue 13) ----
+
+/// A generated plan (standard or realistic profile) in a harness as the desktop
+/// app runs it (workers on), the flexibility layer `shown` or not.
+fn generated(profile: solscope_engine::Profile, n: usize, sols: usize, shown: bool) -> Hs {
+    let plan = solscope_engine::generate_plan_with(profile, n, sols, 1);
+    let text = serde_json::to_string(&plan).unwrap();
+    let mut app = SolscopeApp::from_text(&text, None).unwrap();
+    app.background = true;
+    app.persisted.hide_flex = !shown;
+    harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap()
+}
+
+/// The step slider's rail on screen.
+fn step_rail(h: &Hs) -> eframe::egui::Rect {
+    h.query_all_by_label("Step")
+        .find(|n| n.accesskit_node().role() == eframe::egui::accesskit::Role::Slider)
+        .expect("the step slider")
+        .rect()
+}
+
+#[test]
+fn one_step_of_ten_thousand_is_picked_with_the_mouse_on_the_zoomed_slider() {
+    let mut h = generated(solscope_engine::Profile::Standard, 10_000, 30, false);
+    let n = h.state().analysis.steps();
+    assert!(n >= 10_000);
+    // Whole, the rail gives a step a thirtieth of a point: it offers to zoom.
+    assert!(
+        h.get_by_label("Zoom steps out")
+            .accesskit_node()
+            .is_disabled(),
+        "all steps shown"
+    );
+    h.state_mut().push(Command::SetStep(5_000));
+    h.run_steps(2);
+    for _ in 0..4 {
+        h.get_by_label("Zoom steps in").click();
+        h.run_steps(2);
+    }
+    let (lo, hi) = h.state().ui.nav.steps_shown.span(n);
+    assert!(hi - lo <= 40 && (lo..=hi).contains(&5_000), "{lo}..{hi}");
+    assert!(
+        h.query_by_label(&format!("steps {lo}–{hi} of {n}"))
+            .is_some(),
+        "the span is named"
+    );
+    // A click on the rail picks the step under the pointer, exactly: the
+    // middle, then three steps to its right and seven to its left.
+    let rail = step_rail(&h);
+    let handle = rail.height() / 2.5;
+    let per_step = (rail.width() - 2.0 * handle) / (hi - lo) as f32;
+    let mid = (lo + hi) / 2;
+    for target in [mid, mid + 3, mid - 7] {
+        let x = rail.center().x + (target as f32 - (lo + hi) as f32 / 2.0) * per_step;
+        let at = eframe::egui::pos2(x, rail.center().y);
+        h.hover_at(at);
+        h.step();
+        h.drag_at(at);
+        h.step();
+        h.drop_at(at);
+        h.run_steps(2);
+        assert_eq!(h.state().ui.nav.step, target, "picked at x={x}");
+        assert!(
+            h.query_by_label_contains(&format!("step {target}: "))
+                .is_some()
+        );
+    }
+    // The span follows the step: End goes to the last step, and the span moves
+    // there with its width.
+    h.key_press(eframe::egui::Key::End);
+    h.run_steps(2);
+    assert_eq!(h.state().ui.nav.step, n);
+    let (lo2, hi2) = h.state().ui.nav.steps_shown.span(n);
+    assert_eq!((hi2, hi2 - lo2), (n, hi - lo));
+    // Ctrl+wheel over the slider zooms out about the pointer; All steps
+    // spans the run again.
+    h.hover_at(rail.center());
+    h.step();
+    h.event(eframe::egui::Event::Zoom(0.5));
+    h.run_steps(2);
+    let (lo3, hi3) = h.state().ui.nav.steps_shown.span(n);
+    assert!(hi3 - lo3 > hi - lo, "{lo3}..{hi3}");
+    h.get_by_label("All steps").click();
+    h.run_steps(2);
+    assert_eq!(h.state().ui.nav.steps_shown.span(n), (0, n));
+}
+
+#[test]
+fn a_small_plan_s_step_slider_does_not_zoom() {
+    let h = harness(tutorial(), SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    assert!(h.query_by_label("Zoom steps in").is_none());
+}
+
+#[test]
+fn free_slack_fills_in_off_the_frame_says_how_far_and_stops_with_the_layer() {
+    let mut h = generated(solscope_engine::Profile::Realistic, 1_000, 3, true);
+    wait_until(&mut h, "the flexible schedule", |app| app.flex().is_some());
+    wait_until(&mut h, "some free slack", |app| {
+        app.free_slack_progress().is_some_and(|p| p.done > 0)
+    });
+    let p = h.state().free_slack_progress().unwrap();
+    assert!(p.running && !p.complete(), "{p:?}");
+    assert!(
+        h.query_by_label_contains("computing free slack: ")
+            .is_some(),
+        "the legend says how far it is"
+    );
+    // What is known is what the engine gives for that activity.
+    let known: Vec<(usize, Option<solscope_engine::IntervalSet>)> = h
+        .state()
+        .flex()
+        .unwrap()
+        .activities
+        .iter()
+        .filter(|fa| fa.free_slack.is_some())
+        .map(|fa| (fa.activity, fa.free_slack.clone()))
+        .take(3)
+        .collect();
+    for (a, free) in known {
+        let one = solscope_engine::free_slack_of(&h.state().analysis.schedule, a);
+        assert_eq!(one.map(|(_, both)| both), free);
+    }
+    // The app answers meanwhile: a step and the frame that shows it.
+    h.key_press(eframe::egui::Key::Home);
+    h.run_steps(2);
+    assert_eq!(h.state().ui.nav.step, 0);
+    // The layer off stops the worker, keeping what it found.
+    h.key_press(eframe::egui::Key::F);
+    h.run_steps(2);
+    assert!(h.state().persisted.hide_flex);
+    let stopped = h.state().free_slack_progress().unwrap();
+    assert!(!stopped.running && stopped.done >= p.done, "{stopped:?}");
+    wait_until(&mut h, "the workers to stop", |app| !app.workers_busy());
+    // On again: it goes on from there.
+    h.key_press(eframe::egui::Key::F);
+    h.run_steps(2);
+    let again = h.state().free_slack_progress().unwrap();
+    assert!(again.running && again.done >= stopped.done, "{again:?}");
+}
+
+#[test]
+fn the_selected_activity_s_free_slack_is_computed_ahead_of_the_rest() {
+    // The layer off: no worker computes the plan's free slack.
+    let mut h = generated(solscope_engine::Profile::Realistic, 1_000, 3, false);
+    wait_until(&mut h, "the flexible schedule", |app| app.flex().is_some());
+    let a = h.state().flex().unwrap().activities[500].activity;
+    h.state_mut().push(Command::Select(Some(a)));
+    h.run_steps(1);
+    if h.state().free_slack_progress().unwrap().computing == Some(a) {
+        assert!(
+            h.query_by_label_contains("Computing its free slack")
+                .is_some()
+        );
+    }
+    wait_until(&mut h, "its free slack", |app| {
+        app.flex()
+            .and_then(|f| f.activity(a))
+            .is_some_and(|fa| fa.free_slack.is_some())
+    });
+    let fa = h.state().flex().unwrap().activity(a).unwrap().clone();
+    let one = solscope_engine::free_slack_of(&h.state().analysis.schedule, a).unwrap();
+    assert_eq!(
+        (fa.free_slack_phase1, fa.free_slack),
+        (Some(one.0), Some(one.1))
+    );
+    // Only its: the rest waits for the layer.
+    assert_eq!(h.state().free_slack_progress().map(|p| p.done), Some(1));
+    assert!(
+        h.query_by_label_contains("Free slack (every check, others fixed)")
+            .is_some()
+    );
+}

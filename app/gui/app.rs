@@ -9,7 +9,8 @@ use solscope_engine::{Plan, Suggestion};
 
 use super::commands::{Command, UiCommand};
 use super::derived::{
-    CampaignCache, DerivedCache, ExecKey, ExecutionCache, FlexCache, FlexResult, step_view,
+    CampaignCache, DerivedCache, ExecKey, ExecutionCache, FlexCache, FlexResult, StepViewCache,
+    step_view,
 };
 use super::document::{
     ActivitiesEdit, Analysis, Document, OutcomeDiff, add_activity, delete_activity,
@@ -20,8 +21,8 @@ use super::montecarlo::{CampaignResult, MAX_RUNS, Progress, Stopped};
 use super::repair::{self, Repair};
 pub use super::state::Dialog;
 use super::state::{
-    LAST_STEP, Mode, Navigation, PathPrompt, Pending, Persisted, PinOffer, StepView, Tour, UiState,
-    WouldCause,
+    FreeSlackProgress, LAST_STEP, Mode, Navigation, PathPrompt, Pending, Persisted, PinOffer,
+    STEP_ZOOM, StepView, StepWindow, Tour, UiState, WouldCause,
 };
 use super::theme::Theme;
 use super::time_axis::TimeAxis;
@@ -43,8 +44,15 @@ pub struct SolscopeApp {
     pub persisted: Persisted,
     /// The palette.
     pub theme: Theme,
-    /// Profiles as of the current step.
+    /// Profiles as of the current step: derived once per frame for the step
+    /// shown (on a worker in the desktop app while the step moves within one
+    /// plan revision, so it may be of an earlier step for a few frames; never
+    /// of another revision).
     pub step_view: StepView,
+    /// The plan revision `step_view` was derived at.
+    step_view_rev: u64,
+    /// The worker deriving the step profiles.
+    step_views: StepViewCache,
     /// Verify suggestions on a worker thread (the desktop app); headless renders
     /// and tests compute them in the frame so that what they draw is settled.
     pub background: bool,
@@ -107,6 +115,8 @@ impl SolscopeApp {
             persisted: Persisted::default(),
             theme: Theme::new(true),
             step_view,
+            step_view_rev: 0,
+            step_views: StepViewCache::default(),
             background: false,
             revision: 0,
             actuals: ActualsSource::Nominal,
@@ -190,6 +200,7 @@ impl SolscopeApp {
         if let Err(e) = self.flex.reap(self.revision) {
             self.ui.messages.error = Some(e);
         }
+        self.derive_step_view();
         if self.ui.nav.mode == Mode::Execution {
             // The execution and the looked-at cycle's run, derived before
             // drawing (on a worker in the desktop app).
@@ -203,6 +214,15 @@ impl SolscopeApp {
                 self.revision,
                 self.background,
             );
+            if self.persisted.hide_flex {
+                // Nobody looks at the shading: the worker stops (what it
+                // found stays).
+                self.flex.stop_free_slack();
+            } else {
+                let axis = self.ui.nav.axis;
+                self.flex
+                    .request_free_slack(self.revision, (axis.start + axis.end) / 2.0);
+            }
         }
         if self.ui.nav.playing {
             let now = ui.input(|i| i.time);
@@ -228,14 +248,20 @@ impl SolscopeApp {
             let shown = self.ui.nav.overlay_reason_of(a);
             self.derived
                 .would_cause_for(&self.doc.plan, &self.analysis, self.revision, (a, shown));
+            // Its free slack ahead of the rest (the inspector shows it).
+            self.flex.request_one(self.revision, a);
         }
         self.reap_worker();
         // A selection made by a command given outside a frame.
         self.reveal_selection();
-        if self.workers_busy() {
+        if self.workers_busy_but_free_slack() {
             // Poll the worker until its result is in.
             ui.ctx()
                 .request_repaint_after(std::time::Duration::from_millis(50));
+        } else if self.flex.busy() {
+            // The free slack fills in over minutes: a few repaints a second.
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_millis(500));
         } else if self.campaign.progress().is_some() {
             // The progress bar moves while the campaign runs.
             ui.ctx()
@@ -366,6 +392,7 @@ impl SolscopeApp {
                 .filter(|_| self.ui.nav.mode == Mode::Schedule)
                 .and_then(|a| derived.would_cause(a, revision)),
             flex: self.flex.get(revision),
+            free_slack: self.flex.free_slack_progress(revision),
             nav: &self.ui.nav,
             messages: &self.ui.messages,
             exec: ExecModel {
@@ -565,8 +592,13 @@ impl SolscopeApp {
                     None => k,
                 };
                 self.ui.nav.cycle_step = LAST_STEP;
+                self.ui.nav.steps_shown = StepWindow::ALL;
             }
-            Command::SetCycleStep(k) => self.ui.nav.cycle_step = k,
+            Command::SetCycleStep(k) => {
+                self.ui.nav.cycle_step = k;
+                self.follow_step();
+            }
+            Command::SetStepsShown(w) => self.ui.nav.steps_shown = w,
             Command::OpenActuals(path) => {
                 let what = format!("Could not open actuals {}", path.display());
                 match solscope_engine::read_plan_text(&path, solscope_engine::MAX_PLAN_BYTES) {
@@ -956,8 +988,26 @@ impl SolscopeApp {
                 self.persisted.tour_dismissed = true;
             }
             UiCommand::ResetTour => self.persisted.tour_dismissed = false,
-            UiCommand::ShowSchedule => self.ui.nav.mode = Mode::Schedule,
-            UiCommand::ShowExecution => self.ui.nav.mode = Mode::Execution,
+            UiCommand::ShowSchedule | UiCommand::ShowExecution => {
+                let mode = match cmd {
+                    UiCommand::ShowSchedule => Mode::Schedule,
+                    _ => Mode::Execution,
+                };
+                if mode != self.ui.nav.mode {
+                    // Another run under the step slider: all of its steps.
+                    self.ui.nav.steps_shown = StepWindow::ALL;
+                }
+                self.ui.nav.mode = mode;
+            }
+            UiCommand::ZoomStepsIn | UiCommand::ZoomStepsOut => {
+                let factor = if cmd == UiCommand::ZoomStepsIn {
+                    STEP_ZOOM
+                } else {
+                    1.0 / STEP_ZOOM
+                };
+                self.ui.nav.steps_shown = self.ui.nav.steps_shown.zoomed(factor, k, steps);
+            }
+            UiCommand::AllSteps => self.ui.nav.steps_shown = StepWindow::ALL,
             UiCommand::OpenActuals => self.dialog = Some(Dialog::OpenActuals),
             UiCommand::CancelCampaign => self.campaign.cancel(),
             UiCommand::ToggleFlex => self.persisted.hide_flex = !self.persisted.hide_flex,
@@ -1032,7 +1082,22 @@ impl SolscopeApp {
     /// Whether a worker (suggestions, execution, flexible schedule) is still
     /// running: the frame loop polls until none is.
     pub fn workers_busy(&self) -> bool {
-        self.verifying().is_some() || self.execution.busy() || self.flex.busy()
+        self.workers_busy_but_free_slack() || self.flex.busy()
+    }
+
+    /// Whether a worker other than the free slack one (which may run for
+    /// minutes) is still running.
+    fn workers_busy_but_free_slack(&self) -> bool {
+        self.verifying().is_some()
+            || self.execution.busy()
+            || self.flex.busy_first_stage()
+            || self.step_views.busy()
+    }
+
+    /// Where the free slack of the plan as it is stands, once the flexible
+    /// schedule's first stage is in.
+    pub fn free_slack_progress(&self) -> Option<FreeSlackProgress> {
+        self.flex.free_slack_progress(self.revision)
     }
 
     /// The explanation of activity `a` if it did not schedule (computed once per
@@ -1092,9 +1157,45 @@ impl SolscopeApp {
         });
     }
 
+    /// Shows step `k`. Its profiles are derived before the next frame is
+    /// drawn ([`Self::derive_step_view`]): however many steps are given
+    /// between two frames, only the last one costs.
     fn set_step(&mut self, k: usize) {
         self.ui.nav.step = k.min(self.analysis.steps());
-        self.step_view = step_view(&self.analysis, self.ui.nav.step);
+        self.follow_step();
+    }
+
+    /// The step slider's zoomed span follows the step shown (the least move
+    /// that keeps it in view).
+    fn follow_step(&mut self) {
+        let (k, n) = self.step_and_steps();
+        self.ui.nav.steps_shown = self.ui.nav.steps_shown.following(k, n);
+    }
+
+    /// The profiles of the step shown, once per frame for the latest step.
+    /// Within a plan revision the desktop app derives them on a worker (one
+    /// at a time, each for the step shown when it starts) and draws the last
+    /// ones in until they catch up; after an edit, or headless, in place (the
+    /// profiles of another revision are never drawn).
+    fn derive_step_view(&mut self) {
+        match self.step_views.reap(self.revision) {
+            Ok(Some(view)) => {
+                self.step_view = view;
+                self.step_view_rev = self.revision;
+            }
+            Ok(None) => {}
+            Err(e) => self.ui.messages.error = Some(e),
+        }
+        let k = self.ui.nav.step;
+        if (self.step_view_rev, self.step_view.step) == (self.revision, k) {
+            return;
+        }
+        if self.background && self.step_view_rev == self.revision {
+            self.step_views.request(&self.analysis, self.revision, k);
+        } else {
+            self.step_view = step_view(&self.analysis, k);
+            self.step_view_rev = self.revision;
+        }
     }
 
     fn accept_plan(&mut self, plan: Plan, description: &str) {

@@ -12,7 +12,7 @@ use std::path::PathBuf;
 use eframe::egui::{Key, KeyboardShortcut, Modifiers};
 use serde_json::{Map, Value};
 
-use super::state::{Dialog, ListFilter};
+use super::state::{Dialog, ListFilter, StepWindow};
 use super::time_axis::TimeAxis;
 
 /// A command the user gives by name: its label is the button's text (and
@@ -111,6 +111,13 @@ pub enum UiCommand {
     EndTour,
     /// Let the guided tour open by itself again with the tutorial plan.
     ResetTour,
+    /// Zoom the step slider in about the step shown (fewer steps across the
+    /// rail, so one step of a long run can be picked with the mouse).
+    ZoomStepsIn,
+    /// Zoom the step slider out about the step shown.
+    ZoomStepsOut,
+    /// The step slider spans every step of the run again.
+    AllSteps,
 }
 
 impl UiCommand {
@@ -194,6 +201,9 @@ impl UiCommand {
             Self::GuidedTour => "Guided tour",
             Self::EndTour => "End tour",
             Self::ResetTour => "Reset guided tour",
+            Self::ZoomStepsIn => "Zoom steps in",
+            Self::ZoomStepsOut => "Zoom steps out",
+            Self::AllSteps => "All steps",
         }
     }
 
@@ -248,7 +258,10 @@ impl UiCommand {
             | Self::ClearFilters
             | Self::GuidedTour
             | Self::EndTour
-            | Self::ResetTour => None,
+            | Self::ResetTour
+            | Self::ZoomStepsIn
+            | Self::ZoomStepsOut
+            | Self::AllSteps => None,
         }
     }
 }
@@ -339,6 +352,9 @@ pub enum Command {
     SetCycle(usize),
     /// Execution mode: show the state after this step of the cycle's run.
     SetCycleStep(usize),
+    /// The steps the step slider spans (Ctrl+wheel over it zooms, the wheel
+    /// pans).
+    SetStepsShown(StepWindow),
     /// Execute with the actual durations of this file (the host sends it once a
     /// file is chosen); an invalid file changes nothing and shows its error.
     OpenActuals(PathBuf),

@@ -19,7 +19,7 @@ use solscope_engine::{
 use super::document::Analysis;
 use super::execution::{ActualsSource, CycleRun, ExecutionRun};
 use super::montecarlo::{CampaignResult, Progress, StopReason, Stopped, total_runs};
-use super::state::{OverlayPlot, OverlayReason, StepView, WouldCause};
+use super::state::{FreeSlackProgress, OverlayPlot, OverlayReason, StepView, WouldCause};
 
 /// A value derived for one activity at one plan revision (its explanation, valid
 /// intervals, verified suggestions, or the worker computing them). It is read back
@@ -238,6 +238,57 @@ impl DerivedCache {
 /// The profiles as of step `k`, as plot points.
 pub fn step_view(analysis: &Analysis, k: usize) -> StepView {
     StepView::from_profiles(k, &analysis.schedule.profiles_after(k))
+}
+
+/// The step profiles derived off the frame while the step moves (a drag of the
+/// step slider, held keys, play): one worker at a time, and when it is done the
+/// next one is for the latest step only, so however fast the step moves a frame
+/// never waits on the profiles and the work never piles up behind the pointer.
+#[derive(Debug, Default)]
+pub struct StepViewCache {
+    /// The worker, keyed by the plan revision and step it derives.
+    pending: Option<Job<(u64, usize), StepView>>,
+}
+
+impl StepViewCache {
+    /// Starts deriving the profiles after step `k` at `revision` unless a
+    /// worker is busy (it is asked again for the latest step when that one is
+    /// done).
+    pub fn request(&mut self, analysis: &Analysis, revision: u64, k: usize) {
+        if self.pending.is_some() {
+            return;
+        }
+        let schedule = Arc::clone(&analysis.schedule);
+        self.pending = Some(Job::spawn((revision, k), move || {
+            StepView::from_profiles(k, &schedule.profiles_after(k))
+        }));
+    }
+
+    /// The worker's profiles once in, when they are of `revision` (another
+    /// revision's are dropped). A worker that stopped without a result is
+    /// reported.
+    pub fn reap(&mut self, revision: u64) -> Result<Option<StepView>, String> {
+        let Some(job) = &self.pending else {
+            return Ok(None);
+        };
+        let Some(result) = job.poll() else {
+            return Ok(None);
+        };
+        let (r, k) = job.key;
+        self.pending = None;
+        match result {
+            Ok(view) if r == revision => Ok(Some(view)),
+            Ok(_) => Ok(None),
+            Err(()) => Err(format!(
+                "Deriving the profiles after step {k} failed: the worker stopped without a result"
+            )),
+        }
+    }
+
+    /// Whether a worker is running.
+    pub fn busy(&self) -> bool {
+        self.pending.is_some()
+    }
 }
 
 /// What the activity of `ex`, failed in placement, would have caused: every
@@ -613,23 +664,57 @@ impl ExecutionCache {
 /// The flexible form of one plan revision's schedule, or why there is none.
 pub type FlexResult = Result<Arc<Flex>, String>;
 
+/// A worker computing free slack: its results come one activity at a time.
+#[derive(Debug)]
+struct FreeSlackJob {
+    /// Ends (with nothing) when the worker stops; keyed by the plan revision.
+    job: Job<u64, ()>,
+    /// Each activity's free slack as it is known.
+    rx: Receiver<(usize, solscope_engine::FreeSlack)>,
+    /// Set to stop the worker.
+    cancel: Arc<AtomicBool>,
+    started: std::time::Instant,
+}
+
+impl Drop for FreeSlackJob {
+    fn drop(&mut self) {
+        // Nobody will read what it computes on: it stops within moments.
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+}
+
 /// The flexible form of the schedule ([`solscope_engine::flex`]: bounds, start
 /// conditions, controllability and free slack), derived once per plan revision
-/// and read back only for it. Free slack replays the schedule once per
-/// activity (a quarter of a second on 1,000 activities, more on realistic
-/// plans), so with `background` it is computed on a worker thread (one at a
-/// time; a result for an older revision is dropped) and the Gantt draws
-/// without the layer until it is in.
-///
-/// The worker works in two stages: first without free slack (milliseconds: the
-/// whiskers and conditions show at once), then with it (the shading follows).
+/// and read back only for it. With `background` it is computed on worker
+/// threads (a result for an older revision is dropped) in two stages: first
+/// without free slack (the network: milliseconds to a second; the whiskers and
+/// conditions show at once), then the free slack, which replays the schedule
+/// once per activity (quadratic: minutes on 10,000 activities, much longer on
+/// realistic ones). That second worker hands each activity's free slack on as
+/// it is known (the shading fills in, the activities nearest the time range in
+/// view first), runs on one core fewer than the machine has (the frames keep
+/// one), and is cancelled when the plan changes or the layer is turned off
+/// ([`FlexCache::stop_free_slack`]); what it found stays, and it goes on from
+/// there when asked again.
 #[derive(Debug, Default)]
 pub struct FlexCache {
     done: Option<(u64, FlexResult)>,
-    /// The worker: (revision, with free slack).
-    pending: Option<Job<(u64, bool), FlexResult>>,
-    /// What the second stage needs, kept while the first runs.
-    source: Option<(u64, Plan, Analysis)>,
+    /// The first stage's worker, keyed by revision.
+    pending: Option<Job<u64, FlexResult>>,
+    /// The free slack worker.
+    free: Option<FreeSlackJob>,
+    /// What the free slack worker needs (the schedule of the revision in
+    /// `done`).
+    source: Option<(u64, Arc<solscope_engine::Schedule>)>,
+    /// Seconds the free slack of the revision in `done` was computed for in
+    /// runs that ended (stopped or done).
+    spent: f64,
+    /// The revision whose free slack worker stopped without finishing (it
+    /// panicked): not started again for it.
+    failed: Option<u64>,
+    /// The selected activity's free slack computed on its own, ahead of the
+    /// rest (keyed by revision and activity).
+    one: Option<Job<(u64, usize), Option<solscope_engine::FreeSlack>>>,
 }
 
 /// The flexible form of `schedule` (with or without free slack); a panic in the
@@ -643,8 +728,18 @@ fn compute_flex(plan: &Plan, analysis: &Analysis, free_slack: bool) -> FlexResul
     .map_err(|_| "Computing the flexible schedule failed (an internal error)".to_string())
 }
 
+/// Threads the free slack worker uses: one fewer than the machine has (at
+/// least one), so a frame always finds a core.
+fn free_slack_threads() -> usize {
+    std::thread::available_parallelism()
+        .map_or(1, std::num::NonZeroUsize::get)
+        .saturating_sub(1)
+        .max(1)
+}
+
 impl FlexCache {
-    /// The flexible schedule at `revision`, or why there is none, once derived.
+    /// The flexible schedule at `revision`, or why there is none, once derived
+    /// (its free slack as far as it is known).
     pub fn get(&self, revision: u64) -> Option<&FlexResult> {
         self.done
             .as_ref()
@@ -653,15 +748,23 @@ impl FlexCache {
     }
 
     /// Starts deriving the flexible schedule of `plan` at `revision` unless it
-    /// is known or a worker is busy: in place, or with `background` on a worker.
+    /// is known or being derived: in place (free slack included), or with
+    /// `background` on a worker (the free slack follows through
+    /// [`FlexCache::request_free_slack`]). A worker of an older revision is
+    /// dropped (the free slack one cancelled).
     pub fn request(&mut self, plan: &Plan, analysis: &Analysis, revision: u64, background: bool) {
+        if self.free.as_ref().is_some_and(|f| f.job.key != revision) {
+            self.free = None;
+        }
+        // One first-stage worker at a time: a newer revision's waits for it.
         if self.get(revision).is_some() || self.pending.is_some() {
             return;
         }
+        self.spent = 0.0;
         if background {
-            self.source = Some((revision, plan.clone(), analysis.clone()));
+            self.source = Some((revision, Arc::clone(&analysis.schedule)));
             let (plan, analysis) = (plan.clone(), analysis.clone());
-            self.pending = Some(Job::spawn((revision, false), move || {
+            self.pending = Some(Job::spawn(revision, move || {
                 compute_flex(&plan, &analysis, false)
             }));
         } else {
@@ -669,47 +772,211 @@ impl FlexCache {
         }
     }
 
-    /// Takes the worker's result: kept when it is for `revision`, dropped
-    /// otherwise. A worker that stopped without a result is reported.
+    /// Starts the free slack worker at `revision` once the first stage is in,
+    /// for the activities whose free slack is not known yet, those whose
+    /// scheduled start is nearest `near` (plan seconds) first; unless it runs.
+    pub fn request_free_slack(&mut self, revision: u64, near: f64) {
+        if self.free.is_some() {
+            return;
+        }
+        let Some((r, Ok(flex))) = &self.done else {
+            return;
+        };
+        let Some((_, schedule)) = self.source.as_ref().filter(|(s, _)| *s == *r) else {
+            return;
+        };
+        if *r != revision || self.failed == Some(revision) {
+            return;
+        }
+        let mut todo: Vec<(f64, usize)> = flex
+            .activities
+            .iter()
+            .filter(|fa| fa.free_slack.is_none())
+            .map(|fa| ((fa.start.nom as f64 - near).abs(), fa.activity))
+            .collect();
+        if todo.is_empty() {
+            return;
+        }
+        todo.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        let order: Vec<usize> = todo.into_iter().map(|(_, a)| a).collect();
+        let (tx, rx) = mpsc::channel();
+        let cancel = Arc::new(AtomicBool::new(false));
+        let (schedule, flag) = (Arc::clone(schedule), Arc::clone(&cancel));
+        let job = Job::spawn(revision, move || {
+            let send = |a: usize, fs: &solscope_engine::FreeSlack| {
+                // A send fails only when the app let go of this worker (it is
+                // then cancelled too): the value is dropped on purpose.
+                drop(tx.send((a, fs.clone())));
+            };
+            let run = || {
+                solscope_engine::free_slack_each(&schedule, &order, Some(&flag), &send);
+            };
+            match rayon::ThreadPoolBuilder::new()
+                .num_threads(free_slack_threads())
+                .build()
+            {
+                Ok(pool) => pool.install(run),
+                // No pool of its own: rayon's global one.
+                Err(_) => run(),
+            }
+        });
+        self.free = Some(FreeSlackJob {
+            job,
+            rx,
+            cancel,
+            started: std::time::Instant::now(),
+        });
+    }
+
+    /// Starts computing activity `a`'s free slack on its own worker (seconds:
+    /// one replay of the schedule), when the flexible schedule at `revision` is
+    /// in without it and no such worker runs: what the inspector shows for the
+    /// selected activity, whether the layer is shown or not, without waiting
+    /// for the rest.
+    pub fn request_one(&mut self, revision: u64, a: usize) {
+        if self.one.is_some() || self.failed == Some(revision) {
+            return;
+        }
+        let Some((r, Ok(flex))) = &self.done else {
+            return;
+        };
+        let Some((_, schedule)) = self.source.as_ref().filter(|(s, _)| *s == *r) else {
+            return;
+        };
+        if *r != revision || flex.activity(a).is_none_or(|fa| fa.free_slack.is_some()) {
+            return;
+        }
+        let schedule = Arc::clone(schedule);
+        self.one = Some(Job::spawn((revision, a), move || {
+            solscope_engine::free_slack_of(&schedule, a)
+        }));
+    }
+
+    /// The activity whose free slack is being computed on its own at
+    /// `revision`, if any.
+    pub fn computing_one(&self, revision: u64) -> Option<usize> {
+        self.one
+            .as_ref()
+            .filter(|j| j.key.0 == revision)
+            .map(|j| j.key.1)
+    }
+
+    /// Stops the free slack worker (the layer was turned off): what it found
+    /// stays.
+    pub fn stop_free_slack(&mut self) {
+        if let Some(f) = self.free.take() {
+            self.spent += f.started.elapsed().as_secs_f64();
+        }
+    }
+
+    /// Where the free slack at `revision` stands, once the first stage is in.
+    pub fn free_slack_progress(&self, revision: u64) -> Option<FreeSlackProgress> {
+        let flex = self.get(revision)?.as_ref().ok()?;
+        let running = self.free.as_ref().is_some_and(|f| f.job.key == revision);
+        let now = self
+            .free
+            .as_ref()
+            .filter(|_| running)
+            .map_or(0.0, |f| f.started.elapsed().as_secs_f64());
+        Some(FreeSlackProgress {
+            done: flex
+                .activities
+                .iter()
+                .filter(|fa| fa.free_slack.is_some())
+                .count(),
+            total: flex.activities.len(),
+            running,
+            seconds: (self.spent + now) as u64,
+            failed: self.failed == Some(revision),
+            computing: self.computing_one(revision),
+        })
+    }
+
+    /// Takes the workers' results: kept when they are for `revision`, dropped
+    /// otherwise (the free slack as it comes, one activity at a time). A
+    /// worker that stopped without a result is reported.
     pub fn reap(&mut self, revision: u64) -> Result<(), String> {
-        let Some(job) = &self.pending else {
-            return Ok(());
-        };
-        let Some(result) = job.poll() else {
-            return Ok(());
-        };
-        let (key, full) = job.key;
-        let current = key == revision;
-        self.pending = None;
-        match result {
-            Ok(f) if current => {
-                let ok = f.is_ok();
-                self.done = Some((revision, f));
-                // The first stage is in: the free slack follows.
-                match self.source.take() {
-                    Some((r, plan, analysis)) if !full && ok && r == revision => {
-                        self.pending = Some(Job::spawn((revision, true), move || {
-                            compute_flex(&plan, &analysis, true)
-                        }));
+        if let Some(job) = &self.pending {
+            if let Some(result) = job.poll() {
+                let current = job.key == revision;
+                self.pending = None;
+                match result {
+                    Ok(f) if current => self.done = Some((revision, f)),
+                    Ok(_) => self.source = None,
+                    Err(()) if current => {
+                        let e = "Computing the flexible schedule failed: the worker stopped \
+                                 without a result";
+                        self.done = Some((revision, Err(e.into())));
+                        return Err(e.into());
                     }
-                    _ => {}
+                    Err(()) => {}
                 }
             }
-            Ok(_) => self.source = None,
-            Err(()) if current => {
-                let e =
-                    "Computing the flexible schedule failed: the worker stopped without a result";
-                self.done = Some((revision, Err(e.into())));
-                return Err(e.into());
-            }
-            Err(()) => {}
         }
-        Ok(())
+        if let Some(job) = &self.one {
+            if let Some(result) = job.poll() {
+                let (r, a) = job.key;
+                self.one = None;
+                match (result, &mut self.done) {
+                    (Ok(Some(fs)), Some((d, Ok(flex)))) if r == revision && *d == r => {
+                        Arc::make_mut(flex).set_free_slack(a, fs);
+                    }
+                    (Ok(_), _) => {}
+                    (Err(()), _) if r == revision => {
+                        self.failed = Some(revision);
+                        return Err("Computing the selected activity's free slack failed: the \
+                                    worker stopped without a result"
+                            .into());
+                    }
+                    (Err(()), _) => {}
+                }
+            }
+        }
+        let Some(free) = &self.free else {
+            return Ok(());
+        };
+        if free.job.key != revision {
+            self.free = None;
+            return Ok(());
+        }
+        // Whether it ended first: then every result it sent is in.
+        let ended = free.job.poll();
+        if let Some((r, Ok(flex))) = &mut self.done {
+            if *r == revision {
+                // Unshared (the views only borrow it): filled in place.
+                let flex = Arc::make_mut(flex);
+                while let Ok((a, fs)) = free.rx.try_recv() {
+                    flex.set_free_slack(a, fs);
+                }
+            }
+        }
+        let Some(ended) = ended else {
+            return Ok(());
+        };
+        self.spent += free.started.elapsed().as_secs_f64();
+        self.free = None;
+        match ended {
+            Ok(()) => Ok(()),
+            Err(()) => {
+                self.failed = Some(revision);
+                Err(
+                    "Computing free slack failed: the worker stopped without a result \
+                     (what it found is shown)"
+                        .into(),
+                )
+            }
+        }
     }
 
     /// Whether a worker is running (the frame loop polls until it is done).
     pub fn busy(&self) -> bool {
-        self.pending.is_some()
+        self.pending.is_some() || self.free.is_some() || self.one.is_some()
+    }
+
+    /// Whether a worker of seconds at most is running: the first stage, or
+    /// one activity's free slack.
+    pub fn busy_first_stage(&self) -> bool {
+        self.pending.is_some() || self.one.is_some()
     }
 }
 
@@ -1017,6 +1284,53 @@ mod tests {
             cache.loss(other, post).is_none(),
             "read back only for its key"
         );
+    }
+
+    /// Reaps `cache` at `revision` until no worker runs.
+    fn settle_flex(cache: &mut FlexCache, revision: u64) {
+        for _ in 0..4000 {
+            cache.reap(revision).expect("worker result");
+            if !cache.busy() {
+                return;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        panic!("the flex workers never finished");
+    }
+
+    #[test]
+    fn free_slack_fills_in_on_a_worker_stops_and_goes_on() {
+        let text = include_str!("../../assets/default-plan.json");
+        let plan = solscope_engine::load_plan(text).expect("plan").plan;
+        let analysis = Analysis::of(&plan).expect("scheduled");
+        let mut cache = FlexCache::default();
+        cache.request(&plan, &analysis, 0, true);
+        settle_flex(&mut cache, 0);
+        let p = cache.free_slack_progress(0).expect("first stage in");
+        assert_eq!((p.done, p.running), (0, false));
+        assert!(p.total > 0);
+        // Started, then stopped at once: nothing is taken after the stop.
+        cache.request_free_slack(0, 0.0);
+        assert!(cache.busy() && cache.free_slack_progress(0).is_some_and(|p| p.running));
+        cache.stop_free_slack();
+        assert!(!cache.busy());
+        let stopped = cache.free_slack_progress(0).expect("progress");
+        assert!(!stopped.running && !stopped.complete());
+        // Asked again, it goes on to the end.
+        cache.request_free_slack(0, 0.0);
+        settle_flex(&mut cache, 0);
+        let done = cache.free_slack_progress(0).expect("progress");
+        assert!(done.complete() && !done.running, "{done:?}");
+        let flex = cache.get(0).expect("derived").as_ref().expect("computed");
+        assert_eq!(**flex, solscope_engine::flex(&plan, &analysis.schedule));
+        // Nothing left: no worker starts.
+        cache.request_free_slack(0, 0.0);
+        assert!(!cache.busy());
+        // A newer revision drops the old worker and its values.
+        cache.request(&plan, &analysis, 1, true);
+        assert!(cache.get(1).is_none());
+        settle_flex(&mut cache, 1);
+        assert_eq!(cache.free_slack_progress(1).map(|p| p.done), Some(0));
     }
 
     #[test]

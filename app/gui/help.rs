@@ -9,6 +9,20 @@ pub const STEP: &str = "The scheduler places activities one at a time, highest p
     first, and never moves one it has placed. Each of those turns is a step: step k shows \
     the plan after the first k activities were tried.";
 
+/// The free slack being computed.
+pub const FREE_SLACK_PROGRESS: &str = "Free slack tries each activity again at every start \
+    with everything else where it is, one activity at a time: on a long plan that takes \
+    minutes or more. The shading fills in as each activity is done, those nearest the time \
+    range in view first; the selected activity's is computed on its own, ahead of the \
+    rest, even with the layer off. The rest of the app works meanwhile. Turning the \
+    flexibility layer off stops it, and an edit starts it again for the plan as it is.";
+
+/// The step slider's zoom.
+pub const STEP_ZOOM: &str = "On a long run the slider can span part of the steps: \
+    \"Zoom steps in\" (or Ctrl+wheel over the slider) narrows it around the step shown, \
+    the wheel over it moves it earlier or later, and it follows the step you go to. \
+    Failures in the steps it spans are marked under it.";
+
 /// The valid-starts tracks.
 pub const VALID_STARTS: &str = "Each row shows, in green, the start times that one kind of \
     rule allows for this activity, given what was already placed at that step. It can \

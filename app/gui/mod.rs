@@ -36,7 +36,7 @@ pub use host::{SolscopeHost, run, save_color_image};
 pub use montecarlo::{CampaignResult, Progress, StopReason, Stopped};
 pub use state::{
     History, LAST_STEP, ListFilter, Mode, OverlayPlot, OverlayReason, PathPrompt, Pending,
-    Persisted, Place, StatusFilter, StepView, Tour, UiState, WouldCause,
+    Persisted, Place, StatusFilter, StepView, StepWindow, Tour, UiState, WouldCause,
 };
 pub use theme::Theme;
 pub use time_axis::TimeAxis;

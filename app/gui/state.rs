@@ -161,6 +161,32 @@ impl StepView {
     }
 }
 
+/// Where the free slack of the flexible schedule shown stands.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FreeSlackProgress {
+    /// Placed activities whose free slack is known.
+    pub done: usize,
+    /// Placed activities.
+    pub total: usize,
+    /// A worker is computing the rest.
+    pub running: bool,
+    /// How long the computation has run so far (seconds, all its runs).
+    pub seconds: u64,
+    /// The worker stopped without finishing (an internal error, shown): it is
+    /// not started again for this revision.
+    pub failed: bool,
+    /// The activity whose free slack is being computed on its own, ahead of
+    /// the rest (the selected one).
+    pub computing: Option<usize>,
+}
+
+impl FreeSlackProgress {
+    /// Every activity's free slack is known.
+    pub fn complete(&self) -> bool {
+        self.done >= self.total
+    }
+}
+
 /// Which plot a [`WouldCause`] overlay goes on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum OverlayPlot {
@@ -265,6 +291,7 @@ impl UiState {
                 cycle: 0,
                 cycle_step: LAST_STEP,
                 overlay_reason: None,
+                steps_shown: StepWindow::ALL,
             },
             messages: Messages::default(),
             text: TextBuffers::default(),
@@ -315,6 +342,113 @@ pub struct Navigation {
     /// The failed activity and the index of its energy or peak-power reason
     /// whose profile the plots draw (the first when none was picked for it).
     pub overlay_reason: Option<(usize, usize)>,
+    /// The steps the step slider spans (zoomed in on a long run), in the run
+    /// it moves through (the schedule's, or the looked-at cycle's).
+    pub steps_shown: StepWindow,
+}
+
+/// How much one press of "Zoom steps in" narrows the step slider's span.
+pub const STEP_ZOOM: f64 = 4.0;
+
+/// The fewest steps the step slider spans when zoomed in.
+pub const MIN_STEPS_SHOWN: usize = 10;
+
+/// The steps the step slider spans: `first..=last` of a run's steps `0..=n`,
+/// clamped to the run when read (so one window serves whichever run the
+/// slider moves through). Runtime state, never persisted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StepWindow {
+    /// The first step spanned.
+    pub first: usize,
+    /// The last step spanned (`usize::MAX`: the run's last).
+    pub last: usize,
+}
+
+impl StepWindow {
+    /// Every step of the run.
+    pub const ALL: Self = Self {
+        first: 0,
+        last: usize::MAX,
+    };
+
+    /// The window on a run of steps `0..=n`: `(first, last)` inside it, at
+    /// least [`MIN_STEPS_SHOWN`] steps wide when the run has that many.
+    pub fn span(self, n: usize) -> (usize, usize) {
+        let last = self.last.min(n);
+        let first = self.first.min(last);
+        let width = MIN_STEPS_SHOWN.min(n);
+        if last - first >= width {
+            (first, last)
+        } else {
+            let first = first.min(n - width);
+            (first, first + width)
+        }
+    }
+
+    /// Whether it spans all of a run of `n` steps.
+    pub fn is_all(self, n: usize) -> bool {
+        self.span(n) == (0, n)
+    }
+
+    /// The window `width` steps wide (at least [`MIN_STEPS_SHOWN`], at most
+    /// the run) placed so that step `at` stays where it is on the rail: at
+    /// the same fraction of the window (`frac`, 0 to 1).
+    fn sized(width: usize, at: usize, frac: f64, n: usize) -> Self {
+        let width = width.clamp(MIN_STEPS_SHOWN.min(n), n);
+        let before = (width as f64 * frac.clamp(0.0, 1.0)).round() as usize;
+        let first = at.saturating_sub(before).min(n - width);
+        Self {
+            first,
+            last: first + width,
+        }
+    }
+
+    /// Zoomed by `factor` (above 1: fewer steps) about step `at`, which keeps
+    /// its place on the rail; on a run of `n` steps.
+    pub fn zoomed(self, factor: f64, at: usize, n: usize) -> Self {
+        let (first, last) = self.span(n);
+        let width = ((last - first) as f64 / factor.max(f64::MIN_POSITIVE)).round() as usize;
+        let at = at.clamp(first, last);
+        let frac = if last > first {
+            (at - first) as f64 / (last - first) as f64
+        } else {
+            0.5
+        };
+        let z = Self::sized(width, at, frac, n);
+        if z.is_all(n) { Self::ALL } else { z }
+    }
+
+    /// Moved by `by` steps (negative: earlier), its width kept.
+    pub fn panned(self, by: i64, n: usize) -> Self {
+        let (first, last) = self.span(n);
+        let width = last - first;
+        let first = if by < 0 {
+            first.saturating_sub(by.unsigned_abs() as usize)
+        } else {
+            first.saturating_add(by as usize).min(n - width)
+        };
+        if width == n {
+            return Self::ALL;
+        }
+        Self {
+            first,
+            last: first + width,
+        }
+    }
+
+    /// The smallest move that brings step `k` into the window (its width
+    /// kept): the window follows the step shown.
+    pub fn following(self, k: usize, n: usize) -> Self {
+        let (first, last) = self.span(n);
+        if self.is_all(n) || (first..=last).contains(&k) {
+            return self;
+        }
+        if k < first {
+            self.panned(-((first - k) as i64), n)
+        } else {
+            self.panned((k - last) as i64, n)
+        }
+    }
 }
 
 impl Navigation {
@@ -604,6 +738,36 @@ mod tests {
             current = p;
         }
         assert_eq!(last, Some(at(50, 50)), "the oldest 50 are gone");
+    }
+
+    #[test]
+    fn the_step_window_zooms_about_a_step_pans_and_follows() {
+        let n = 10_000;
+        let all = StepWindow::ALL;
+        assert_eq!(all.span(n), (0, n));
+        assert_eq!(all.span(4), (0, 4), "a short run is spanned whole");
+        // Zoomed 4x about step 5,000 in the middle: it stays in the middle.
+        let z = all.zoomed(4.0, 5_000, n);
+        assert_eq!(z.span(n), (3_750, 6_250));
+        // About step 9,000: it keeps its place (90 % along the rail).
+        let z9 = all.zoomed(4.0, 9_000, n);
+        assert_eq!(z9.span(n), (6_750, 9_250));
+        // Zoomed in as far as it goes: ten steps, step 1,234 inside.
+        let tight = all.zoomed(1e9, 1_234, n);
+        let (a, b) = tight.span(n);
+        assert_eq!(b - a, MIN_STEPS_SHOWN);
+        assert!((a..=b).contains(&1_234));
+        // Out again past the whole run: all steps.
+        assert_eq!(z.zoomed(0.1, 5_000, n), StepWindow::ALL);
+        // Panned: clamped at both ends, the width kept.
+        assert_eq!(z.panned(-10_000, n).span(n), (0, 2_500));
+        assert_eq!(z.panned(10_000, n).span(n), (7_500, n));
+        // The window follows a step outside it by the least move.
+        assert_eq!(z.following(7_000, n).span(n), (4_500, 7_000));
+        assert_eq!(z.following(100, n).span(n), (100, 2_600));
+        assert_eq!(z.following(4_000, n), z, "inside: no move");
+        // A window of a longer run on a shorter one.
+        assert_eq!(z.span(3_000), (3_000 - MIN_STEPS_SHOWN, 3_000));
     }
 
     #[test]

@@ -182,6 +182,10 @@ pub const STEP_SLIDER_WIDTH: f32 = 320.0;
 /// The least room left beside the step slider for the step's label to stay on
 /// the slider's line (cut with an ellipsis there) rather than wrap below it.
 pub const STEP_LABEL_MIN_WIDTH: f32 = 160.0;
+/// The fewest rail points per step the step slider gives before it offers to
+/// zoom (a longer run gets "Zoom steps in" / "Zoom steps out"), and the
+/// fewest a planner can pick one step at with the mouse.
+pub const STEP_PICK_POINTS: f32 = 4.0;
 /// Height of a failure tick on the step slider.
 pub const FAILURE_TICK_HEIGHT: f32 = 5.0;
 /// Width of a failure tick on the step slider.
@@ -206,6 +210,10 @@ pub const LIMIT_LINE_STROKE: f32 = 1.5;
 pub const WHISKER_STROKE: f32 = 1.0;
 /// Height of the ticks at the ends of a whisker (points: the same at every zoom).
 pub const WHISKER_TICK: f32 = 8.0;
+/// A slack whisker reaching less than this (points) past its bar on both sides
+/// is not drawn: it would not show beside the bar (at a whole-plan zoom of
+/// 10,000 activities, thousands of them cost a frame more than the bars).
+pub const WHISKER_MIN_REACH: f32 = 1.0;
 /// Outline width of the culprits' bars of the selected failed activity.
 pub const CULPRIT_STROKE: f32 = 2.0;
 /// Width of the line of what a failed activity would have caused on a plot.

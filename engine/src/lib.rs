@@ -42,8 +42,8 @@ pub use explain::{
 };
 pub use flex::{
     Bound, Constraint, Controllability, DispatchEdge, EventBounds, Flex, FlexActivity, FlexOptions,
-    OrderKind, StartCondition, TimePoint, Wait, constraint_line, flex, flex_text, flex_with,
-    free_slack_of, time_point_name,
+    FreeSlack, OrderKind, StartCondition, TimePoint, Wait, constraint_line, flex, flex_text,
+    flex_with, free_slack_each, free_slack_of, time_point_name,
 };
 pub use generate::{Profile, generate_plan, generate_plan_with};
 pub use load::{

@@ -483,6 +483,99 @@ fn bundled_plan_flex_is_deterministic_and_names_the_drive_conflict() {
     }
 }
 
+/// The bundled plan and its schedule.
+fn bundled() -> (Plan, solscope_engine::Schedule) {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/default-plan.json"
+    ))
+    .unwrap();
+    let plan = load_plan(&text).unwrap().plan;
+    let sched = schedule(&plan).unwrap();
+    (plan, sched)
+}
+
+#[test]
+fn free_slack_each_reports_every_activity_as_it_goes_and_matches_one_at_a_time() {
+    use std::sync::Mutex;
+    let (plan, sched) = bundled();
+    // Every activity of the plan, a failed one among them (no free slack).
+    let all: Vec<usize> = (0..plan.activities.len()).rev().collect();
+    let seen = Mutex::new(Vec::new());
+    let each = solscope_engine::free_slack_each(&sched, &all, None, &|a, fs| {
+        seen.lock().unwrap().push((a, fs.clone()));
+    });
+    assert_eq!(each.len(), all.len());
+    let mut placed = 0;
+    for (i, &a) in all.iter().enumerate() {
+        let one = solscope_engine::free_slack_of(&sched, a);
+        assert_eq!(each[i], one, "activity {a}");
+        placed += usize::from(one.is_some());
+    }
+    assert!(placed > 0 && placed < all.len(), "placed and failed ones");
+    // Each result was handed on once, with the value returned.
+    let mut seen = seen.into_inner().unwrap();
+    seen.sort_by_key(|(a, _)| *a);
+    assert_eq!(seen.len(), placed);
+    for (a, fs) in seen {
+        assert_eq!(solscope_engine::free_slack_of(&sched, a), Some(fs));
+    }
+    // The flexible form takes them in.
+    let mut f = solscope_engine::flex_with(
+        &plan,
+        &sched,
+        solscope_engine::FlexOptions { free_slack: false },
+    );
+    for (i, &a) in all.iter().enumerate() {
+        if let Some(fs) = each[i].clone() {
+            assert!(f.set_free_slack(a, fs));
+        }
+    }
+    assert_eq!(f, flex(&plan, &sched));
+}
+
+#[test]
+fn free_slack_each_stops_when_cancelled_and_keeps_what_it_did() {
+    use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+    let (plan, sched) = bundled();
+    let placed: Vec<usize> = (0..plan.activities.len())
+        .filter(|&a| sched.placement(a).is_some())
+        .collect();
+    // Cancelled before it starts: nothing is done.
+    let stop = AtomicBool::new(true);
+    let calls = AtomicUsize::new(0);
+    let none = solscope_engine::free_slack_each(&sched, &placed, Some(&stop), &|_, _| {
+        calls.fetch_add(1, Ordering::Relaxed);
+    });
+    assert!(none.iter().all(Option::is_none));
+    assert_eq!(calls.load(Ordering::Relaxed), 0);
+    // Cancelled by the first result, on two threads: at most the one other
+    // activity under way finishes; what was done is right.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let stop = AtomicBool::new(false);
+    let some = pool.install(|| {
+        solscope_engine::free_slack_each(&sched, &placed, Some(&stop), &|_, _| {
+            stop.store(true, Ordering::Relaxed);
+        })
+    });
+    let done = some.iter().filter(|s| s.is_some()).count();
+    assert!((1..=2).contains(&done), "{done} of {}", placed.len());
+    assert!(placed.len() > 2);
+    // Begun in the order given: only the first two were begun.
+    assert!(some[2..].iter().all(Option::is_none));
+    for (i, s) in some.iter().enumerate() {
+        if let Some(s) = s {
+            assert_eq!(
+                Some(s.clone()),
+                solscope_engine::free_slack_of(&sched, placed[i])
+            );
+        }
+    }
+}
+
 /// `FLEX_PLAN=plan.json cargo test --test flex plan_from_env -- --ignored`: every
 /// check on one plan file (for failures the properties print).
 #[test]

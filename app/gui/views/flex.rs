@@ -10,7 +10,8 @@ use solscope_engine::{
 
 use super::Model;
 use crate::gui::commands::Command;
-use crate::gui::theme::{WHISKER_STROKE, WHISKER_TICK};
+use crate::gui::state::FreeSlackProgress;
+use crate::gui::theme::{WHISKER_MIN_REACH, WHISKER_STROKE, WHISKER_TICK};
 use crate::gui::time_axis::TimeAxis;
 
 /// A bound as read: `10 min after zcam_tau_412 starts`, `when drive ends`.
@@ -230,7 +231,14 @@ pub fn underlay(
         shade(&p1.subtract(free), m.theme.slack_phase1);
         shade(free, m.theme.slack_free);
     }
-    if fa.start.ub > fa.start.lb {
+    // Past its bar `[nom, nom + d]` by at least a little on one side.
+    let reach = |a: i64, b: i64| x(b) - x(a) >= WHISKER_MIN_REACH;
+    let seen = reach(fa.start.lb, fa.start.nom)
+        || reach(
+            fa.start.nom.saturating_add(d),
+            fa.start.ub.saturating_add(d),
+        );
+    if fa.start.ub > fa.start.lb && seen {
         let stroke = Stroke::new(WHISKER_STROKE, m.theme.whisker);
         let (x0, x1) = (x(fa.start.lb), x(fa.start.ub.saturating_add(d)));
         let mid = y + h / 2.0;
@@ -275,9 +283,60 @@ pub fn legend_ui(ui: &mut egui::Ui, m: &Model<'_>) {
                 ui.label(RichText::new("selected's neighbours").color(t.neighbour))
                     .on_hover_text("Adjacent in the minimum dispatchable network");
                 ui.label(RichText::new("· drag a bar to try another start").color(t.muted));
+                free_slack_status_ui(ui, m);
             }
         }
     });
+}
+
+/// How far the free slack has come, while it is not all known: a long plan's
+/// free slack takes minutes or more (one replay of the schedule per
+/// activity), so the layer shows it as it fills in and says so.
+fn free_slack_status_ui(ui: &mut egui::Ui, m: &Model<'_>) {
+    let Some(p) = m.free_slack.filter(|p| !p.complete()) else {
+        return;
+    };
+    if p.running {
+        ui.spinner();
+    }
+    ui.label(RichText::new(free_slack_status(p)).color(m.theme.muted))
+        .on_hover_text(crate::gui::help::FREE_SLACK_PROGRESS);
+}
+
+/// "free slack: 1,234 of 5,624 activities so far (2 min 10 s, about 8 min
+/// left), nearest the time range in view first", or where it stopped.
+pub fn free_slack_status(p: FreeSlackProgress) -> String {
+    let spent = format_span(p.seconds as i64);
+    if p.failed {
+        return format!(
+            "free slack: {} of {} activities known (its computation failed after {spent})",
+            p.done, p.total
+        );
+    }
+    if !p.running {
+        return format!(
+            "free slack: {} of {} activities known (stopped after {spent}; it goes on \
+             while the layer is shown)",
+            p.done, p.total
+        );
+    }
+    // The rate so far (activities differ: a rough guide).
+    let left = (p.done > 0 && p.seconds > 0).then(|| {
+        let per = p.seconds as f64 / p.done as f64;
+        format_span((per * (p.total - p.done) as f64).round() as i64)
+    });
+    match left {
+        Some(left) => format!(
+            "computing free slack: {} of {} activities so far ({spent}, about {left} left at \
+             this rate), nearest the time range in view first",
+            p.done, p.total
+        ),
+        None => format!(
+            "computing free slack: {} of {} activities so far ({spent}), nearest the time \
+             range in view first",
+            p.done, p.total
+        ),
+    }
 }
 
 /// The hover text's flexibility part for a bar.
@@ -347,6 +406,26 @@ pub fn flex_section_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Ve
         }
     }
     ui.label(skip_line(m, fa));
+    if fa.free_slack.is_none() {
+        if let Some(p) = m.free_slack {
+            ui.horizontal_wrapped(|ui| {
+                if p.computing == Some(a) {
+                    ui.spinner();
+                    ui.label("Computing its free slack (one replay of the schedule)…")
+                        .on_hover_text(crate::gui::help::FREE_SLACK_PROGRESS);
+                    return;
+                }
+                if p.running {
+                    ui.spinner();
+                }
+                ui.label(format!(
+                    "Its free slack is not known yet; {}.",
+                    free_slack_status(p)
+                ))
+                .on_hover_text(crate::gui::help::FREE_SLACK_PROGRESS);
+            });
+        }
+    }
     if let (Some(free), Some(p1)) = (&fa.free_slack, &fa.free_slack_phase1) {
         ui.label(
             RichText::new(format!(

@@ -1327,6 +1327,7 @@ mod tests {
             valid: None,
             would_cause: None,
             flex: None,
+            free_slack: None,
             nav: &app.ui.nav,
             messages: &app.ui.messages,
             exec: crate::gui::views::ExecModel {

@@ -14,7 +14,8 @@ mod text;
 pub use network::{Constraint, OrderKind, TimePoint};
 pub use text::{constraint_line, flex_text, time_point_name};
 
-use rayon::prelude::*;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use crate::model::Plan;
 use crate::scheduler::Schedule;
@@ -190,7 +191,78 @@ impl Default for FlexOptions {
 /// the schedule after its step: what an app asks for the selected activity.
 pub fn free_slack_of(sched: &Schedule, a: usize) -> Option<(IntervalSet, IntervalSet)> {
     let placed = sched.placement(a)?;
-    Some(slack::free_slack(sched, a, placed))
+    slack::free_slack(sched, a, placed, None)
+}
+
+/// The free slack of one activity: `(phase 1 only, every check)`, as
+/// [`FlexActivity`] reports them.
+pub type FreeSlack = (IntervalSet, IntervalSet);
+
+/// The free slack of each of `activities` (their indices in the plan), as
+/// [`free_slack_of`] gives it, computed in parallel on the current rayon pool
+/// and begun in the order given (so a caller puts first what it wants first:
+/// the app, the activities in view). Free slack costs one replay of the
+/// schedule after each activity's step, so it is quadratic in the placed
+/// activities (minutes at 10,000): hence the two controls.
+///
+/// - `cancel`, when set, stops the computation: no further activity is begun,
+///   and those under way stop at their next few replayed steps. The result then
+///   holds what was done.
+/// - `on_done` is called with each activity's index and free slack as soon as
+///   it is known (on the worker threads, in any order): what has been computed
+///   so far, before the whole is done.
+///
+/// The result is in the order of `activities`: `None` for an activity that is
+/// not placed or was not done before the cancel.
+pub fn free_slack_each(
+    sched: &Schedule,
+    activities: &[usize],
+    cancel: Option<&AtomicBool>,
+    on_done: &(dyn Fn(usize, &FreeSlack) + Sync),
+) -> Vec<Option<FreeSlack>> {
+    let out: Mutex<Vec<Option<FreeSlack>>> = Mutex::new(vec![None; activities.len()]);
+    let next = AtomicUsize::new(0);
+    let cancelled = || cancel.is_some_and(|c| c.load(Ordering::Relaxed));
+    // Each thread takes the next activity in order (rather than rayon's split
+    // of the slice in halves), so the first ones are done first.
+    rayon::broadcast(|_| {
+        loop {
+            let i = next.fetch_add(1, Ordering::Relaxed);
+            if i >= activities.len() || cancelled() {
+                return;
+            }
+            let a = activities[i];
+            let Some(placed) = sched.placement(a) else {
+                continue;
+            };
+            if let Some(fs) = slack::free_slack(sched, a, placed, cancel) {
+                on_done(a, &fs);
+                // A poisoned lock means another thread panicked: the panic
+                // goes on to the caller through rayon; the value is still
+                // good to write.
+                let mut out = out
+                    .lock()
+                    .unwrap_or_else(std::sync::PoisonError::into_inner);
+                out[i] = Some(fs);
+            }
+        }
+    });
+    out.into_inner()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+impl Flex {
+    /// Puts `slack` as activity `a`'s free slack (as [`free_slack_each`] or
+    /// [`free_slack_of`] gives it); `false` when `a` is not placed here.
+    pub fn set_free_slack(&mut self, a: usize, slack: FreeSlack) -> bool {
+        let Some(i) = self.position(a) else {
+            return false;
+        };
+        let (p1, both) = slack;
+        self.activities[i].free_slack_phase1 = Some(p1);
+        self.activities[i].free_slack = Some(both);
+        true
+    }
 }
 
 /// The flexible form of `sched`, a schedule of `plan`, with free slack.
@@ -282,11 +354,8 @@ pub fn flex_with(plan: &Plan, sched: &Schedule, opts: FlexOptions) -> Flex {
         adjacent[v].push(u);
     }
     let act_of = |e: usize| (e >= 1).then(|| net.placed[(e - 1) / 2]);
-    let slack: Vec<Option<(IntervalSet, IntervalSet)>> = if opts.free_slack {
-        (0..net.placed.len())
-            .into_par_iter()
-            .map(|j| Some(slack::free_slack(sched, net.placed[j], net.nominal[j])))
-            .collect()
+    let slack: Vec<Option<FreeSlack>> = if opts.free_slack {
+        free_slack_each(sched, &net.placed, None, &|_, _| {})
     } else {
         vec![None; net.placed.len()]
     };

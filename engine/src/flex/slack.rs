@@ -12,17 +12,26 @@
 //! what one relied on), and the dependencies of the placed activities that depend
 //! on it bound its end.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use crate::model::EffectAt;
 use crate::scheduler::{Schedule, Scope, accepted_starts};
 use crate::timeline::IntervalSet;
 
+/// How many later steps are replayed between two looks at the cancel flag.
+const CANCEL_EVERY: usize = 32;
+
 /// The free slack of activity `a` (placed at `(s, e)`): the starts passing phase 1
 /// and the dependents' dependencies, and the part of those that also passes phase 2.
+/// `None` when `cancel` was set while it ran (looked at every few replayed
+/// steps, so a cancel stops it within moments even on a long schedule).
 pub(crate) fn free_slack(
     sched: &Schedule,
     a: usize,
     (s, e): (i64, i64),
-) -> (IntervalSet, IntervalSet) {
+    cancel: Option<&AtomicBool>,
+) -> Option<(IntervalSet, IntervalSet)> {
+    let cancelled = || cancel.is_some_and(|c| c.load(Ordering::Relaxed));
     let d = e - s;
     let k = sched.problem.step_of[a];
     // Its own step's check, against the steps before it: what the scheduler
@@ -36,7 +45,10 @@ pub(crate) fn free_slack(
     waived.acts[a].mandatory = true;
     let problem = &waived;
     let mut state = crate::scheduler::State::replayed(problem, &sched.steps[..k - 1]);
-    for step in &sched.steps[k..] {
+    for (i, step) in sched.steps[k..].iter().enumerate() {
+        if i % CANCEL_EVERY == 0 && cancelled() {
+            return None;
+        }
         let b = step.activity;
         let Some((sb, eb)) = step.outcome.placement() else {
             continue;
@@ -65,7 +77,7 @@ pub(crate) fn free_slack(
                 // generated pieces relied on it): only the scheduled start is
                 // known to keep every constraint.
                 let only = IntervalSet::single(s, s);
-                return (only.clone(), only);
+                return Some((only.clone(), only));
             }
         }
     }
@@ -103,5 +115,5 @@ pub(crate) fn free_slack(
             both = both.clip(lo, hi);
         }
     }
-    (temporal, both)
+    Some((temporal, both))
 }
