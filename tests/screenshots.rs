@@ -303,6 +303,28 @@ fn dragging_a_bar_previews_the_shift() {
     h.snapshot_options("flex_drag_preview", &snapshot_options());
 }
 
+/// The tooltip of a Gantt bar at the pointer: name, status, sol time,
+/// duration and what it holds (the default plan's noon MEDA run on sol 412).
+#[test]
+fn a_gantt_bar_s_tooltip() {
+    let mut app = app();
+    app.apply(Command::SetAxis(TimeAxis::new(55_000.0, 72_000.0)));
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).expect("harness");
+    let a = h
+        .state()
+        .doc
+        .plan
+        .activities
+        .iter()
+        .position(|x| x.id == "meda_412_1200")
+        .expect("activity");
+    let r = h.state().gantt_bar(a).expect("drawn");
+    h.hover_at(r.center());
+    // Tooltips show once the pointer rests (egui's tooltip delay).
+    h.run_steps(60);
+    h.snapshot_options("gantt_tooltip", &snapshot_options());
+}
+
 /// The structured editor of drill_core_413, scrolled to its windows, with a
 /// window end before its start typed in: the reason in red under the
 /// fields, nothing applied.
