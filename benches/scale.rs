@@ -34,7 +34,9 @@ use std::time::{Duration, Instant};
 use eframe::egui;
 use serde_json::json;
 use solscope::gui::{Command, SolscopeApp};
-use solscope_engine::{ExplainOptions, Outcome, Profile, explain, generate_plan_with, schedule};
+use solscope_engine::{
+    ExplainOptions, Outcome, Plan, Profile, explain, generate_plan_with, schedule,
+};
 
 /// Median wall time of `runs` calls (at least one).
 fn median(runs: usize, mut f: impl FnMut()) -> Duration {
@@ -310,6 +312,16 @@ fn table(profile: Profile, sizes: &[(usize, usize, usize)]) {
     }
 }
 
+/// Generated plan `(profile, n, sols)`, seed 1, and the app on it as the
+/// desktop runs it (derived values on workers).
+fn desktop_app(profile: Profile, n: usize, sols: usize) -> (Plan, SolscopeApp) {
+    let plan = generate_plan_with(profile, n, sols, 1);
+    let text = serde_json::to_string(&plan).expect("json");
+    let mut app = SolscopeApp::from_text(&text, None).expect("app");
+    app.background = true;
+    (plan, app)
+}
+
 /// The activity list's search and filters (`--navigation`): frames with them
 /// standing and the frame after a change, as the desktop app runs (workers
 /// settled first).
@@ -326,10 +338,7 @@ fn navigation(profiles: &[(&str, Profile)], quick: bool) {
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for &(name, profile) in profiles {
         for &(n, sols) in sizes {
-            let plan = generate_plan_with(profile, n, sols, 1);
-            let text = serde_json::to_string(&plan).expect("json");
-            let mut app = SolscopeApp::from_text(&text, None).expect("app");
-            app.background = true;
+            let (plan, mut app) = desktop_app(profile, n, sols);
             let ctx = egui::Context::default();
             let settle = |app: &mut SolscopeApp| {
                 frame(&ctx, app);
@@ -432,10 +441,7 @@ fn drag(profiles: &[(&str, Profile)], quick: bool) {
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for &(name, profile) in profiles {
         for &(n, sols) in sizes {
-            let plan = generate_plan_with(profile, n, sols, 1);
-            let text = serde_json::to_string(&plan).expect("json");
-            let mut app = SolscopeApp::from_text(&text, None).expect("app");
-            app.background = true;
+            let (plan, mut app) = desktop_app(profile, n, sols);
             let ctx = egui::Context::default();
             // The flexible schedule's network first (its free slack may go on
             // on a worker, as in the app).

@@ -12,6 +12,17 @@ fn app() -> SolscopeApp {
     SolscopeApp::with_default_plan().expect("default plan")
 }
 
+/// The index of the activity `id` of the plan open in `h`.
+fn activity(h: &egui_kittest::Harness<'_, SolscopeApp>, id: &str) -> usize {
+    h.state()
+        .doc
+        .plan
+        .activities
+        .iter()
+        .position(|x| x.id == id)
+        .expect("activity")
+}
+
 fn check(name: &str, app: SolscopeApp, view: View) {
     let mut h = harness(app, SNAPSHOT_SIZE.into(), &view).expect("harness");
     h.snapshot_options(name, &snapshot_options());
@@ -280,14 +291,7 @@ fn dragging_a_bar_previews_the_shift() {
     let mut app = app();
     app.apply(Command::SetAxis(TimeAxis::new(52_000.0, 72_000.0)));
     let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).expect("harness");
-    let a = h
-        .state()
-        .doc
-        .plan
-        .activities
-        .iter()
-        .position(|x| x.id == "pixl_abrasion")
-        .expect("activity");
+    let a = activity(&h, "pixl_abrasion");
     let r = h.state().gantt_bar(a).expect("drawn");
     let (s, e) = h.state().analysis.placement(a).expect("placed");
     let dx = 2400.0 * r.width() / (e - s) as f32;
@@ -310,14 +314,7 @@ fn a_gantt_bar_s_tooltip() {
     let mut app = app();
     app.apply(Command::SetAxis(TimeAxis::new(55_000.0, 72_000.0)));
     let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).expect("harness");
-    let a = h
-        .state()
-        .doc
-        .plan
-        .activities
-        .iter()
-        .position(|x| x.id == "meda_412_1200")
-        .expect("activity");
+    let a = activity(&h, "meda_412_1200");
     let r = h.state().gantt_bar(a).expect("drawn");
     h.hover_at(r.center());
     // Tooltips show once the pointer rests (egui's tooltip delay).
