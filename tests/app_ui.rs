@@ -2950,6 +2950,23 @@ fn free_slack_fills_in_off_the_frame_says_how_far_and_stops_with_the_layer() {
 }
 
 #[test]
+fn execution_mode_stops_the_free_slack_and_schedule_mode_resumes_it() {
+    let mut h = generated(solscope_engine::Profile::Realistic, 1_000, 3, true);
+    wait_until(&mut h, "some free slack", |app| {
+        app.free_slack_progress().is_some_and(|p| p.done > 0)
+    });
+    // The layer is not drawn in execution mode: nothing computes its shading.
+    h.state_mut().push(Command::Ui(UiCommand::ShowExecution));
+    h.run_steps(2);
+    let stopped = h.state().free_slack_progress().unwrap();
+    assert!(!stopped.running, "{stopped:?}");
+    h.state_mut().push(Command::Ui(UiCommand::ShowSchedule));
+    h.run_steps(2);
+    let again = h.state().free_slack_progress().unwrap();
+    assert!(again.running && again.done >= stopped.done, "{again:?}");
+}
+
+#[test]
 fn the_selected_activity_s_free_slack_is_computed_ahead_of_the_rest() {
     // The layer off: no worker computes the plan's free slack.
     let mut h = generated(solscope_engine::Profile::Realistic, 1_000, 3, false);

@@ -203,7 +203,10 @@ impl SolscopeApp {
         self.derive_step_view();
         if self.ui.nav.mode == Mode::Execution {
             // The execution and the looked-at cycle's run, derived before
-            // drawing (on a worker in the desktop app).
+            // drawing (on a worker in the desktop app). The flexibility layer
+            // is not drawn here: its free slack stops (what it found stays; it
+            // goes on back in schedule mode).
+            self.flex.stop_free_slack();
             self.derive_execution();
         } else {
             // The flexible schedule: the Gantt's layer and the inspector's

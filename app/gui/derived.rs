@@ -866,6 +866,15 @@ impl FlexCache {
     pub fn stop_free_slack(&mut self) {
         if let Some(f) = self.free.take() {
             self.spent += f.started.elapsed().as_secs_f64();
+            // What it sent since the last reap is kept too (not computed again).
+            if let Some((r, Ok(flex))) = &mut self.done {
+                if *r == f.job.key {
+                    let flex = Arc::make_mut(flex);
+                    while let Ok((a, fs)) = f.rx.try_recv() {
+                        flex.set_free_slack(a, fs);
+                    }
+                }
+            }
         }
     }
 

@@ -229,6 +229,10 @@ pub const TOUR_GAP: f32 = 12.0;
 pub const TOUR_SECTION: f32 = 240.0;
 /// Outline width of what the guided tour's page talks about.
 pub const TOUR_OUTLINE: f32 = 2.0;
+/// Corner radius of the guided tour's outline.
+pub const TOUR_OUTLINE_ROUNDING: f32 = 4.0;
+/// Room left between an outlined inspector section and the heading after it.
+pub const TOUR_SECTION_GAP: f32 = 2.0;
 /// Radius of the hollow markers of the other reasons' violations.
 pub const OTHER_VIOLATION_RADIUS: f32 = 3.5;
 /// Outline width of the selected activity's dispatchable neighbours.

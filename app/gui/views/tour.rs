@@ -7,7 +7,9 @@ use eframe::egui::{self, Align2, Pos2, Rect, RichText, Stroke, StrokeKind};
 
 use super::Model;
 use crate::gui::commands::{Command, UiCommand};
-use crate::gui::theme::{TOUR_GAP, TOUR_OUTLINE, TOUR_SECTION, TOUR_WIDTH};
+use crate::gui::theme::{
+    TOUR_GAP, TOUR_OUTLINE, TOUR_OUTLINE_ROUNDING, TOUR_SECTION, TOUR_SECTION_GAP, TOUR_WIDTH,
+};
 use crate::gui::tour::{self, Anchor, Facts, Page};
 
 /// Where the parts the tour points at were drawn this frame.
@@ -62,7 +64,7 @@ pub fn tour_ui(ui: &egui::Ui, m: &Model<'_>, anchors: &TourAnchors, cmds: &mut V
         let y = heading.map_or(inspector.top(), |r| r.top());
         let section = heading.map(|h| {
             let bottom = next
-                .map_or(h.bottom() + TOUR_SECTION, |n| n.top() - 2.0)
+                .map_or(h.bottom() + TOUR_SECTION, |n| n.top() - TOUR_SECTION_GAP)
                 .min(inspector.bottom());
             Rect::from_x_y_ranges(inspector.x_range(), h.top()..=bottom.max(h.bottom()))
         });
@@ -110,7 +112,7 @@ pub fn tour_ui(ui: &egui::Ui, m: &Model<'_>, anchors: &TourAnchors, cmds: &mut V
             ))
             .rect_stroke(
                 r,
-                4.0,
+                TOUR_OUTLINE_ROUNDING,
                 Stroke::new(TOUR_OUTLINE, m.theme.tour),
                 StrokeKind::Outside,
             );
