@@ -407,9 +407,9 @@ fn explain_streamed(
     }
     let plan_ref = &loaded.plan;
     let sched_ref = &schedule;
-    // Each explanation is formatted on the thread that built it (the entry as
-    // the whole document's pretty form nests it: two levels, four spaces, in),
-    // and written here in order.
+    // The explanations are formatted in parallel as they are handed on (the
+    // entry as the whole document's pretty form nests it: two levels, four
+    // spaces, in), and written here in order.
     let render = |ex: solscope_engine::Explanation| -> Result<String, String> {
         if text {
             return Ok(solscope_engine::explanation_text(plan_ref, sched_ref, &ex));

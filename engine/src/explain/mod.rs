@@ -158,9 +158,9 @@ pub fn explain(
 
 /// [`explain`], handing each explanation to `each` in step order, and reporting
 /// `progress(steps replayed, steps)` as the run is replayed. Without suggestions
-/// an explanation is handed on as soon as it and every one before it are
-/// complete, so that a caller can write a large document as it goes, in bounded
-/// memory; with suggestions (verified together, edits shared between failures)
+/// an explanation is handed on once it and every one before it are complete
+/// (checked after each block of a few hundred replayed steps), so that a caller
+/// can write a large document as it goes, in bounded memory; with suggestions (verified together, edits shared between failures)
 /// all of them come at the end.
 pub fn explain_each(
     plan: &Plan,
@@ -173,9 +173,9 @@ pub fn explain_each(
 }
 
 /// [`explain_each`], handing on `render(explanation)` instead of the
-/// explanation: `render` runs on the thread that built the explanation, in
-/// parallel with the others (e.g. formatting it as a document entry), and
-/// `each` gets the results in step order on the caller's thread.
+/// explanation (e.g. formatted as a document entry): the explanations ready
+/// to go are rendered on rayon's threads, 64 at a time in parallel, and `each`
+/// gets the results in step order on the caller's thread.
 pub fn explain_rendered<R: Send>(
     plan: &Plan,
     sched: &Schedule,

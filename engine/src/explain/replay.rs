@@ -479,7 +479,9 @@ fn overlap(a: (i64, i64), b: (i64, i64)) -> i128 {
 /// For each target `i` that fails, with its failure step `k`, the probe's step
 /// record there and its tries and the state after step `k`: `build`s a value
 /// (in parallel with the other targets probed at the same step) and hands it to
-/// `on_failure(i, value)`, in order of the failure step, then of `i`.
+/// `on_failure(i, value)`, in order of the failure step, then of `i`;
+/// `stepped(k)` once the steps up to `k` are replayed and their failures handed
+/// on (at the end of each block of [`BLOCK_STEPS`]).
 /// Targets that schedule at their own step (scheduled activities) get no call.
 ///
 /// Each target is looked at only at the steps that can change its answer: after a
@@ -541,13 +543,10 @@ pub(super) fn failure_probes<T: Send>(
                 .collect()
         };
         failed.sort_by_key(|&(step, i, _)| (step, i));
-        let mut failed = failed.into_iter().peekable();
-        for step in k..end {
-            while let Some((_, i, value)) = failed.next_if(|f| f.0 == step) {
-                on_failure(i, value);
-            }
-            stepped(step + 1);
+        for (_, i, value) in failed {
+            on_failure(i, value);
         }
+        stepped(end);
         k = end;
     }
 }
