@@ -169,8 +169,85 @@ impl Blame {
 /// nothing; the app's energy plot lists them all.
 pub const ENERGY_CULPRITS: usize = 10;
 
-/// The culprits of an explained failure, from the state at its failure step.
-pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
+/// The activities a run places, by the charge their whole placement draws
+/// (mJ: energy rate times duration), largest first (ties by activity): the
+/// energy culprits at any step of the run are ranked from it, stopping once
+/// no later activity can draw more than the ones found, instead of a scan of
+/// every placement since the battery was last full.
+#[derive(Debug)]
+pub(crate) struct EnergyRank(Vec<(i64, usize)>);
+
+impl EnergyRank {
+    /// The ranking of `sched`'s placements (a state of its replay holds a
+    /// prefix of them, each where the run put it).
+    pub(crate) fn new(sched: &crate::scheduler::Schedule) -> Self {
+        let acts = &sched.problem.acts;
+        let mut all: Vec<(i64, usize)> = sched
+            .steps
+            .iter()
+            .filter_map(|st| {
+                st.outcome
+                    .placement()
+                    .map(|(s, e)| (acts[st.activity].energy.saturating_mul(e - s), st.activity))
+            })
+            .collect();
+        all.sort_by(energy_order);
+        Self(all)
+    }
+
+    /// The [`ENERGY_CULPRITS`] activities placed in `state` drawing the most
+    /// charge within `[from, t)`, largest first (ties by activity). A
+    /// placement draws at most its whole charge, so the walk down the ranking
+    /// stops at the first activity whose whole charge is below the last one
+    /// kept, or not positive.
+    fn top_users(&self, state: &State<'_>, from: i64, t: i64) -> Vec<(i64, usize)> {
+        let mut top: Vec<(i64, usize)> = Vec::with_capacity(ENERGY_CULPRITS + 1);
+        for &(whole, x) in &self.0 {
+            let full = top.len() == ENERGY_CULPRITS;
+            if whole <= 0 || (full && top.last().is_some_and(|l| whole < l.0)) {
+                break;
+            }
+            let Some(u) = draw_within(state, x, from, t) else {
+                continue;
+            };
+            let at = top.partition_point(|p| energy_order(p, &u).is_lt());
+            top.insert(at, u);
+            top.truncate(ENERGY_CULPRITS);
+        }
+        top
+    }
+}
+
+/// Energy users in order: the largest first, ties by activity (a total order).
+fn energy_order(p: &(i64, usize), q: &(i64, usize)) -> std::cmp::Ordering {
+    q.0.cmp(&p.0).then(p.1.cmp(&q.1))
+}
+
+/// The charge (mJ) activity `x`, placed in `state`, draws within `[from, t)`
+/// with `x`, when positive.
+fn draw_within(state: &State<'_>, x: usize, from: i64, t: i64) -> Option<(i64, usize)> {
+    let (s, e) = state.placed[x]?;
+    let c = state.problem.acts[x]
+        .energy
+        .saturating_mul((e.min(t) - s.max(from)).max(0));
+    (c > 0).then_some((c, x))
+}
+
+/// [`EnergyRank::top_users`] by a scan of every placement overlapping
+/// `[from, t)` (the debug builds' check of the ranking).
+fn top_users_by_scan(state: &State<'_>, from: i64, t: i64) -> Vec<(i64, usize)> {
+    let mut users: Vec<(i64, usize)> = state
+        .placed_overlapping_unordered(from, t)
+        .filter_map(|x| draw_within(state, x, from, t))
+        .collect();
+    users.sort_by(energy_order);
+    users.truncate(ENERGY_CULPRITS);
+    users
+}
+
+/// The culprits of an explained failure, from the state at its failure step
+/// (energy culprits ranked by `rank`, the run's [`EnergyRank`]).
+pub(crate) fn culprits(state: &State<'_>, ex: &Explanation, rank: &EnergyRank) -> Vec<Culprit> {
     let problem = state.problem;
     let a = ex.activity;
     let act = &problem.acts[a];
@@ -304,28 +381,12 @@ pub fn culprits(state: &State<'_>, ex: &Explanation) -> Vec<Culprit> {
                             continue;
                         }
                         let from = last_full_before(state, t).unwrap_or(problem.h0);
-                        let mut users: Vec<(i64, usize)> = state
-                            .placed_overlapping_unordered(from, t)
-                            .filter_map(|x| state.placed[x].map(|(s, e)| (x, s, e)))
-                            .map(|(x, s, e)| {
-                                (
-                                    problem.acts[x]
-                                        .energy
-                                        .saturating_mul((e.min(t) - s.max(from)).max(0)),
-                                    x,
-                                )
-                            })
-                            .filter(|u| u.0 > 0)
-                            .collect();
-                        // The largest first (ties by activity): a total order, so
-                        // selecting the top ones then sorting them equals sorting all.
-                        let order =
-                            |p: &(i64, usize), q: &(i64, usize)| q.0.cmp(&p.0).then(p.1.cmp(&q.1));
-                        if users.len() > ENERGY_CULPRITS {
-                            users.select_nth_unstable_by(ENERGY_CULPRITS, order);
-                            users.truncate(ENERGY_CULPRITS);
-                        }
-                        users.sort_by(order);
+                        let users = rank.top_users(state, from, t);
+                        debug_assert_eq!(
+                            users,
+                            top_users_by_scan(state, from, t),
+                            "energy culprits from the ranking"
+                        );
                         for (_, x) in users {
                             push(x, kind);
                         }

@@ -229,6 +229,7 @@ pub fn explain_rendered<R: Send>(
     };
     // Culprits need the state at the failure step: take it from the replay that
     // finds the step instead of rebuilding it per activity.
+    let rank = culprits::EnergyRank::new(sched);
     replay::failure_probes(
         sched,
         &targets,
@@ -236,7 +237,7 @@ pub fn explain_rendered<R: Send>(
             let a = targets[i];
             let step = &sched.steps[step_of[a] - 1];
             let mut ex = from_probe(sched, a, step, k, record, &tries);
-            ex.culprits = culprits::culprits(state, &ex);
+            ex.culprits = culprits::culprits(state, &ex, &rank);
             ex
         },
         |i, ex| found.borrow_mut()[i] = Some(ex),
@@ -252,7 +253,7 @@ pub fn explain_rendered<R: Send>(
             let step = &sched.steps[step_of[a] - 1];
             let mut ex = from_step(a, step);
             let state = sched.state_after(step.step - 1);
-            ex.culprits = culprits::culprits(&state, &ex);
+            ex.culprits = culprits::culprits(&state, &ex, &rank);
             found.borrow_mut()[i] = Some(ex);
         }
     }
