@@ -15,6 +15,7 @@ use solscope_engine::{Category, Explanation, Phase, Plan, Suggestion, format_loc
 
 use super::commands::{Command, UiCommand};
 use super::document::Analysis;
+use super::views::failed_steps;
 
 /// The bundled tutorial plan (`assets/tutorial-plan.json`).
 pub const TUTORIAL_PLAN: &str = include_str!("../../assets/tutorial-plan.json");
@@ -26,12 +27,9 @@ pub fn is_tutorial(plan: &Plan) -> bool {
 
 /// The first activity that failed in `analysis`'s schedule (in step order).
 pub fn first_failure(analysis: &Analysis) -> Option<usize> {
-    analysis
-        .schedule
-        .steps
-        .iter()
-        .find(|s| matches!(s.outcome, solscope_engine::Outcome::Failed(_)))
-        .map(|s| s.activity)
+    failed_steps(&analysis.schedule.steps)
+        .next()
+        .map(|(_, a)| a)
 }
 
 /// The pages of the tour, in order.
@@ -172,13 +170,7 @@ pub fn text(page: Page, facts: &Facts<'_>) -> Text {
     let mut action = None;
     let steps = facts.analysis.steps();
     // The steps the slider's red ticks mark.
-    let failed = facts
-        .analysis
-        .schedule
-        .steps
-        .iter()
-        .filter(|s| matches!(s.outcome, solscope_engine::Outcome::Failed(_)))
-        .count();
+    let failed = failed_steps(&facts.analysis.schedule.steps).count();
     let Some(a) = facts.target else {
         paragraphs.push(match page {
             Page::Steps => format!(

@@ -203,15 +203,18 @@ proptest! {
     }
 }
 
+/// The plans the repository ships (relative to its root).
+const BUNDLED_PLANS: [&str; 4] = [
+    "assets/default-plan.json",
+    "assets/tutorial-plan.json",
+    "assets/examples/drill-sol.json",
+    "assets/examples/pitfall.json",
+];
+
 #[test]
 fn bundled_plans_and_examples_are_explained_consistently() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    for path in [
-        "assets/default-plan.json",
-        "assets/tutorial-plan.json",
-        "assets/examples/drill-sol.json",
-        "assets/examples/pitfall.json",
-    ] {
+    for path in BUNDLED_PLANS {
         let text = std::fs::read_to_string(root.join(path)).expect("read plan");
         let loaded = load_plan(&text).expect("valid");
         let sched = schedule(&loaded.plan).expect("schedules");
@@ -245,12 +248,7 @@ fn profiles_if_placed_reach_the_reasons_numbers() {
     use solscope_engine::{Phase2Reason, watts, wh};
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let mut seen = 0;
-    for path in [
-        "assets/default-plan.json",
-        "assets/tutorial-plan.json",
-        "assets/examples/drill-sol.json",
-        "assets/examples/pitfall.json",
-    ] {
+    for path in BUNDLED_PLANS {
         let text = std::fs::read_to_string(root.join(path)).expect("read plan");
         let plan = load_plan(&text).expect("valid").plan;
         let sched = schedule(&plan).expect("schedules");

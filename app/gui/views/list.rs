@@ -304,79 +304,65 @@ fn filters_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &mu
         .num_columns(2)
         .show(ui, |ui| {
             if m.nav.mode == Mode::Schedule {
-                let label = ui.label("Status");
                 let shown = f.status.map_or("Any status", StatusFilter::label);
-                egui::ComboBox::from_id_salt("status_filter")
-                    .selected_text(shown)
-                    .show_ui(ui, |ui| {
-                        if ui
-                            .selectable_label(f.status.is_none(), "Any status")
-                            .clicked()
-                        {
-                            set(cmds, &|x| x.status = None);
-                        }
-                        for s in StatusFilter::ALL {
-                            if ui
-                                .selectable_label(f.status == Some(s), s.label())
-                                .clicked()
-                            {
-                                set(cmds, &|x| x.status = Some(s));
-                            }
-                        }
-                    })
-                    .response
-                    .labelled_by(label.id)
-                    .on_hover_text("As of the step shown");
-                ui.end_row();
+                let options = StatusFilter::ALL.map(|s| (s, s.label().to_string()));
+                let hover = "As of the step shown";
+                if let Some(pick) = choice_ui(ui, "Status", shown, &f.status, options, hover) {
+                    set(cmds, &|x| x.status = pick);
+                }
             }
-            let label = ui.label("Resource");
             let shown = f.resource.as_deref().unwrap_or("Any resource");
-            egui::ComboBox::from_id_salt("resource_filter")
-                .selected_text(shown)
-                .show_ui(ui, |ui| {
-                    if ui
-                        .selectable_label(f.resource.is_none(), "Any resource")
-                        .clicked()
-                    {
-                        set(cmds, &|x| x.resource = None);
-                    }
-                    for r in &index.resources {
-                        let on = f.resource.as_ref() == Some(r);
-                        if ui.selectable_label(on, r).clicked() {
-                            set(cmds, &|x| x.resource = Some(r.clone()));
-                        }
-                    }
-                })
-                .response
-                .labelled_by(label.id)
-                .on_hover_text("Unit resources held");
-            ui.end_row();
-            let label = ui.label("Sol");
+            let options = index.resources.iter().map(|r| (r.clone(), r.clone()));
+            let hover = "Unit resources held";
+            if let Some(pick) = choice_ui(ui, "Resource", shown, &f.resource, options, hover) {
+                set(cmds, &|x| x.resource = pick.clone());
+            }
             let sol_text = |s: i64| format!("Sol {s}");
             let shown = f.sol.map_or("Any sol".to_string(), sol_text);
-            egui::ComboBox::from_id_salt("sol_filter")
-                .selected_text(shown)
-                .show_ui(ui, |ui| {
-                    if ui.selectable_label(f.sol.is_none(), "Any sol").clicked() {
-                        set(cmds, &|x| x.sol = None);
-                    }
-                    for s in index.sols.clone() {
-                        if ui.selectable_label(f.sol == Some(s), sol_text(s)).clicked() {
-                            set(cmds, &|x| x.sol = Some(s));
-                        }
-                    }
-                })
-                .response
-                .labelled_by(label.id)
-                .on_hover_text(
-                    "Placed in that sol (as of the step shown), or, not placed, a window \
-                     touching it",
-                );
-            ui.end_row();
+            let options = index.sols.clone().map(|s| (s, sol_text(s)));
+            let hover = "Placed in that sol (as of the step shown), or, not placed, a window \
+                         touching it";
+            if let Some(pick) = choice_ui(ui, "Sol", &shown, &f.sol, options, hover) {
+                set(cmds, &|x| x.sol = pick);
+            }
         });
     if f.active() {
         super::command_button(ui, UiCommand::ClearFilters, true, cmds);
     }
+}
+
+/// One row of the filters: `name`'s label and a menu of "Any <name>" and
+/// each `(value, text)` of `options`, `current` marked, `shown` on the closed
+/// menu. The choice picked this frame, if any (`Some(None)`: any).
+fn choice_ui<T: PartialEq>(
+    ui: &mut egui::Ui,
+    name: &str,
+    shown: &str,
+    current: &Option<T>,
+    options: impl IntoIterator<Item = (T, String)>,
+    hover: &str,
+) -> Option<Option<T>> {
+    let mut pick = None;
+    let label = ui.label(name);
+    let any = format!("Any {}", name.to_lowercase());
+    egui::ComboBox::from_id_salt(format!("{}_filter", name.to_lowercase()))
+        .selected_text(shown)
+        .show_ui(ui, |ui| {
+            if ui.selectable_label(current.is_none(), any).clicked() {
+                pick = Some(None);
+            }
+            for (value, text) in options {
+                let on = current.as_ref() == Some(&value);
+                if ui.selectable_label(on, text).clicked() {
+                    pick = Some(Some(value));
+                }
+            }
+        })
+        .response
+        .labelled_by(label.id)
+        .on_hover_text(hover);
+    ui.end_row();
+    pick
 }
 
 /// The status mark and colour of activity `a` in the list.
