@@ -297,7 +297,7 @@ impl State<'_> {
             }
         }
         // Energy.
-        let drain: Vec<(i64, i64, i64)> = pieces.iter().map(|p| (p.0, p.1, p.2)).collect();
+        let drain = drain_of_pieces(&pieces);
         let energy = drain
             .iter()
             .map(|&(x, y, r)| i128::from(r).abs() * i128::from(y - x))
@@ -366,17 +366,14 @@ impl State<'_> {
 
     /// The charge drain `(from, to, mW)` of placement `p` in this state.
     pub fn drain_of(&self, p: &Placement) -> Vec<(i64, i64, i64)> {
-        self.load_pieces(
+        drain_of_pieces(&self.load_pieces(
             p.act,
             p.start,
             p.duration,
             &p.retire,
             p.new_awake,
             &p.preheats,
-        )
-        .into_iter()
-        .map(|(x, y, energy, _)| (x, y, energy))
-        .collect()
+        ))
     }
 
     /// `ev` (a passing evaluation against an earlier state that drained
@@ -979,4 +976,13 @@ fn tod_points(problem: &Problem, tod: i64, shift: i64, lo: i64, hi: i64) -> Vec<
 
 fn clamp_i64(x: i128) -> i64 {
     i64::try_from(x).unwrap_or(if x < 0 { i64::MIN } else { i64::MAX })
+}
+
+/// The charge drain `(from, to, mW)` of load pieces `(from, to, mW drained,
+/// mW of peak)` ([`State::load_pieces`]).
+pub(crate) fn drain_of_pieces(pieces: &[(i64, i64, i64, i64)]) -> Vec<(i64, i64, i64)> {
+    pieces
+        .iter()
+        .map(|&(x, y, energy, _)| (x, y, energy))
+        .collect()
 }

@@ -42,7 +42,7 @@ impl Schedule {
     ) -> Option<Profiles> {
         let state = self.state_after(k);
         let pieces = state.load_if_placed(a, start, duration).ok()?;
-        let drain: Vec<(i64, i64, i64)> = pieces.iter().map(|p| (p.0, p.1, p.2)).collect();
+        let drain = super::phase2::drain_of_pieces(&pieces);
         let mut peak = state.peak.clone();
         for &(x, y, _, dp) in &pieces {
             peak.add(x, y, dp);
