@@ -17,6 +17,19 @@ fn tutorial() -> SolscopeApp {
     SolscopeApp::from_text(&text, None).expect("tutorial plan")
 }
 
+/// The tutorial plan at step 0 (nothing placed yet), in a harness.
+fn tutorial_at_step_zero() -> egui_kittest::Harness<'static, SolscopeApp> {
+    harness(
+        tutorial(),
+        SNAPSHOT_SIZE.into(),
+        &View {
+            step: Some(0),
+            ..View::default()
+        },
+    )
+    .unwrap()
+}
+
 /// The tutorial plan with activity `id` selected, in a harness.
 fn tutorial_with_selected(id: &str) -> egui_kittest::Harness<'static, SolscopeApp> {
     let view = View {
@@ -37,15 +50,7 @@ fn index(app: &SolscopeApp, id: &str) -> usize {
 
 #[test]
 fn stepping_moves_activities_between_lanes() {
-    let mut h = harness(
-        tutorial(),
-        SNAPSHOT_SIZE.into(),
-        &View {
-            step: Some(0),
-            ..View::default()
-        },
-    )
-    .unwrap();
+    let mut h = tutorial_at_step_zero();
     let first = h.state().analysis.schedule.steps[0].activity;
     let id = h.state().doc.plan.activities[first].id.clone();
     // Pending before step 1, scheduled after it.
@@ -1601,15 +1606,7 @@ fn step_text(h: &Hs, k: usize) -> String {
 
 #[test]
 fn every_key_press_counts_also_several_in_one_frame() {
-    let mut h = harness(
-        tutorial(),
-        SNAPSHOT_SIZE.into(),
-        &View {
-            step: Some(0),
-            ..View::default()
-        },
-    )
-    .unwrap();
+    let mut h = tutorial_at_step_zero();
     // Five presses arrive before the next frame (30 ms apart at 60 fps).
     for _ in 0..5 {
         h.key_press(eframe::egui::Key::ArrowRight);
@@ -1626,15 +1623,7 @@ fn every_key_press_counts_also_several_in_one_frame() {
 
 #[test]
 fn the_step_label_follows_the_slider_in_the_same_frame() {
-    let mut h = harness(
-        tutorial(),
-        SNAPSHOT_SIZE.into(),
-        &View {
-            step: Some(0),
-            ..View::default()
-        },
-    )
-    .unwrap();
+    let mut h = tutorial_at_step_zero();
     // One pass per frame, as most frames are: a second pass (egui's discard of
     // a frame whose layout changed) would hide a label one frame behind.
     h.ctx
@@ -1706,15 +1695,7 @@ fn up_and_down_move_the_selection_through_the_list() {
 
 #[test]
 fn next_and_previous_failure_by_button_and_key() {
-    let mut h = harness(
-        tutorial(),
-        SNAPSHOT_SIZE.into(),
-        &View {
-            step: Some(0),
-            ..View::default()
-        },
-    )
-    .unwrap();
+    let mut h = tutorial_at_step_zero();
     let failed: Vec<(usize, usize)> = h
         .state()
         .analysis
@@ -2241,15 +2222,7 @@ fn following_a_culprit_then_back_and_forward() {
 
 #[test]
 fn next_failure_and_a_click_in_the_list_are_links_up_and_down_are_not() {
-    let mut h = harness(
-        tutorial(),
-        SNAPSHOT_SIZE.into(),
-        &View {
-            step: Some(0),
-            ..View::default()
-        },
-    )
-    .unwrap();
+    let mut h = tutorial_at_step_zero();
     h.get_by_label("Next failure >>").click();
     h.run_steps(3);
     let failure = at(&h);

@@ -160,8 +160,9 @@ pub fn explain(
 /// `progress(steps replayed, steps)` as the run is replayed. Without suggestions
 /// an explanation is handed on once it and every one before it are complete
 /// (checked after each block of a few hundred replayed steps), so that a caller
-/// can write a large document as it goes, in bounded memory; with suggestions (verified together, edits shared between failures)
-/// all of them come at the end.
+/// can write a large document as it goes, in bounded memory; with suggestions
+/// (verified together, edits shared between failures) all of them come at the
+/// end.
 pub fn explain_each(
     plan: &Plan,
     sched: &Schedule,
