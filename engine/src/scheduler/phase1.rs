@@ -282,9 +282,7 @@ impl State<'_> {
         }
         // Only breakpoints that a piece starting in [lo, hi] can reach split cells
         // (the breakpoints are sorted).
-        let all = self.data.breakpoints();
-        let near =
-            &all[all.partition_point(|&x| x < lo)..all.partition_point(|&x| x <= hi + d + 1)];
+        let near = self.data.breakpoints_in(lo, hi + d + 1);
         let mut points: Vec<i64> = Vec::with_capacity(near.len() * 4);
         // One sorted run per shift (`cells` merges the runs).
         for shift in [0, 1, 1 - d, -d] {

@@ -8,8 +8,10 @@
 //! - [`cumulative_valid`]: a total over a time range (handover data produced).
 //! - [`RateTimeline`]: cumulative-rate levels (state of charge, data volume).
 
+mod chunks;
 mod intervals;
 mod kinds;
+mod minimum;
 mod rate;
 mod step;
 

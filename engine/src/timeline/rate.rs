@@ -7,6 +7,7 @@
 //! minimum over continuous time is attained at a breakpoint.
 
 use super::StepFn;
+use super::chunks::{Points, advance};
 
 /// Result of checking a hypothetical extra drain against a rate timeline.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,10 +41,10 @@ pub struct RateTimeline {
     initial: i128,
     rate: StepFn,
     levels: std::sync::OnceLock<Levels>,
-    /// The levels before the latest changes, and the earliest time they changed
-    /// the rate at: the next derivation updates them in place from there (a
-    /// lock only because queries take `&self`; it is never contended).
-    stale: std::sync::Mutex<Option<(Levels, i64)>>,
+    /// The levels before the latest changes, and the span `[from, to)` the
+    /// changes touched the rate in: the next derivation updates them in place
+    /// there (a lock only because queries take `&self`; it is never contended).
+    stale: std::sync::Mutex<Option<(Levels, i64, i64)>>,
 }
 
 impl Clone for RateTimeline {
@@ -59,124 +60,18 @@ impl Clone for RateTimeline {
 }
 
 /// The levels of a [`RateTimeline`] and the summaries its queries use.
+///
+/// Point `i` is the start of segment `i`: its time, the rate up to point
+/// `i + 1`, the level there, and the charge lost to the cap before it (the
+/// waste); the last point, `n`, is the domain end. The points are stored in
+/// chunks ([`Points`]) and read through accessors.
 #[derive(Clone, Debug)]
 struct Levels {
     cap: i128,
-    initial: i128,
-    /// Segment starts, then the domain end: `times[n] == end`.
-    times: Vec<i64>,
-    /// Rate on `[times[i], times[i + 1])`.
-    rates: Vec<i64>,
-    /// Level at `times[i]` (n + 1 values).
-    levels: Vec<i128>,
-    /// `(min over levels[0..=i], first index)`.
-    prefix_min: Vec<(i128, usize)>,
-    /// `(min over levels[i..], first index)`.
-    suffix_min: Vec<(i128, usize)>,
-    /// Charge lost to the cap up to `times[i]` (n + 1 values).
-    wasted: Vec<i128>,
-    /// Range minimum over `levels[i] + wasted[i]` (the uncapped trajectory).
-    uncapped: MinTree,
+    points: Points,
     /// For each segment, the last segment at or before it with a profile point at
     /// the cap (built on first use: only blame queries ask).
     last_full: std::sync::OnceLock<Vec<Option<usize>>>,
-}
-
-/// An iterative segment tree answering "first minimum on `[l, r)`" in O(log n).
-/// Leaves sit at `cap + i` for a power-of-two `cap`, so a change to the values
-/// from index `k` on updates only those leaves and their ancestors.
-#[derive(Clone, Debug, Default)]
-struct MinTree {
-    n: usize,
-    cap: usize,
-    tree: Vec<(i128, usize)>,
-}
-
-impl MinTree {
-    fn build(values: impl ExactSizeIterator<Item = i128>) -> Self {
-        let n = values.len();
-        let cap = n.next_power_of_two();
-        let mut tree = vec![(i128::MAX, usize::MAX); 2 * cap];
-        for (i, v) in values.enumerate() {
-            tree[cap + i] = (v, i);
-        }
-        for i in (1..cap).rev() {
-            tree[i] = tree[2 * i].min(tree[2 * i + 1]);
-        }
-        Self { n, cap, tree }
-    }
-
-    /// Replaces the values from index `k` on with `values` (the new total
-    /// length is `k + values.len()`).
-    fn update_from(&mut self, k: usize, values: impl ExactSizeIterator<Item = i128>) {
-        let n = k + values.len();
-        if n > self.cap || k > self.n {
-            // (rebuilt whole: the caller passes only the tail)
-            let mut all: Vec<i128> = self.tree[self.cap..self.cap + k.min(self.n)]
-                .iter()
-                .map(|x| x.0)
-                .collect();
-            all.extend(values);
-            *self = Self::build(all.into_iter());
-            return;
-        }
-        let end = n.max(self.n);
-        for (i, v) in values.enumerate() {
-            self.tree[self.cap + k + i] = (v, k + i);
-        }
-        for i in n..end {
-            self.tree[self.cap + i] = (i128::MAX, usize::MAX);
-        }
-        self.n = n;
-        let (mut lo, mut hi) = ((self.cap + k) / 2, (self.cap + end.max(k + 1) - 1) / 2);
-        while lo >= 1 {
-            for p in lo..=hi {
-                self.tree[p] = self.tree[2 * p].min(self.tree[2 * p + 1]);
-            }
-            lo /= 2;
-            hi /= 2;
-        }
-    }
-
-    /// The leaves, for debug comparisons (the layout's size may differ).
-    #[cfg(debug_assertions)]
-    fn leaves(&self) -> &[(i128, usize)] {
-        &self.tree[self.cap..self.cap + self.n]
-    }
-
-    /// `(min, first index)` over `[l, r)`; `None` when empty.
-    fn query(&self, l: usize, r: usize) -> Option<(i128, usize)> {
-        let (mut l, mut r) = (l + self.cap, r.min(self.n) + self.cap);
-        let mut best: Option<(i128, usize)> = None;
-        let mut take = |x: (i128, usize)| {
-            if best.is_none_or(|b| x < b) {
-                best = Some(x);
-            }
-        };
-        while l < r {
-            if l & 1 == 1 {
-                take(self.tree[l]);
-                l += 1;
-            }
-            if r & 1 == 1 {
-                r -= 1;
-                take(self.tree[r]);
-            }
-            l >>= 1;
-            r >>= 1;
-        }
-        best
-    }
-}
-
-/// Level after running at `rate` for `dt` seconds from `level`, capped at `cap`.
-fn advance(level: i128, rate: i64, dt: i64, cap: i128) -> i128 {
-    let next = level + i128::from(rate) * i128::from(dt);
-    if rate > 0 {
-        next.min(cap.max(level))
-    } else {
-        next
-    }
 }
 
 impl RateTimeline {
@@ -193,7 +88,7 @@ impl RateTimeline {
 
     /// The stale levels (a poisoned lock still holds consistent data: the only
     /// writer replaces the value whole).
-    fn stale_levels(&self) -> std::sync::MutexGuard<'_, Option<(Levels, i64)>> {
+    fn stale_levels(&self) -> std::sync::MutexGuard<'_, Option<(Levels, i64, i64)>> {
         self.stale
             .lock()
             .unwrap_or_else(std::sync::PoisonError::into_inner)
@@ -210,9 +105,10 @@ impl RateTimeline {
             .get_mut()
             .unwrap_or_else(std::sync::PoisonError::into_inner);
         if let Some(levels) = self.levels.take() {
-            *stale = Some((levels, a));
-        } else if let Some((_, from)) = stale {
+            *stale = Some((levels, a, b));
+        } else if let Some((_, from, to)) = stale {
             *from = (*from).min(a);
+            *to = (*to).max(b);
         }
     }
 
@@ -229,7 +125,7 @@ impl RateTimeline {
     fn levels(&self) -> &Levels {
         self.levels
             .get_or_init(|| match self.stale_levels().take() {
-                Some((old, from)) => old.update(&self.rate, from),
+                Some((old, from, to)) => old.update(&self.rate, from, to),
                 None => Levels::new(&self.rate, self.initial, self.cap),
             })
     }
@@ -251,9 +147,10 @@ impl RateTimeline {
         self.levels().last_at_cap(t)
     }
 
-    /// The rate breakpoints (segment starts), then the domain end.
-    pub fn breakpoints(&self) -> &[i64] {
-        &self.levels().times
+    /// The rate breakpoints (segment starts) and the domain end that lie in
+    /// `[lo, hi]`, in order.
+    pub fn breakpoints_in(&self, lo: i64, hi: i64) -> Vec<i64> {
+        self.levels().points.times_in(lo, hi)
     }
 
     /// An upper bound on the lowest level if `energy` (> 0) more is drained over some
@@ -322,118 +219,84 @@ impl RateTimeline {
 impl Levels {
     /// Integrates `rate` from `initial`, capped at `cap`.
     fn new(rate: &StepFn, initial: i128, cap: i128) -> Self {
-        let mut fresh = Self {
+        Self {
             cap,
-            initial,
-            times: Vec::new(),
-            rates: Vec::new(),
-            levels: Vec::new(),
-            prefix_min: Vec::new(),
-            suffix_min: Vec::new(),
-            wasted: Vec::new(),
-            uncapped: MinTree::default(),
+            points: Points::new(rate, initial, cap),
             last_full: std::sync::OnceLock::new(),
-        };
-        fresh.integrate(rate, None);
-        fresh
+        }
     }
 
     /// These levels updated in place to `rate`, a rate that is the same as
-    /// theirs before time `from`: the segments before `from` are kept, the rest
-    /// integrated again.
-    fn update(mut self, rate: &StepFn, from: i64) -> Self {
-        self.integrate(rate, Some(from));
+    /// theirs outside `[from, to)` ([`Points::update`]). Debug builds compare
+    /// every point and every minimum with a fresh integration.
+    fn update(mut self, rate: &StepFn, from: i64, to: i64) -> Self {
+        self.points.update(rate, self.cap, from, to);
+        self.last_full = std::sync::OnceLock::new();
         #[cfg(debug_assertions)]
-        {
-            let full = Self::new(rate, self.initial, self.cap);
-            debug_assert!(
-                self.times == full.times
-                    && self.rates == full.rates
-                    && self.levels == full.levels
-                    && self.wasted == full.wasted
-                    && self.prefix_min == full.prefix_min
-                    && self.suffix_min == full.suffix_min
-                    && self.uncapped.leaves() == full.uncapped.leaves()
-                    && (1..self.uncapped.cap).all(|p| {
-                        let t = &self.uncapped.tree;
-                        t[p] == t[2 * p].min(t[2 * p + 1])
-                    }),
-                "incremental levels differ from a full integration"
-            );
-        }
+        self.check_against_fresh(rate);
         self
     }
 
-    /// Integrates `rate` from the segment holding `from` on (from the start
-    /// without it), keeping what comes before. The suffix minima before that
-    /// segment are recomputed backwards only until one comes out as it was:
-    /// the levels before it did not change, so neither does anything earlier.
-    fn integrate(&mut self, rate: &StepFn, from: Option<i64>) {
-        let n = self.rates.len();
-        // Segments [0, k) are unchanged, and so is the level at times[k].
-        let (k, mut level, mut wasted, from_t) = match from {
-            Some(from) if n > 0 => {
-                let k = self.times[..n]
-                    .partition_point(|&t| t < from)
-                    .saturating_sub(1);
-                (k, self.levels[k], self.wasted[k], self.times[k])
-            }
-            _ => (0, self.initial, 0, rate.start()),
-        };
-        self.times.truncate(k);
-        self.rates.truncate(k);
-        self.levels.truncate(k);
-        self.wasted.truncate(k);
-        self.prefix_min.truncate(k);
-        for (lo, hi, r) in rate.segments(from_t, rate.end()) {
-            self.times.push(lo);
-            self.rates.push(r);
-            self.levels.push(level);
-            self.wasted.push(wasted);
+    /// Debug builds: the points, their prefix and suffix minima and some range
+    /// minima of the uncapped trajectory equal those of a flat integration.
+    #[cfg(debug_assertions)]
+    fn check_against_fresh(&self, rate: &StepFn) {
+        let mut want: Vec<(i64, i64, i128, i128)> = Vec::new();
+        // (The first point's level is the initial level: nothing changes it.)
+        let (mut level, mut waste) = (self.points.level(0), 0);
+        for (lo, hi, r) in rate.segments(rate.start(), rate.end()) {
+            want.push((lo, r, level, waste));
             let next = advance(level, r, hi - lo, self.cap);
-            wasted += level + i128::from(r) * i128::from(hi - lo) - next;
+            waste += level + i128::from(r) * i128::from(hi - lo) - next;
             level = next;
         }
-        self.times.push(rate.end());
-        self.levels.push(level);
-        self.wasted.push(wasted);
-        let levels = &self.levels;
-        let mut best = self.prefix_min.last().copied().unwrap_or((i128::MAX, 0));
-        for (i, &l) in levels.iter().enumerate().skip(k) {
-            if l < best.0 {
-                best = (l, i);
-            }
-            self.prefix_min.push(best);
-        }
-        let len = levels.len();
-        let suffix = &mut self.suffix_min;
-        suffix.truncate(k.min(len));
-        suffix.resize(len, (i128::MAX, 0));
+        want.push((rate.end(), 0, level, waste));
+        self.points.check_flat();
+        let got: Vec<_> = self.points.iter().collect();
+        debug_assert_eq!(
+            got, want,
+            "incremental levels differ from a full integration"
+        );
         let mut best = (i128::MAX, 0);
-        for i in (0..len).rev() {
-            if levels[i] <= best.0 {
-                best = (levels[i], i);
+        for (i, p) in want.iter().enumerate() {
+            if p.2 < best.0 {
+                best = (p.2, i);
             }
-            if i < k && suffix[i] == best {
-                break;
+            debug_assert_eq!(self.points.prefix_min(i), best, "prefix minimum at {i}");
+        }
+        let mut best = (i128::MAX, 0);
+        for i in (0..want.len()).rev() {
+            if want[i].2 <= best.0 {
+                best = (want[i].2, i);
             }
-            suffix[i] = best;
+            debug_assert_eq!(self.points.suffix_min(i), best, "suffix minimum at {i}");
         }
-        let unc = levels.iter().zip(&self.wasted).skip(k).map(|(l, w)| l + w);
-        if k == 0 {
-            self.uncapped = MinTree::build(unc);
-        } else {
-            self.uncapped.update_from(k, unc);
+        let n = want.len();
+        for (l, r) in [(0, n), (n / 3, n), (n / 4, n / 2 + 1), (n / 2, n / 2 + 2)] {
+            let brute = (l..r.min(n)).fold(None, |b: Option<(i128, usize)>, i| {
+                let v = want[i].2 + want[i].3;
+                if b.is_none_or(|b| v < b.0) {
+                    Some((v, i))
+                } else {
+                    b
+                }
+            });
+            debug_assert_eq!(
+                self.points.unc_min(l, r),
+                brute,
+                "uncapped minimum on [{l}, {r})"
+            );
         }
-        self.last_full = std::sync::OnceLock::new();
+    }
+
+    /// The number of segments (the domain end is point `n`).
+    fn n(&self) -> usize {
+        self.points.len() - 1
     }
 
     /// Segment index containing `t` (the last segment for `t >= end`).
     fn index(&self, t: i64) -> usize {
-        let n = self.rates.len();
-        self.times[..n]
-            .partition_point(|&x| x <= t)
-            .saturating_sub(1)
+        self.points.segment_at(t).0
     }
 
     /// The level at time `t` (clamped to the domain).
@@ -443,41 +306,45 @@ impl Levels {
 
     /// The level at `t` and the charge lost to the cap up to `t`.
     fn level_and_waste_at(&self, t: i64) -> (i128, i128) {
-        self.level_and_waste_in(self.index(t), t)
+        self.level_and_waste_on(self.points.segment_at(t).1, t)
     }
 
     /// [`Self::level_and_waste_at`] with `i` the segment index of `t`.
     fn level_and_waste_in(&self, i: usize, t: i64) -> (i128, i128) {
-        let t = t.clamp(self.times[0], self.times[self.rates.len()]);
-        let dt = t - self.times[i];
-        let level = advance(self.levels[i], self.rates[i], dt, self.cap);
-        let unc = self.levels[i] + i128::from(self.rates[i]) * i128::from(dt);
-        (level, self.wasted[i] + unc - level)
+        self.level_and_waste_on(self.points.point(i), t)
+    }
+
+    /// [`Self::level_and_waste_at`] with `point` the start of the segment of `t`.
+    fn level_and_waste_on(&self, (ti, r, l, w): (i64, i64, i128, i128), t: i64) -> (i128, i128) {
+        let t = t.clamp(self.points.first_time(), self.points.last_time());
+        let dt = t - ti;
+        let level = advance(l, r, dt, self.cap);
+        let unc = l + i128::from(r) * i128::from(dt);
+        (level, w + unc - level)
     }
 
     /// Breakpoints `(t, level)` including every time the level reaches the cap inside
     /// a segment, so that linear interpolation between them is exact.
     fn profile(&self) -> Vec<(i64, i128)> {
-        let mut out = Vec::with_capacity(self.times.len() + 4);
-        for i in 0..self.rates.len() {
-            out.extend(self.segment_points(i).into_iter().flatten());
+        let mut out = Vec::with_capacity(self.points.len() + 4);
+        let mut prev: Option<(i64, i64, i128)> = None;
+        for (t, r, l, _) in self.points.iter() {
+            if let Some((t0, r0, l0)) = prev {
+                out.extend(self.segment_points(t0, t, r0, l0).into_iter().flatten());
+            }
+            prev = Some((t, r, l));
         }
-        if let (Some(&t), Some(&l)) = (self.times.last(), self.levels.last()) {
+        if let Some((t, _, l)) = prev {
             out.push((t, l));
         }
         out
     }
 
-    /// The profile points of segment `i`: its start, and where the level reaches the
-    /// cap inside it (the whole seconds before and at, so that interpolation is
-    /// exact at every whole second).
-    fn segment_points(&self, i: usize) -> [Option<(i64, i128)>; 3] {
-        let (t0, t1, r, l) = (
-            self.times[i],
-            self.times[i + 1],
-            self.rates[i],
-            self.levels[i],
-        );
+    /// The profile points of the segment `[t0, t1)` at rate `r` from level `l`:
+    /// its start, and where the level reaches the cap inside it (the whole
+    /// seconds before and at, so that interpolation is exact at every whole
+    /// second).
+    fn segment_points(&self, t0: i64, t1: i64, r: i64, l: i128) -> [Option<(i64, i128)>; 3] {
         let mut out = [Some((t0, l)), None, None];
         if r > 0 && l < self.cap && l + i128::from(r) * i128::from(t1 - t0) > self.cap {
             let dt = (self.cap - l + i128::from(r) - 1) / i128::from(r);
@@ -492,18 +359,25 @@ impl Levels {
         out
     }
 
+    /// [`Self::segment_points`] of segment `i`.
+    fn segment_points_of(&self, i: usize) -> [Option<(i64, i128)>; 3] {
+        let (t0, r, l, _) = self.points.point(i);
+        self.segment_points(t0, self.points.time(i + 1), r, l)
+    }
+
     /// The last profile point at or before `t` where the level is at the cap (the
     /// battery was full), scanning back from `t` only.
     fn last_at_cap(&self, t: i64) -> Option<i64> {
-        let n = self.rates.len();
-        if self.times[n] <= t && self.levels[n] >= self.cap {
-            return Some(self.times[n]);
+        let n = self.n();
+        let (tn, _, ln, _) = self.points.point(n);
+        if tn <= t && ln >= self.cap {
+            return Some(tn);
         }
-        if t < self.times[0] {
+        if t < self.points.first_time() {
             return None;
         }
         let in_segment = |i: usize| {
-            self.segment_points(i)
+            self.segment_points_of(i)
                 .into_iter()
                 .rev()
                 .flatten()
@@ -513,10 +387,10 @@ impl Levels {
         let i = self.index(t);
         let last_full = self.last_full.get_or_init(|| {
             let mut last = None;
-            (0..self.rates.len())
+            (0..n)
                 .map(|i| {
                     if self
-                        .segment_points(i)
+                        .segment_points_of(i)
                         .into_iter()
                         .flatten()
                         .any(|p| p.1 >= self.cap)
@@ -541,14 +415,14 @@ impl Levels {
     /// between `from` and `t` (the most the cap can give back). Taken at the lowest
     /// level from `until` on.
     fn drain_bound(&self, from: i64, until: i64, energy: i128) -> i128 {
-        let n = self.rates.len();
-        let before = self.prefix_min[self.index(from)].0;
-        let i = self.times.partition_point(|&x| x < until);
-        if i > n || from < self.times[0] {
+        let n = self.n();
+        let before = self.points.prefix_min(self.index(from)).0;
+        let i = self.points.time_pp(|x| x < until);
+        if i > n || from < self.points.first_time() {
             return before;
         }
-        let (m, idx) = self.suffix_min[i];
-        let absorbed = self.wasted[idx] - self.level_and_waste_at(from).1;
+        let (m, idx) = self.points.suffix_min(i);
+        let absorbed = self.points.waste(idx) - self.level_and_waste_at(from).1;
         before.min(m - (energy - absorbed).max(0))
     }
 
@@ -556,23 +430,28 @@ impl Levels {
     /// most `energy` (>= 0) more, all of it at or after `s`, provably keeps every
     /// level at or above `floor`. A capped integrator falls by at most the extra
     /// drain, so a start in segment `i` is safe when the levels before it
-    /// (`prefix_min[i]`, which also bounds the segment's own start) and every level
-    /// from the segment on less `energy` (`suffix_min[i] - energy`) stay at `floor`.
-    /// The first is true on a prefix of the segments and the second on a suffix, so
-    /// the safe starts are one interval, found by two binary searches.
+    /// (the prefix minimum at `i`, which also bounds the segment's own start) and
+    /// every level from the segment on less `energy` (the suffix minimum at `i`
+    /// less `energy`) stay at `floor`. The first is true on a prefix of the
+    /// segments and the second on a suffix, so the safe starts are one interval,
+    /// found by two binary searches.
     fn surely_at_least(&self, lo: i64, hi: i64, energy: i128, floor: i128) -> Option<(i64, i64)> {
-        let n = self.rates.len();
+        let n = self.n();
         // Segments [i0, i1) are safe.
-        let i0 = self.suffix_min[..n].partition_point(|m| m.0 - energy < floor);
-        let i1 = self.prefix_min[..n].partition_point(|m| m.0 >= floor);
+        let i0 = self.points.suffix_min_first(|m| m - energy >= floor).min(n);
+        let i1 = self.points.prefix_min_pp(|m| m >= floor).min(n);
         if i0 >= i1 {
             return None;
         }
-        let from = if i0 == 0 { lo } else { self.times[i0].max(lo) };
+        let from = if i0 == 0 {
+            lo
+        } else {
+            self.points.time(i0).max(lo)
+        };
         let to = if i1 == n {
             hi
         } else {
-            (self.times[i1] - 1).min(hi)
+            (self.points.time(i1) - 1).min(hi)
         };
         (from <= to).then_some((from, to))
     }
@@ -580,7 +459,7 @@ impl Levels {
     /// `drain` clipped to the domain, without empty pieces (usually every
     /// piece is inside already: no copy then).
     fn clipped<'d>(&self, drain: &'d [(i64, i64, i64)]) -> std::borrow::Cow<'d, [(i64, i64, i64)]> {
-        let (start, end) = (self.times[0], self.times[self.rates.len()]);
+        let (start, end) = (self.points.first_time(), self.points.last_time());
         if drain
             .iter()
             .all(|&(a, b, r)| start <= a && b <= end && a < b && r != 0)
@@ -596,19 +475,30 @@ impl Levels {
 
     /// See [`RateTimeline::lowest_from`].
     fn lowest_from(&self, t: i64) -> i128 {
-        let i = self.index(t);
-        let here = self.level_and_waste_in(i, t).0;
-        self.suffix_min.get(i + 1).map_or(here, |m| here.min(m.0))
+        let (i, p) = self.points.segment_at(t);
+        let here = self.level_and_waste_on(p, t).0;
+        if i < self.n() {
+            here.min(self.points.suffix_min(i + 1).0)
+        } else {
+            here
+        }
+    }
+
+    /// The first point at or after `first` by which the unchanged trajectory
+    /// has lost at least `x` to the cap since it lost `w_hi` (the waste never
+    /// falls; `n + 1` when it never does).
+    fn lost(&self, first: usize, w_hi: i128, x: i128) -> usize {
+        self.points.waste_pp(|w| w - w_hi < x).max(first)
     }
 
     /// See [`RateTimeline::local_budget`].
     fn local_budget(&self, drain: &[(i64, i64, i64)], floor: i128) -> Option<(i128, i64)> {
-        let n = self.rates.len();
+        let n = self.n();
         let pieces = self.clipped(drain);
         let hi = pieces.last()?.1;
         let under = self.drained(&pieces, None, false);
         let mut i = under.i;
-        while i + 1 < n && self.times[i + 1] <= hi {
+        while i + 1 < n && self.points.time(i + 1) <= hi {
             i += 1;
         }
         let (e_hi, w_hi) = self.level_and_waste_in(i, hi);
@@ -618,32 +508,35 @@ impl Levels {
         }
         // Breakpoints after `hi`, and the first by which the unchanged
         // trajectory has lost `x` more to the cap since `hi`.
-        let first = if self.times[n] <= hi { n + 1 } else { i + 1 };
-        let lost = |x: i128| first + self.wasted[first..].partition_point(|&w| w - w_hi < x);
-        let absorbed = lost(deficit);
+        let first = if self.points.last_time() <= hi {
+            n + 1
+        } else {
+            i + 1
+        };
+        let absorbed = self.lost(first, w_hi, deficit);
         if absorbed > n {
             return None;
         }
         // The drained levels up to where the deficit is absorbed, exactly.
         let mut low = under.min;
-        if let Some((u, _)) = self.uncapped.query(first, absorbed) {
+        if let Some((u, _)) = self.points.unc_min(first, absorbed) {
             low = low.min(u - w_hi - deficit);
         }
         let budget = (low - floor) / 4;
         if budget <= 0 {
             return None;
         }
-        let until = lost(deficit + 3 * budget);
+        let until = self.lost(first, w_hi, deficit + 3 * budget);
         if until > n {
             return None;
         }
         // From there to `until` the levels are unchanged, and every level
         // there is above `uncapped - w_hi - deficit - 3 budget`: less than that
         // is lost to the cap before `until`.
-        if let Some((u, _)) = self.uncapped.query(absorbed, until) {
+        if let Some((u, _)) = self.points.unc_min(absorbed, until) {
             low = low.min(u - w_hi - deficit - 3 * budget);
         }
-        Some((budget.min(low - floor), self.times[until])).filter(|b| b.0 >= 0)
+        Some((budget.min(low - floor), self.points.time(until))).filter(|b| b.0 >= 0)
     }
 
     /// The walk under a drain (sorted, disjoint, clipped, non-empty pieces):
@@ -658,14 +551,14 @@ impl Levels {
     ) -> Drained {
         let (lo, hi) = (pieces[0].0, pieces[pieces.len() - 1].1);
         let mut at_probe = probe.filter(|&p| p < lo).map(|p| self.level_at(p));
-        let i_lo = self.index(lo);
-        let mut level = self.level_and_waste_in(i_lo, lo).0;
+        let (i_lo, p_lo) = self.points.segment_at(lo);
+        let mut level = self.level_and_waste_on(p_lo, lo).0;
         let (mut min, mut min_at) = (level, lo);
         if with_before {
             // Before the drain: unchanged.
-            let (m, idx) = self.prefix_min[i_lo];
+            let (m, idx) = self.points.prefix_min(i_lo);
             if m <= min {
-                (min, min_at) = (m, self.times[idx]);
+                (min, min_at) = (m, self.points.time(idx));
             }
         }
 
@@ -673,17 +566,25 @@ impl Levels {
         let mut t = lo;
         let mut i = i_lo;
         let mut k = 0;
+        // Point i + 1 (the segment's end) and the ones after it.
+        let mut ahead = self.points.iter_from(i_lo + 1);
+        let mut end_point = ahead.next();
+        let mut seg_rate = p_lo.1;
+        let mut seg_end = end_point.map_or(i64::MAX, |p| p.0);
         while t < hi {
-            while self.times[i + 1] <= t {
+            while seg_end <= t {
                 i += 1;
+                seg_rate = end_point.map_or(0, |p| p.1);
+                end_point = ahead.next();
+                seg_end = end_point.map_or(i64::MAX, |p| p.0);
             }
             while pieces[k].1 <= t {
                 k += 1;
             }
             let (pa, pb, pr) = pieces[k];
             let (extra, next_piece) = if t < pa { (0, pa) } else { (pr, pb) };
-            let next = self.times[i + 1].min(next_piece).min(hi);
-            let r = self.rates[i].saturating_sub(extra);
+            let next = seg_end.min(next_piece).min(hi);
+            let r = seg_rate.saturating_sub(extra);
             if let Some(p) = probe.filter(|&p| t <= p && p < next) {
                 at_probe = Some(advance(level, r, p - t, self.cap));
             }
@@ -705,13 +606,13 @@ impl Levels {
     /// Lowest level, and level at `probe`, if `drain` (sorted, disjoint `[a, b)`
     /// pieces with a rate subtracted from the timeline's rate) were added.
     fn check(&self, drain: &[(i64, i64, i64)], probe: Option<i64>) -> LevelCheck {
-        let n = self.rates.len();
+        let n = self.n();
         let pieces = self.clipped(drain);
         let Some(last) = pieces.last() else {
-            let (min, idx) = self.prefix_min[n];
+            let (min, idx) = self.points.prefix_min(n);
             return LevelCheck {
                 min,
-                min_at: self.times[idx],
+                min_at: self.points.time(idx),
                 at_probe: probe.map(|p| self.level_at(p)),
             };
         };
@@ -730,25 +631,29 @@ impl Levels {
         // absorbed that is the uncapped trajectory E + W shifted down (a range
         // minimum); after it, the unchanged levels (a suffix minimum).
         // `i` is the segment the walk ended in; step to the one holding `hi`.
-        while i + 1 < n && self.times[i + 1] <= hi {
+        while i + 1 < n && self.points.time(i + 1) <= hi {
             i += 1;
         }
         let (e_hi, w_hi) = self.level_and_waste_in(i, hi);
         let deficit = e_hi - level;
         if deficit >= 0 {
             // The number of breakpoints at or before `hi`.
-            let first = if self.times[n] <= hi { n + 1 } else { i + 1 };
-            let absorbed = first + self.wasted[first..].partition_point(|&w| w - w_hi < deficit);
-            if let Some((u, idx)) = self.uncapped.query(first, absorbed) {
+            let first = if self.points.last_time() <= hi {
+                n + 1
+            } else {
+                i + 1
+            };
+            let absorbed = self.lost(first, w_hi, deficit);
+            if let Some((u, idx)) = self.points.unc_min(first, absorbed) {
                 let v = u - w_hi - deficit;
                 if v < min {
-                    (min, min_at) = (v, self.times[idx]);
+                    (min, min_at) = (v, self.points.time(idx));
                 }
             }
             if absorbed <= n {
-                let (m, idx) = self.suffix_min[absorbed];
+                let (m, idx) = self.points.suffix_min(absorbed);
                 if m < min {
-                    (min, min_at) = (m, self.times[idx]);
+                    (min, min_at) = (m, self.points.time(idx));
                 }
             }
             if let Some(p) = probe.filter(|&p| p >= hi) {
@@ -768,17 +673,18 @@ impl Levels {
             if i >= n {
                 break;
             }
-            let next = self.times[i + 1];
+            let (_, rate, _, _) = self.points.point(i);
+            let (next, _, old_next, _) = self.points.point(i + 1);
             if let Some(p) = probe.filter(|&p| t <= p && (p < next || (i + 1 == n && p <= next))) {
-                at_probe = Some(advance(level, self.rates[i], p - t, self.cap));
+                at_probe = Some(advance(level, rate, p - t, self.cap));
             }
-            level = advance(level, self.rates[i], next - t, self.cap);
+            level = advance(level, rate, next - t, self.cap);
             i += 1;
             t = next;
-            if level == self.levels[i] {
-                let (m, idx) = self.suffix_min[i];
+            if level == old_next {
+                let (m, idx) = self.points.suffix_min(i);
                 if m < min {
-                    (min, min_at) = (m, self.times[idx]);
+                    (min, min_at) = (m, self.points.time(idx));
                 }
                 if let Some(p) = probe.filter(|&p| p > t) {
                     at_probe = Some(self.level_at(p));
@@ -791,7 +697,7 @@ impl Levels {
         }
         if at_probe.is_none() {
             at_probe = probe.map(|p| {
-                if p >= self.times[n] {
+                if p >= self.points.last_time() {
                     level
                 } else {
                     self.level_at(p)
@@ -985,7 +891,7 @@ mod tests {
                 let drain = [(next(60), 60 + next(60), next(9))];
                 assert_eq!(tl.check(&drain, Some(50)), fresh.check(&drain, Some(50)));
                 assert_eq!(tl.profile(), fresh.profile());
-                assert_eq!(tl.breakpoints(), fresh.breakpoints());
+                assert_eq!(tl.breakpoints_in(-10, 200), fresh.breakpoints_in(-10, 200));
             }
         }
     }
