@@ -576,6 +576,47 @@ fn free_slack_each_stops_when_cancelled_and_keeps_what_it_did() {
     }
 }
 
+/// Regression (found by `bounds_and_dispatch_hold`, minimised): a0 sets s0 = b at
+/// its end, inside a4's requirement s0 = a, and a3 (after a0, a later step) sets
+/// s0 = a again at that same instant. The network kept both effects inside a4 but
+/// not together, so a3 could start later (at its `ub`) and leave s0 = b over part
+/// of a4 ("a4 loses s0 = a").
+#[test]
+fn overridden_effect_inside_a_requirement_stays_with_its_override() {
+    let text = r#"{
+        "format": "solscope.plan/1", "name": "generated",
+        "horizon": {"start": 0, "end": 1000},
+        "battery": {"capacity": 69.0, "initial": 15.9, "min_soc": 0.0},
+        "power": {"asleep": 2.0, "awake": 7.0, "rtg": 26.0},
+        "states": {"s0": {"initial": "a", "values": ["a", "b"]}},
+        "activities": [
+            {"id": "a0", "priority": 0, "duration": 100,
+             "effects": [{"at": "end", "state": "s0", "value": "b"}]},
+            {"id": "a3", "priority": 0, "duration": 50, "after": [{"activity": "a0"}],
+             "effects": [{"at": "start", "state": "s0", "value": "a"}]},
+            {"id": "a4", "priority": 0, "duration": 101,
+             "requires": [{"state": "s0", "value": "a"}]}
+        ]
+    }"#;
+    let c = case(text).unwrap();
+    // The situation: a0's end and a3's start coincide inside a4 (activities
+    // 0, 1 and 2).
+    let f = |a: usize| c.flex.activity(a).unwrap();
+    let (a0_end, a3_start, a4) = (f(0).end.nom, f(1).start.nom, f(2));
+    assert_eq!(a0_end, a3_start);
+    assert!(a4.start.nom < a0_end && a0_end < a4.end.nom);
+    // The checks of `bounds_and_dispatch_hold`, at fixed seeds.
+    for seed in 0..8u64 {
+        let mut rng = TestRng::from_seed(
+            proptest::test_runner::RngAlgorithm::ChaCha,
+            &seed.to_le_bytes().repeat(4),
+        );
+        check_bounds(&c, &mut rng)
+            .and_then(|()| check_dispatchable(&c, &mut rng))
+            .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+    }
+}
+
 /// `FLEX_PLAN=plan.json cargo test --test flex plan_from_env -- --ignored`: every
 /// check on one plan file (for failures the properties print).
 #[test]

@@ -152,7 +152,7 @@ pub struct Flex {
     /// The minimum dispatchable network, sorted.
     pub dispatchable: Vec<DispatchEdge>,
     /// Events rigidly tied to an earlier one (a fixed duration, `meets`, a
-    /// pinned window): `(member, leader, offset)`. A member happens exactly at its
+    /// pinned window, an overridden state effect): `(member, leader, offset)`. A member happens exactly at its
     /// leader's time plus the offset, so it is executed with its leader.
     pub rigid: Vec<(TimePoint, TimePoint, i64)>,
     /// Dynamic controllability.

@@ -423,18 +423,26 @@ fn flow(net: &mut Network, capacity: i64, demand: &[i64], kind: OrderKind) {
     }
 }
 
+/// A scheduled effect on a state: `(time, step, event, j, value)`, the event of
+/// placed activity `j` at which it applies and the value (index) it sets.
+type EffectEvent = (i64, usize, usize, usize, usize);
+
 /// State effects and requirements keep their relative order: the effects on each
 /// state stay in their scheduled order (strictly where a later time has an earlier
 /// step, so that same-time ties cannot change which value wins), and each
 /// requirement interval keeps the effects that were before it before it, those
-/// inside inside and those after after.
+/// inside inside and those after after. An effect inside a requirement interval
+/// that sets another value than the required one is harmless in the schedule only
+/// because the next effect (a later step) sets the state again at the same
+/// instant: the two stay at one instant, or the other value would hold inside
+/// the interval once they drift apart.
 fn state_orders(plan: &Plan, sched: &Schedule, net: &mut Network) {
     let problem = &sched.problem;
     let names: Vec<&String> = plan.states.keys().collect();
     let n = net.placed.len();
     let placed = net.placed.clone();
-    // Per state: effect events (time, step, event, j).
-    let mut effects: Vec<Vec<(i64, usize, usize, usize)>> = vec![Vec::new(); names.len()];
+    // Per state: its effects.
+    let mut effects: Vec<Vec<EffectEvent>> = vec![Vec::new(); names.len()];
     for j in 0..n {
         let a = net.placed[j];
         let step = problem.step_of[a];
@@ -444,7 +452,7 @@ fn state_orders(plan: &Plan, sched: &Schedule, net: &mut Network) {
             } else {
                 (net.nominal[j].1, end(j))
             };
-            effects[eff.state].push((t, step, ev, j));
+            effects[eff.state].push((t, step, ev, j, eff.value));
         }
     }
     for (st, list) in effects.iter_mut().enumerate() {
@@ -474,20 +482,28 @@ fn state_orders(plan: &Plan, sched: &Schedule, net: &mut Network) {
                         .map_or_else(String::new, |s| s.to_string()),
                 )
             };
-            let others = list.iter().filter(|x| x.3 != j);
+            let others: Vec<_> = list.iter().copied().filter(|x| x.3 != j).collect();
             let mut last_before = None;
             let mut first_after = None;
             let mut inside = Vec::new();
-            for &x in others {
+            // Inside effects of another value, each with the effect that
+            // overrides it at the same instant.
+            let mut overridden = Vec::new();
+            for (i, &x) in others.iter().enumerate() {
                 if x.0 <= s {
                     last_before = Some(x);
                 } else if x.0 < e {
                     inside.push(x);
+                    if x.4 != req.value {
+                        if let Some(&y) = others.get(i + 1).filter(|y| y.0 == x.0) {
+                            overridden.push((x, y));
+                        }
+                    }
                 } else if first_after.is_none() {
                     first_after = Some(x);
                 }
             }
-            let why = |x: (i64, usize, usize, usize), first_is_effect: bool| Constraint::Order {
+            let why = |x: EffectEvent, first_is_effect: bool| Constraint::Order {
                 first: if first_is_effect { placed[x.3] } else { a },
                 second: if first_is_effect { a } else { placed[x.3] },
                 kind: kind(),
@@ -502,6 +518,16 @@ fn state_orders(plan: &Plan, sched: &Schedule, net: &mut Network) {
             }
             if let Some(x) = first_after {
                 net.before(end(j), x.2, 0, why(x, false));
+            }
+            // The overriding effect no later than the overridden one: with the
+            // order of the effects, at the same instant.
+            for (x, y) in overridden {
+                let why = Constraint::Order {
+                    first: placed[y.3],
+                    second: placed[x.3],
+                    kind: kind(),
+                };
+                net.before(y.2, x.2, 0, why);
             }
         }
     }
