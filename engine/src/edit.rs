@@ -5,7 +5,9 @@ use serde_json::Value;
 use crate::error::Error;
 use crate::load::load_plan;
 use crate::model::{Activity, Plan};
-use crate::validate::{check_activity_shape, check_json_shape, validate};
+use crate::validate::{
+    LIMIT_SECTIONS, check_activity_shape, check_json_shape, validate, validate_limits,
+};
 
 /// Applies an edit in the spec's format (`target` is `"plan"` or `"activity:ID"`;
 /// `set` replaces those top-level fields of the target, `null` removes one) and
@@ -39,10 +41,12 @@ pub fn apply_edit(
     Ok(out)
 }
 
-/// [`apply_edit`] for the explainer's own candidate edits, where only whether the
-/// edit gives a valid plan matters, not why not: an edit re-reads only what it
-/// changes from JSON (one activity, or the plan without its activities) and
-/// validates the plan, rather than writing and re-reading the whole plan. Debug builds check the result against
+/// [`apply_edit`] for the explainer's own candidate edits of a valid `plan`, where
+/// only whether the edit gives a valid plan matters, not why not: an edit re-reads
+/// only what it changes from JSON (one activity, or the plan without its
+/// activities) and validates the plan (only the edited limit sections when the
+/// edit sets nothing else: no other check reads them), rather than writing and
+/// re-reading the whole plan. Debug builds check the result against
 /// [`apply_edit`].
 pub(crate) fn edited(
     plan: &Plan,
@@ -76,7 +80,13 @@ pub(crate) fn edited(
         out.activities = plan.activities.clone();
         // A cycle's starting state is not part of the file format: it stays.
         out.cycle = plan.cycle.clone();
-        validate(&out).ok()?;
+        if set.keys().all(|k| LIMIT_SECTIONS.contains(&k.as_str())) {
+            // Only limits changed, and the rest was valid (the explainer edits
+            // the plan it explains, which is valid).
+            validate_limits(&out).ok()?;
+        } else {
+            validate(&out).ok()?;
+        }
         Some(out)
     };
     let out = if target == "plan" {

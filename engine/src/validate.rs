@@ -93,6 +93,26 @@ pub fn validate(plan: &Plan) -> Result<Vec<Warning>, Error> {
     Ok(v.warnings)
 }
 
+/// The sections of plan-wide limits: no other check reads them, and they read
+/// nothing else, so an edit of these alone leaves the rest of a valid plan valid.
+pub(crate) const LIMIT_SECTIONS: [&str; 5] = ["battery", "power", "sleep", "data", "handover"];
+
+/// Checks only the [`LIMIT_SECTIONS`] of a plan whose other parts are known to be
+/// valid (an edit of those sections of a valid plan): the first error, as
+/// [`validate`] would report it.
+pub(crate) fn validate_limits(plan: &Plan) -> Result<(), Error> {
+    let mut v = Validator {
+        plan,
+        warnings: Vec::new(),
+        errors: None,
+    };
+    v.battery()?;
+    v.power()?;
+    v.sleep()?;
+    v.data()?;
+    v.handover()
+}
+
 /// Every semantic error of a parsed plan, in document order (empty when it is
 /// valid): what [`validate`] checks, going on after an error. Each check that
 /// fails reports once and the checks that do not depend on it still run (the
