@@ -150,7 +150,12 @@ pub(crate) fn suggestions(plan: &Plan, sched: &Schedule, exs: &[Explanation]) ->
         .zip(asked.par_iter())
         .map(|((a, _), pairs)| {
             let pairs = pairs.as_ref()?;
-            let found = pairs.iter().find_map(|(x, y)| runs.verify_pair(x, y, *a));
+            // The first pair in order that works (pairs after it may be run
+            // too, on idle threads: a failure that no pair fixes, the common
+            // case here, runs them all anyway).
+            let found = pairs
+                .par_iter()
+                .find_map_first(|(x, y)| runs.verify_pair(x, y, *a));
             Some(found.unwrap_or_default())
         })
         .collect();
