@@ -93,8 +93,9 @@ pub fn validate(plan: &Plan) -> Result<Vec<Warning>, Error> {
     Ok(v.warnings)
 }
 
-/// The sections of plan-wide limits: no other check reads them, and they read
-/// nothing else, so an edit of these alone leaves the rest of a valid plan valid.
+/// The sections of plan-wide limits: no other check reads them (and they read
+/// only the horizon besides, which an edit of them leaves as it was), so an edit
+/// of these alone leaves the rest of a valid plan valid.
 pub(crate) const LIMIT_SECTIONS: [&str; 5] = ["battery", "power", "sleep", "data", "handover"];
 
 /// Checks only the [`LIMIT_SECTIONS`] of a plan whose other parts are known to be

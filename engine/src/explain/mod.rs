@@ -146,6 +146,8 @@ pub struct ExplainOptions {
 }
 
 /// Explains every failed or skipped activity of a run (or the one named).
+/// `plan` must be valid (as [`load_plan`](crate::load_plan) gives it) and
+/// `sched` its schedule: suggestions edit the plan on that assumption.
 pub fn explain(
     plan: &Plan,
     sched: &Schedule,

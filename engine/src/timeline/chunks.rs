@@ -7,17 +7,24 @@
 //! flat, every level after the change was rewritten, O(n) per placement. Here
 //! each chunk holds its levels and losses relative to an offset, with its own
 //! prefix and suffix minima (which a shift leaves as they are), so a shift costs
-//! O(1) per chunk and only the chunks where the cap absorbs part of the deficit
-//! are rewritten point by point.
+//! O(1) per chunk; only the chunks where the cap absorbs part of a deficit, or
+//! where a surplus (a higher level) has not yet met the old trajectory, are
+//! rewritten point by point.
+//!
+//! The levels never start above the cap (a battery's initial charge is at most
+//! its capacity; data volume starts at or below its cap of 0): above it the old
+//! trajectory would lose charge the new one does not, and the deficit rule
+//! below would not hold. [`Points::new`] asserts it in debug builds.
 //!
 //! [`RateTimeline`]: super::RateTimeline
 
 use super::StepFn;
 use super::minimum::MinTree;
 
-/// Points per chunk after a rewrite (a chunk holds `CHUNK..2 * CHUNK` points,
-/// fewer only when the whole timeline has fewer). Small in tests and debug builds,
-/// so that the chunk boundaries are crossed by small plans.
+/// Points per chunk when a group of points is cut into chunks (a chunk holds
+/// fewer than `2 * CHUNK` points; one can hold fewer than `CHUNK` after points
+/// coalesce away, as chunks are not merged). Small in tests and debug builds, so
+/// that the chunk boundaries are crossed by small plans.
 const CHUNK: usize = if cfg!(test) {
     3
 } else if cfg!(debug_assertions) {
@@ -43,12 +50,17 @@ type Min = (i128, usize);
 /// offsets; the minima are over the stored values (a shift moves them all).
 #[derive(Clone, Debug)]
 struct Chunk {
+    /// Each point's time.
     times: Vec<i64>,
     /// Rate from each point to the next (0 for the domain end).
     rates: Vec<i64>,
+    /// Each point's level, less `off_level`.
     levels: Vec<i128>,
+    /// The charge lost to the cap before each point, less `off_waste`.
     wastes: Vec<i128>,
+    /// What every stored level lacks.
     off_level: i128,
+    /// What every stored waste lacks.
     off_waste: i128,
     /// `(min of levels[..=o], first local index)`.
     prefix: Vec<Min>,
@@ -60,6 +72,7 @@ struct Chunk {
 }
 
 impl Chunk {
+    /// A chunk of these points (absolute values), summarised.
     fn new(times: Vec<i64>, rates: Vec<i64>, levels: Vec<i128>, wastes: Vec<i128>) -> Self {
         let mut c = Self {
             times,
@@ -77,14 +90,17 @@ impl Chunk {
         c
     }
 
+    /// The number of points.
     fn len(&self) -> usize {
         self.times.len()
     }
 
+    /// Point `o`'s level.
     fn level(&self, o: usize) -> i128 {
         self.levels[o] + self.off_level
     }
 
+    /// Point `o`'s waste.
     fn waste(&self, o: usize) -> i128 {
         self.wastes[o] + self.off_waste
     }
@@ -167,11 +183,13 @@ impl Chunk {
         self.summarise();
     }
 
+    /// `(lowest level, first local index)`.
     fn min_level(&self) -> (i128, usize) {
         let (v, o) = self.suffix[0];
         (v + self.off_level, o)
     }
 
+    /// `(lowest level + waste, first local index)`.
     fn min_unc(&self) -> (i128, usize) {
         let (v, o) = self.unc_suffix[0];
         (v + self.off_level + self.off_waste, o)
@@ -252,17 +270,17 @@ impl Tail {
         }
     }
 
-    /// The owed deficit at a point whose old waste is `waste`, when every point
-    /// of a chunk gets the same (a pure shift).
+    /// The deficit still owed at a point whose old waste is `waste` (`None`
+    /// unless this is a deficit): when it is the same at both ends of a chunk,
+    /// it is the same throughout (the waste never falls), and the chunk shifts.
     fn owed(&self, waste: i128) -> Option<i128> {
         match *self {
-            Self::Same { .. } => Some(0),
             Self::Deficit {
                 deficit,
                 waste_at_end,
                 ..
             } => Some((deficit - (waste - waste_at_end)).max(0)),
-            Self::Surplus { .. } => None,
+            Self::Same { .. } | Self::Surplus { .. } => None,
         }
     }
 }
@@ -293,6 +311,10 @@ pub(super) struct Points {
 impl Points {
     /// Integrates `rate` from `initial`, capped at `cap`.
     pub(super) fn new(rate: &StepFn, initial: i128, cap: i128) -> Self {
+        debug_assert!(
+            initial <= cap,
+            "levels start above the cap: {initial} > {cap}"
+        );
         let mut flat = Flat::default();
         let (level, waste) = flat.integrate(rate, rate.start(), rate.end(), initial, 0, cap);
         flat.push(rate.end(), 0, level, waste);
@@ -317,9 +339,10 @@ impl Points {
     }
 
     /// The points, updated in place to `rate`, a rate that equals theirs outside
-    /// `[from, to)`: the points from the last one before `from` to the first
-    /// one after `to` are integrated again; the later ones are shifted chunk by
-    /// chunk, and rewritten only where the cap changes the shift.
+    /// `[from, to)`: the points from the last one before `from` up to the first
+    /// one after `to` are integrated again; from that one on, the points follow
+    /// the [`Tail`], chunk by chunk: shifted whole where they can be, rewritten
+    /// point by point where the cap changes the shift or a surplus is walked.
     pub(super) fn update(&mut self, rate: &StepFn, cap: i128, from: i64, to: i64) {
         let n = self.len - 1;
         if n == 0 {
@@ -500,15 +523,18 @@ impl Points {
         (c, i - self.starts[c])
     }
 
+    /// Point `i`'s time.
     pub(super) fn time(&self, i: usize) -> i64 {
         self.times[i]
     }
 
+    /// Point `i`'s level.
     pub(super) fn level(&self, i: usize) -> i128 {
         let (c, o) = self.locate(i);
         self.chunks[c].level(o)
     }
 
+    /// The charge lost to the cap before point `i`.
     pub(super) fn waste(&self, i: usize) -> i128 {
         let (c, o) = self.locate(i);
         self.chunks[c].waste(o)
@@ -661,7 +687,7 @@ impl Points {
     /// The times of the points in `[lo, hi]`.
     pub(super) fn times_in(&self, lo: i64, hi: i64) -> Vec<i64> {
         let (a, b) = (self.time_pp(|t| t < lo), self.time_pp(|t| t <= hi));
-        self.times[a..b].to_vec()
+        self.times[a..b.max(a)].to_vec()
     }
 }
 
@@ -683,6 +709,7 @@ impl Flat {
         self.wastes.append(&mut other.wastes);
     }
 
+    /// Appends one point.
     fn push(&mut self, t: i64, r: i64, level: i128, waste: i128) {
         self.times.push(t);
         self.rates.push(r);

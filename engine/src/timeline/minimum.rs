@@ -4,8 +4,11 @@
 /// Leaves sit at `cap + i` for a power-of-two `cap`.
 #[derive(Clone, Debug, Default)]
 pub(super) struct MinTree {
+    /// The number of values.
     n: usize,
+    /// The leaves' count, a power of two at least `n`.
     cap: usize,
+    /// Node `p`'s children are `2p` and `2p + 1`; leaf `i` is at `cap + i`.
     tree: Vec<(i128, usize)>,
 }
 

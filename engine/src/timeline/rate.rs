@@ -75,7 +75,7 @@ struct Levels {
 }
 
 impl RateTimeline {
-    /// Integrates `rate` from `initial`, capped at `cap`.
+    /// Integrates `rate` from `initial` (at most `cap`), capped at `cap`.
     pub fn new(rate: StepFn, initial: i128, cap: i128) -> Self {
         Self {
             cap,
@@ -228,7 +228,8 @@ impl Levels {
 
     /// These levels updated in place to `rate`, a rate that is the same as
     /// theirs outside `[from, to)` ([`Points::update`]). Debug builds compare
-    /// every point and every minimum with a fresh integration.
+    /// every point and every prefix and suffix minimum with a fresh
+    /// integration, and the uncapped minimum on a few ranges.
     fn update(mut self, rate: &StepFn, from: i64, to: i64) -> Self {
         self.points.update(rate, self.cap, from, to);
         self.last_full = std::sync::OnceLock::new();
