@@ -838,3 +838,39 @@ fn data_volume_alone_suggests_the_least_larger_capacity() {
     let cap = f.set["data"]["capacity"].as_f64().unwrap();
     assert!((110.0..110.002).contains(&cap), "{cap}");
 }
+
+/// The least lowering of `battery.min_soc` for an optional activity of a plan
+/// with a handover limit (realistic profile, 300 activities over 3 sols, seed
+/// 7: its one such suggestion). The search runs each value it tries from the
+/// run of the last value that failed, replaying the steps whose record shows no
+/// rejected start able to pass now; with a handover limit the record bounds the
+/// lowest state of charge of the starts the handover limit lets pass. Debug
+/// builds compare every replayed step with a search (recording the bound of a
+/// `min_soc` range 277 Wh too low makes this test panic there); here, the value
+/// found must also place the activity when the plan is edited and scheduled
+/// from scratch.
+#[test]
+fn a_min_soc_lowering_with_a_handover_limit_places_the_activity() {
+    use solscope_engine::{Profile, apply_edit, generate_plan_with};
+    let plan = generate_plan_with(Profile::Realistic, 300, 3, 7);
+    assert!(
+        plan.handover.as_ref().is_some_and(|h| h.min_soc.is_some()),
+        "the realistic profile sets a handover state of charge"
+    );
+    let (_, ex) = explain_one(&plan, "s0_f17");
+    let lowerings: Vec<_> = ex
+        .suggestions
+        .iter()
+        .filter(|s| s.set.contains_key("battery"))
+        .collect();
+    assert_eq!(lowerings.len(), 1, "{:?}", ex.suggestions);
+    for s in lowerings {
+        let edited = apply_edit(&plan, &s.target, &s.set).expect("a valid edit");
+        let again = schedule(&edited).expect("schedules");
+        assert!(
+            again.placement(ex.activity).is_some(),
+            "'{}' does not place the activity",
+            s.description
+        );
+    }
+}

@@ -501,7 +501,7 @@ pub(crate) fn run_step(
         None => Outcome::Failed(FailurePhase::ValidIntervals),
     };
     step.rejected = if traced {
-        Rejected::of_tries(tries.iter())
+        Rejected::of_tries(tries.iter(), problem.handover_gap(a))
     } else {
         rejected
     };

@@ -370,15 +370,13 @@ impl Relaxation {
         let handover_binds = !act.mandatory && problem.handover_time.is_some();
         match self {
             Self::MinSoc(min) => {
-                // With a handover limit on the activity, a range's reported numbers
-                // are those of its best margin, not of its highest state of charge.
-                // A cell whose feasible part is a sub-range reports the rest with
-                // the numbers of its far end, not its closest start: a failing range
-                // touching a passing one is not trusted.
+                // The record bounds the lowest state of charge of every start
+                // rejected on energy that the handover limit lets pass
+                // (`Rejected::soc`). A cell whose feasible part is a sub-range
+                // reports the rest with the numbers of its far end, not its
+                // best: a failing range touching a passing one is not trusted.
                 let r = &step.rejected;
-                let handover_limits = handover_binds && problem.handover_soc.is_some();
-                let trusted = !r.soc_untrusted;
-                !handover_limits && trusted && r.soc.is_none_or(|soc| i128::from(soc) < min)
+                !r.soc_untrusted && r.soc.is_none_or(|soc| i128::from(soc) < min)
             }
             Self::MaxPeak(max) => step.rejected.peak.is_none_or(|peak| peak > max),
             Self::DataCap => act.data <= 0 || data_unbound(problem, step),

@@ -768,7 +768,7 @@ impl State<'_> {
                 at: lo,
                 soc_mj: bound,
             };
-            rejected.add(Some(&reason), false);
+            rejected.add(Some(&reason), false, None);
         };
         // The span's part of `cand`, as its first and last start.
         let clip = |lo: i64, hi: i64| {
@@ -815,7 +815,8 @@ impl State<'_> {
                     continue;
                 }
                 let tries = self.cell_tries(a, d, cell_lo, cell_hi);
-                rejected = rejected.join(Rejected::of_tries(tries.iter()));
+                let gap = problem.handover_gap(a);
+                rejected = rejected.join(Rejected::of_tries(tries.iter(), gap));
                 for t in tries.iter().filter(|t| t.reason.is_none()) {
                     let s = preferred.clamp(t.starts.lo, t.starts.hi);
                     let key = ((s - preferred).abs(), s);

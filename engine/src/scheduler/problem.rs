@@ -263,6 +263,11 @@ impl Problem {
         }
     }
 
+    /// `min_soc - handover min` when the handover limit applies to activity `a`.
+    pub(crate) fn handover_gap(&self, a: usize) -> Option<i128> {
+        self.handover_soc_of(a).map(|(_, min)| self.min_soc - min)
+    }
+
     /// Whether activity `a` starting at `s` finds its own preheat of zone `z`
     /// already running (a cycle of an execution).
     pub fn preheat_running(&self, a: usize, z: usize, s: i64) -> bool {

@@ -383,8 +383,17 @@ pub struct Step {
 /// (a span skipped on a bound contributes the bound).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct Rejected {
-    /// The highest lowest state of charge (mJ) of a start rejected on
-    /// `battery.min_soc`, or an upper bound on it.
+    /// An upper bound on the lowest state of charge (mJ) of every start
+    /// rejected on energy whose handover part passes (a start failing the
+    /// handover limit fails whatever `battery.min_soc` is).
+    ///
+    /// A range of starts is reported with the numbers of its best margin
+    /// (`min(lowest - min_soc, handover - handover min)`), so every start in it
+    /// has a margin at most that. A start whose lowest part binds then has
+    /// `lowest - min_soc <=` the best margin: at most the reported lowest state
+    /// of charge when the range's reason is `min_soc`, at most `min_soc +
+    /// (handover - handover min)` when it is the handover limit. A start whose
+    /// handover part binds fails the handover limit.
     pub soc: Option<i64>,
     /// The lowest peak (mW) of a start rejected on `power.max_peak`.
     pub peak: Option<i64>,
@@ -395,12 +404,28 @@ pub(crate) struct Rejected {
 
 impl Rejected {
     /// Takes in one try: its reason, and whether a passing start touches it.
-    pub(crate) fn add(&mut self, reason: Option<&Phase2Reason>, touches_pass: bool) {
+    /// `handover_gap` is `min_soc - handover min` when the handover limit
+    /// applies to the activity (the type docs).
+    pub(crate) fn add(
+        &mut self,
+        reason: Option<&Phase2Reason>,
+        touches_pass: bool,
+        handover_gap: Option<i128>,
+    ) {
+        let mut soc = |bound: i64| {
+            self.soc = Some(self.soc.map_or(bound, |s| s.max(bound)));
+            self.soc_untrusted |= touches_pass;
+        };
         match reason {
-            Some(Phase2Reason::MinSoc { soc_mj, .. }) => {
-                self.soc = Some(self.soc.map_or(*soc_mj, |s| s.max(*soc_mj)));
-                self.soc_untrusted |= touches_pass;
-            }
+            Some(Phase2Reason::MinSoc { soc_mj, .. }) => soc(*soc_mj),
+            Some(Phase2Reason::HandoverSoc { soc_mj }) => match handover_gap {
+                Some(gap) => match i64::try_from(i128::from(*soc_mj) + gap) {
+                    Ok(bound) => soc(bound),
+                    Err(_) => self.soc_untrusted = true,
+                },
+                // Not reachable: the reason comes from the handover limit.
+                None => self.soc_untrusted = true,
+            },
             Some(Phase2Reason::MaxPeakPower { peak_mw, .. }) => {
                 self.peak = Some(self.peak.map_or(*peak_mw, |p| p.min(*peak_mw)));
             }
@@ -410,7 +435,10 @@ impl Rejected {
 
     /// The summary of tries (merged or not): a try touches a pass when a
     /// passing try of any duration ends right before it or starts right after it.
-    pub(crate) fn of_tries<'a>(tries: impl Iterator<Item = &'a Try> + Clone) -> Self {
+    pub(crate) fn of_tries<'a>(
+        tries: impl Iterator<Item = &'a Try> + Clone,
+        handover_gap: Option<i128>,
+    ) -> Self {
         let passing = tries.clone().filter(|p| p.reason.is_none());
         let before: std::collections::HashSet<i64> = passing
             .clone()
@@ -421,7 +449,7 @@ impl Rejected {
         let mut out = Self::default();
         for t in tries {
             let touches_pass = before.contains(&t.starts.hi) || after.contains(&t.starts.lo);
-            out.add(t.reason.as_ref(), touches_pass);
+            out.add(t.reason.as_ref(), touches_pass, handover_gap);
         }
         out
     }
