@@ -21,7 +21,7 @@ use duration::longest_by_scan;
 use duration::{duration_monotone, head_tail_split, longest_monotone, longest_split};
 pub use inspect::{PartialSchedule, partial_schedule, valid_intervals_at};
 pub use outcomes::{RunOutcomes, run_outcomes};
-pub(crate) use outcomes::{placement_after_edit, placements_if_placed};
+pub(crate) use outcomes::{placement_after_edit, placements_if_placed, probe_after_edit};
 pub(crate) use phase2::Evaluated;
 pub use problem::{Act, Problem};
 pub use profiles::Profiles;

@@ -48,13 +48,51 @@ pub(crate) fn placement_after_edit(
 ) -> Result<Option<(i64, i64)>, Error> {
     let problem = super::Problem::compile(plan)?;
     let until = problem.step_of.get(a).copied().unwrap_or(0);
-    let run = Run::up_to(prev, &problem, until, Some(a));
+    let run = Run::up_to(prev, &problem, until, Some(a), false);
     let placed = run.placements.get(a).copied().flatten();
     #[cfg(debug_assertions)]
     if let Ok(full) = super::schedule(plan) {
         debug_assert_eq!(placed, full.placement(a), "the outcome-only run disagrees");
     }
     Ok(placed)
+}
+
+/// [`placement_after_edit`], with the run's record of the steps up to `a`'s: a
+/// [`Schedule`] of those steps alone (no generated activities) that can stand
+/// as `prev` for an edit that relaxes the same plan-wide limit further. The
+/// least-relaxation search probes values each looser than the last that
+/// failed; run from that one, a probe's relaxation is small, so most steps keep
+/// their outcome ([`Relaxation::keeps`]) and are replayed, not searched.
+pub(crate) fn probe_after_edit(
+    prev: &Schedule,
+    plan: &Plan,
+    a: usize,
+) -> Result<(Option<(i64, i64)>, Schedule), Error> {
+    let problem = super::Problem::compile(plan)?;
+    let until = problem.step_of.get(a).copied().unwrap_or(0);
+    let run = Run::up_to(prev, &problem, until, Some(a), true);
+    let placed = run.placements.get(a).copied().flatten();
+    let steps = run.steps;
+    #[cfg(debug_assertions)]
+    if let Ok(full) = super::schedule(plan) {
+        debug_assert_eq!(placed, full.placement(a), "the outcome-only run disagrees");
+        for (mine, theirs) in steps.iter().zip(&full.steps) {
+            debug_assert_eq!(
+                (mine.activity, mine.outcome.placement()),
+                (theirs.activity, theirs.outcome.placement()),
+                "a recorded step of the outcome-only run disagrees"
+            );
+        }
+    }
+    Ok((
+        placed,
+        Schedule {
+            problem,
+            steps,
+            generated: Vec::new(),
+            margins: std::sync::OnceLock::new(),
+        },
+    ))
 }
 
 /// Where each activity is placed in the run of the edited `plan`, when one of
@@ -87,7 +125,8 @@ pub(crate) fn placements_if_placed(
         mut placements,
         placed_a,
         done,
-    } = Run::up_to(prev, &problem, until, single);
+        ..
+    } = Run::up_to(prev, &problem, until, single, false);
     let any_placed = match single {
         Some(_) => placed_a.is_some(),
         None => targets
@@ -235,12 +274,24 @@ struct Run<'p> {
     placed_a: Option<Evaluated>,
     /// Steps run.
     done: usize,
+    /// The record of each step run, when asked for.
+    steps: Vec<super::Step>,
 }
 
 impl<'p> Run<'p> {
     /// Runs `problem` (an edit of `prev`'s) up to step `until`, replaying the
-    /// steps of `prev` the edit cannot change; keeps the evaluation of `a`.
-    fn up_to(prev: &Schedule, problem: &'p super::Problem, until: usize, a: Option<usize>) -> Self {
+    /// steps of `prev` the edit cannot change; keeps the evaluation of `a`, and
+    /// with `record` the record of each step (a replayed step keeps `prev`'s,
+    /// which still bounds its rejected starts: the same state, and a relaxed
+    /// limit rejects fewer).
+    fn up_to(
+        prev: &Schedule,
+        problem: &'p super::Problem,
+        until: usize,
+        a: Option<usize>,
+        record: bool,
+    ) -> Self {
+        let mut steps = Vec::new();
         let common = prev.problem.common_steps(problem).min(until);
         let mut state = State::new(problem);
         let mut placements = vec![None; problem.acts.len()];
@@ -250,6 +301,9 @@ impl<'p> Run<'p> {
             let ev = state.replay(step);
             if Some(step.activity) == a {
                 placed_a = ev;
+            }
+            if record {
+                steps.push(step.clone());
             }
         }
         // While every step so far came out as in `prev`, the state is the same as
@@ -271,9 +325,13 @@ impl<'p> Run<'p> {
                 if Some(j) == a {
                     placed_a = ev;
                 }
+                if record {
+                    steps.push(before.clone());
+                }
                 continue;
             }
-            let ev = outcome_step(&state, j, k + 1);
+            let (ev, step) = recorded_step(&state, j, k + 1, record);
+            steps.extend(step);
             let placement = ev.as_ref().map(|ev| span(&ev.placement));
             same_so_far &= before.activity == j && placement == before.outcome.placement();
             if let Some(ev) = ev {
@@ -289,6 +347,7 @@ impl<'p> Run<'p> {
             placements,
             placed_a,
             done: until,
+            steps,
         }
     }
 }
@@ -411,6 +470,36 @@ fn outcome_step(state: &State<'_>, a: usize, step_no: usize) -> Option<Evaluated
         return Some(ev);
     }
     run_step(state, a, step_no, &Scope::default(), Detail::Outcome).found
+}
+
+/// [`outcome_step`], with the step's record when `record` (the ideal placement,
+/// which nothing can beat, records no rejected start).
+fn recorded_step(
+    state: &State<'_>,
+    a: usize,
+    step_no: usize,
+    record: bool,
+) -> (Option<Evaluated>, Option<super::Step>) {
+    if !record {
+        return (outcome_step(state, a, step_no), None);
+    }
+    if let Some(ev) = ideal(state, a) {
+        let (start, end) = span(&ev.placement);
+        let step = super::Step {
+            step: step_no,
+            activity: a,
+            outcome: super::Outcome::Scheduled { start, end },
+            duration: end - start,
+            categories: Vec::new(),
+            intersection: crate::timeline::IntervalSet::empty(),
+            rejected: super::Rejected::default(),
+            added: Vec::new(),
+            retired: Vec::new(),
+        };
+        return (Some(ev), Some(step));
+    }
+    let run = run_step(state, a, step_no, &Scope::default(), Detail::Outcome);
+    (run.found, Some(run.step))
 }
 
 /// Activity `a`'s ideal placement, if it fits: the longest duration, in the

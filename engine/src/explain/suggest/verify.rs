@@ -16,7 +16,9 @@ use super::{Candidate, round3};
 use crate::edit::edited;
 use crate::explain::Suggestion;
 use crate::model::Plan;
-use crate::scheduler::{Schedule, placement_after_edit, placements_if_placed, schedule};
+use crate::scheduler::{
+    Schedule, placement_after_edit, placements_if_placed, probe_after_edit, schedule,
+};
 
 /// Placements by activity index in the run of an edited plan (`None`: not
 /// placed, or its step not run).
@@ -72,8 +74,17 @@ impl<'a> Runs<'a> {
     /// least-relaxation searches of several failures), or `shared` (the loosest
     /// value, which every search that gets that far asks about), is answered
     /// from its whole run, computed once; otherwise the edited plan is run only
-    /// up to `a`'s step.
-    fn places(&self, c: &Candidate, a: usize, shared: bool) -> bool {
+    /// up to `a`'s step. With a `chain`, that run starts from the chain's run
+    /// (the run of a stricter value of the same limit, up to `a`'s step; the
+    /// original run when empty), and when `a` is not placed it becomes the
+    /// chain's run.
+    fn places(
+        &self,
+        c: &Candidate,
+        a: usize,
+        shared: bool,
+        chain: Option<&mut Option<Schedule>>,
+    ) -> bool {
         let whole = {
             let mut map = self.edits.lock().unwrap_or_else(PoisonError::into_inner);
             let e = map.entry(key(c)).or_default();
@@ -89,7 +100,23 @@ impl<'a> Runs<'a> {
                 });
                 placed_in(placements.as_ref(), a)
             }
-            None => edited(self.plan, &c.target, &c.set).is_some_and(|p| places(&p, a, self.sched)),
+            None => {
+                let Some(plan) = edited(self.plan, &c.target, &c.set) else {
+                    return false;
+                };
+                let Some(chain) = chain else {
+                    return places(&plan, a, self.sched);
+                };
+                let prev = chain.as_ref().unwrap_or(self.sched);
+                match probe_after_edit(prev, &plan, a) {
+                    Ok((Some(_), _)) => true,
+                    Ok((None, run)) => {
+                        *chain = Some(run);
+                        false
+                    }
+                    Err(_) => false,
+                }
+            }
         }
     }
 
@@ -286,7 +313,7 @@ pub(super) fn tune_seconds(
     let works = |v: i64| {
         let c = make(v);
         let shared = c.target == loose.target && c.set == loose.set;
-        runs.places(&c, a, shared)
+        runs.places(&c, a, shared, None)
     };
     if !works(0) {
         return None;
@@ -311,7 +338,8 @@ pub(super) fn tune_seconds(
 /// `needed` and `loosest`, to a resolution of 0.001.
 ///
 /// The loosest value is the same edit for every failure that gets that far, so
-/// its whole run is kept and shared.
+/// its whole run is kept and shared. Each value is run from the run of the last
+/// value that failed (a relaxation of it, smaller at every halving).
 pub(super) fn tune_limit(
     runs: &Runs<'_>,
     a: usize,
@@ -321,10 +349,11 @@ pub(super) fn tune_limit(
     loosest: f64,
 ) -> Option<Candidate> {
     let loose = make(loosest);
-    let works = |v: f64| {
+    let mut chain = None;
+    let mut works = |v: f64| {
         let c = make(v);
         let shared = c.target == loose.target && c.set == loose.set;
-        runs.places(&c, a, shared)
+        runs.places(&c, a, shared, Some(&mut chain))
     };
     let (mut bad, mut good) = if works(needed) {
         (current, needed)
