@@ -537,7 +537,9 @@ impl State<'_> {
     /// `s < y - o1` and `s >= x - o2 + 1`, so a breakpoint `p` yields the point
     /// `p - o` for a start offset `o` and `p - o + 1` for an end offset. (Energy
     /// only needs the cells to keep every piece end inside one rate segment, which
-    /// either point does.)
+    /// either point does.) The points from breakpoints are those in `(lo, hi]`,
+    /// the only ones that split a cell of `[lo, hi]`; the local-time points may
+    /// reach `hi + 1`.
     fn critical_points(&self, a: usize, d: i64, lo: i64, hi: i64) -> Vec<i64> {
         let problem = self.problem;
         let act = &problem.acts[a];
@@ -631,10 +633,27 @@ impl State<'_> {
             want.dedup();
             debug_assert_eq!(fixed, want, "critical points by binary search");
         }
+        // Only points in `(lo, hi]` split a cell of starts in `[lo, hi]` (what
+        // every caller searches); one sorted run per offset (`cells` merges the
+        // runs), each the slice of `fixed` that the offset shifts into range.
         let mut points = Vec::with_capacity(fixed.len() * offsets.len() + 16);
-        // One sorted run per offset (`cells` merges the runs).
         for &(o, end) in &offsets {
-            points.extend(fixed.iter().map(|&x| x - o + end));
+            let (from, to) = (lo + o - end, hi + o - end);
+            let i = fixed.partition_point(|&x| x <= from);
+            let j = fixed.partition_point(|&x| x <= to);
+            points.extend(fixed[i..j].iter().map(|&x| x - o + end));
+        }
+        #[cfg(debug_assertions)]
+        {
+            let mut want: Vec<i64> = offsets
+                .iter()
+                .flat_map(|&(o, end)| fixed.iter().map(move |&x| x - o + end))
+                .filter(|&p| lo < p && p <= hi)
+                .collect();
+            want.sort_unstable();
+            let mut got = points.clone();
+            got.sort_unstable();
+            debug_assert_eq!(got, want, "the offsets' slices of the critical points");
         }
         for &p in &preheat_lengths {
             points.push(problem.h0 + p);
