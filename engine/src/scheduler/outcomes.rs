@@ -62,7 +62,10 @@ pub(crate) fn placement_after_edit(
 /// as `prev` for an edit that relaxes the same plan-wide limit further. The
 /// least-relaxation search probes values each looser than the last that
 /// failed; run from that one, a probe's relaxation is small, so most steps keep
-/// their outcome ([`Relaxation::keeps`]) and are replayed, not searched.
+/// their outcome ([`Relaxation::keeps`]) and are replayed, not searched. Debug
+/// builds compare each recorded step's activity and placement with a full run;
+/// a record's bounds are checked where a later run keeps its step (against a
+/// search, in [`Run::up_to`]).
 pub(crate) fn probe_after_edit(
     prev: &Schedule,
     plan: &Plan,

@@ -387,13 +387,17 @@ pub(crate) struct Rejected {
     /// rejected on energy whose handover part passes (a start failing the
     /// handover limit fails whatever `battery.min_soc` is).
     ///
-    /// A range of starts is reported with the numbers of its best margin
-    /// (`min(lowest - min_soc, handover - handover min)`), so every start in it
-    /// has a margin at most that. A start whose lowest part binds then has
-    /// `lowest - min_soc <=` the best margin: at most the reported lowest state
-    /// of charge when the range's reason is `min_soc`, at most `min_soc +
-    /// (handover - handover min)` when it is the handover limit. A start whose
-    /// handover part binds fails the handover limit.
+    /// A cell that fails everywhere is reported with the numbers of its best
+    /// margin (`min(lowest - min_soc, handover - handover min)`, concave on the
+    /// cell), so every start in it has a margin at most that. A start whose
+    /// lowest part binds then has `lowest - min_soc <=` the best margin: at most
+    /// the reported lowest state of charge when the cell's reason is `min_soc`,
+    /// at most `min_soc + (handover - handover min)` when it is the handover
+    /// limit. A start whose handover part binds fails the handover limit. The
+    /// bound is taken per cell (a merged range keeps its highest numbers, so
+    /// the highest bound) and combined by maximum. The failing part of a cell
+    /// beside its passing part reports its far end, not its best: it touches a
+    /// pass and makes the record untrusted (`soc_untrusted`).
     pub soc: Option<i64>,
     /// The lowest peak (mW) of a start rejected on `power.max_peak`.
     pub peak: Option<i64>,
