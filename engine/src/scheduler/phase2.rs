@@ -390,7 +390,7 @@ impl State<'_> {
     /// For the explainer's witnesses: how much other placements may change
     /// the state of charge, and where, before the passing evaluation `ev`
     /// (of this state, draining `drain`) can stop passing on energy
-    /// ([`SocBudget`]). `None` when
+    /// (`SocBudget`). `None` when
     /// no local budget exists (the drain is never absorbed, or no room).
     pub fn soc_budget(&self, ev: &Evaluated, drain: &[(i64, i64, i64)]) -> Option<SocBudget> {
         let problem = self.problem;
