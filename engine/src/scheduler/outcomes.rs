@@ -46,15 +46,7 @@ pub(crate) fn placement_after_edit(
     plan: &Plan,
     a: usize,
 ) -> Result<Option<(i64, i64)>, Error> {
-    let problem = super::Problem::compile(plan)?;
-    let until = problem.step_of.get(a).copied().unwrap_or(0);
-    let run = Run::up_to(prev, &problem, until, Some(a), false);
-    let placed = run.placements.get(a).copied().flatten();
-    #[cfg(debug_assertions)]
-    if let Ok(full) = super::schedule(plan) {
-        debug_assert_eq!(placed, full.placement(a), "the outcome-only run disagrees");
-    }
-    Ok(placed)
+    Ok(run_to(prev, plan, a, false)?.0)
 }
 
 /// [`placement_after_edit`], with the run's record of the steps up to `a`'s: a
@@ -71,9 +63,20 @@ pub(crate) fn probe_after_edit(
     plan: &Plan,
     a: usize,
 ) -> Result<(Option<(i64, i64)>, Schedule), Error> {
+    run_to(prev, plan, a, true)
+}
+
+/// The run of the edited `plan` up to `a`'s step: where `a` is placed, and with
+/// `record` the steps' records (else none).
+fn run_to(
+    prev: &Schedule,
+    plan: &Plan,
+    a: usize,
+    record: bool,
+) -> Result<(Option<(i64, i64)>, Schedule), Error> {
     let problem = super::Problem::compile(plan)?;
     let until = problem.step_of.get(a).copied().unwrap_or(0);
-    let run = Run::up_to(prev, &problem, until, Some(a), true);
+    let run = Run::up_to(prev, &problem, until, Some(a), record);
     let placed = run.placements.get(a).copied().flatten();
     let steps = run.steps;
     #[cfg(debug_assertions)]
@@ -461,18 +464,7 @@ fn data_unbound(problem: &super::Problem, step: &super::Step) -> bool {
 /// The placement step `step_no` (activity `a`) makes in `state`: the ideal one
 /// when it fits, else the full search's.
 fn outcome_step(state: &State<'_>, a: usize, step_no: usize) -> Option<Evaluated> {
-    if let Some(ev) = ideal(state, a) {
-        debug_assert_eq!(
-            run_step(state, a, step_no, &Scope::default(), Detail::Outcome)
-                .step
-                .outcome
-                .placement(),
-            Some(span(&ev.placement)),
-            "the ideal placement is not the step's"
-        );
-        return Some(ev);
-    }
-    run_step(state, a, step_no, &Scope::default(), Detail::Outcome).found
+    recorded_step(state, a, step_no, false).0
 }
 
 /// [`outcome_step`], with the step's record when `record` (the ideal placement,
@@ -483,26 +475,33 @@ fn recorded_step(
     step_no: usize,
     record: bool,
 ) -> (Option<Evaluated>, Option<super::Step>) {
-    if !record {
-        return (outcome_step(state, a, step_no), None);
-    }
     if let Some(ev) = ideal(state, a) {
-        let (start, end) = span(&ev.placement);
-        let step = super::Step {
-            step: step_no,
-            activity: a,
-            outcome: super::Outcome::Scheduled { start, end },
-            duration: end - start,
-            categories: Vec::new(),
-            intersection: crate::timeline::IntervalSet::empty(),
-            rejected: super::Rejected::default(),
-            added: Vec::new(),
-            retired: Vec::new(),
-        };
-        return (Some(ev), Some(step));
+        debug_assert_eq!(
+            run_step(state, a, step_no, &Scope::default(), Detail::Outcome)
+                .step
+                .outcome
+                .placement(),
+            Some(span(&ev.placement)),
+            "the ideal placement is not the step's"
+        );
+        let step = record.then(|| {
+            let (start, end) = span(&ev.placement);
+            super::Step {
+                step: step_no,
+                activity: a,
+                outcome: super::Outcome::Scheduled { start, end },
+                duration: end - start,
+                categories: Vec::new(),
+                intersection: crate::timeline::IntervalSet::empty(),
+                rejected: super::Rejected::default(),
+                added: Vec::new(),
+                retired: Vec::new(),
+            }
+        });
+        return (Some(ev), step);
     }
     let run = run_step(state, a, step_no, &Scope::default(), Detail::Outcome);
-    (run.found, Some(run.step))
+    (run.found, record.then_some(run.step))
 }
 
 /// Activity `a`'s ideal placement, if it fits: the longest duration, in the

@@ -776,6 +776,7 @@ impl State<'_> {
         // periods charge (as in `failing_soc_bound`): one span, not split.
         let energy = (act.energy > 0 && problem.awake >= problem.asleep)
             .then(|| i128::from(act.energy) * i128::from(d));
+        let handover_gap = problem.handover_gap(a);
         // The bound on the lowest state of charge when it proves that every
         // start in `[lo, hi]` fails on `min_soc`.
         let fails = |lo: i64, hi: i64| {
@@ -834,8 +835,7 @@ impl State<'_> {
                     continue;
                 }
                 let tries = self.cell_tries(a, d, cell_lo, cell_hi);
-                let gap = problem.handover_gap(a);
-                rejected = rejected.join(Rejected::of_tries(tries.iter(), gap));
+                rejected = rejected.join(Rejected::of_tries(tries.iter(), handover_gap));
                 for t in tries.iter().filter(|t| t.reason.is_none()) {
                     let s = preferred.clamp(t.starts.lo, t.starts.hi);
                     let key = ((s - preferred).abs(), s);
