@@ -154,6 +154,20 @@ fn check(text: &str) -> Result<(), TestCaseError> {
                 "{id}: valid_intervals without a conflict"
             );
         }
+        // Explained alone (as `explain --activity` and the app do, where no
+        // other failure shares the verifying runs), it is explained the same.
+        let opts = ExplainOptions {
+            activity: Some(id.clone()),
+            no_suggestions: false,
+        };
+        let alone =
+            explain(&plan, &sched, &opts).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        prop_assert_eq!(
+            serde_json::to_value(&alone).expect("json"),
+            serde_json::to_value(std::slice::from_ref(ex)).expect("json"),
+            "{}: explained alone differs",
+            id
+        );
         // Every suggestion, applied to the plan file, makes the activity schedule.
         for s in &ex.suggestions {
             let mut v: Value = serde_json::from_str(text).expect("json");

@@ -98,7 +98,8 @@ pub(crate) struct Fixes {
 /// tries pairs: of two categories that only together block it, one edit each;
 /// else two of its own candidates (bounded per failure and per run).
 pub(crate) fn suggestions(plan: &Plan, sched: &Schedule, exs: &[Explanation]) -> Vec<Fixes> {
-    let runs = verify::Runs::new(plan, sched);
+    let failing = exs.iter().filter(|ex| ex.failure_step.is_some()).count();
+    let runs = verify::Runs::new(plan, sched, failing > 1);
     let (failures, pairings): (Vec<Failure>, Vec<Vec<Pairing>>) = exs
         .par_iter()
         .map(|ex| {

@@ -39,6 +39,9 @@ fn key(c: &Candidate) -> EditKey {
 pub(super) struct Runs<'a> {
     pub(super) plan: &'a Plan,
     pub(super) sched: &'a Schedule,
+    /// Whether several failures are explained, so that the runs of edits
+    /// several of them may ask about are worth keeping whole.
+    share: bool,
     /// What is known per edit asked about.
     edits: Mutex<BTreeMap<EditKey, Asked>>,
 }
@@ -52,10 +55,11 @@ struct Asked {
 }
 
 impl<'a> Runs<'a> {
-    pub(super) fn new(plan: &'a Plan, sched: &'a Schedule) -> Self {
+    pub(super) fn new(plan: &'a Plan, sched: &'a Schedule, share: bool) -> Self {
         Self {
             plan,
             sched,
+            share,
             edits: Mutex::new(BTreeMap::new()),
         }
     }
@@ -89,7 +93,8 @@ impl<'a> Runs<'a> {
             let mut map = self.edits.lock().unwrap_or_else(PoisonError::into_inner);
             let e = map.entry(key(c)).or_default();
             e.times += 1;
-            (shared || e.times > 1 || e.run.get().is_some()).then(|| Arc::clone(&e.run))
+            (self.share && (shared || e.times > 1 || e.run.get().is_some()))
+                .then(|| Arc::clone(&e.run))
         };
         match whole {
             Some(cell) => {
