@@ -42,7 +42,7 @@ pub(crate) fn free_slack(
     // Against every other placement, handover limits waived (as for a mandatory
     // activity): they applied at its step.
     let mut waived = sched.problem.clone();
-    waived.acts[a].mandatory = true;
+    std::sync::Arc::make_mut(&mut waived.acts[a]).mandatory = true;
     let problem = &waived;
     let mut state = crate::scheduler::State::replayed(problem, &sched.steps[..k - 1]);
     for (i, step) in sched.steps[k..].iter().enumerate() {

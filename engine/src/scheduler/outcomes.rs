@@ -38,15 +38,17 @@ use crate::model::{AwakeMode, Plan};
 /// Placements by activity index (`None`: not placed, or its step not run).
 pub(crate) type Placements = Vec<Option<(i64, i64)>>;
 
-/// Where activity `a` is placed when the edited `plan` is scheduled (`None`: it
-/// fails), running only the steps up to `a`'s and reusing the steps of `prev`
-/// (the run before the edit) that the edit cannot change.
+/// Where activity `a` is placed when the edited `plan` (compiled: `problem`)
+/// is scheduled (`None`: it fails), running only the steps up to `a`'s and
+/// reusing the steps of `prev` (the run before the edit) that the edit cannot
+/// change.
 pub(crate) fn placement_after_edit(
     prev: &Schedule,
     plan: &Plan,
+    problem: super::Problem,
     a: usize,
 ) -> Result<Option<(i64, i64)>, Error> {
-    Ok(run_to(prev, plan, a, false)?.0)
+    Ok(run_to(prev, plan, problem, a, false)?.0)
 }
 
 /// [`placement_after_edit`], with the run's record of the steps up to `a`'s: a
@@ -61,20 +63,22 @@ pub(crate) fn placement_after_edit(
 pub(crate) fn probe_after_edit(
     prev: &Schedule,
     plan: &Plan,
+    problem: super::Problem,
     a: usize,
 ) -> Result<(Option<(i64, i64)>, Schedule), Error> {
-    run_to(prev, plan, a, true)
+    run_to(prev, plan, problem, a, true)
 }
 
-/// The run of the edited `plan` up to `a`'s step: where `a` is placed, and with
-/// `record` the steps' records (else none).
+/// The run of the edited `plan` (compiled: `problem`) up to `a`'s step: where
+/// `a` is placed, and with `record` the steps' records (else none).
 fn run_to(
     prev: &Schedule,
     plan: &Plan,
+    problem: super::Problem,
     a: usize,
     record: bool,
 ) -> Result<(Option<(i64, i64)>, Schedule), Error> {
-    let problem = super::Problem::compile(plan)?;
+    debug_assert_eq!(plan.activities.len(), problem.acts.len(), "not the plan's");
     let until = problem.step_of.get(a).copied().unwrap_or(0);
     let run = Run::up_to(prev, &problem, until, Some(a), record);
     let placed = run.placements.get(a).copied().flatten();
@@ -101,8 +105,8 @@ fn run_to(
     ))
 }
 
-/// Where each activity is placed in the run of the edited `plan`, when one of
-/// the activities `targets` is placed in it; `None` when none is (only the steps
+/// Where each activity is placed in the run of the edited `plan` (compiled:
+/// `problem`), when one of the activities `targets` is placed in it; `None` when none is (only the steps
 /// up to the last target's are then run). `prev` is the run of the plan before
 /// the edit.
 ///
@@ -114,9 +118,10 @@ fn run_to(
 pub(crate) fn placements_if_placed(
     prev: &Schedule,
     plan: &Plan,
+    problem: &super::Problem,
     targets: &[usize],
 ) -> Result<Option<Placements>, Error> {
-    let problem = super::Problem::compile(plan)?;
+    debug_assert_eq!(plan.activities.len(), problem.acts.len(), "not the plan's");
     let until = targets
         .iter()
         .filter_map(|&t| problem.step_of.get(t).copied())
@@ -132,7 +137,7 @@ pub(crate) fn placements_if_placed(
         placed_a,
         done,
         ..
-    } = Run::up_to(prev, &problem, until, single, false);
+    } = Run::up_to(prev, problem, until, single, false);
     let any_placed = match single {
         Some(_) => placed_a.is_some(),
         None => targets
@@ -152,8 +157,8 @@ pub(crate) fn placements_if_placed(
     let mut old = match (single, placed_a) {
         (Some(a), Some(placed_a))
             if (problem.differs_only_in(&prev.problem, a)
-                || (prev.placement(a).is_none() && moved_only(&prev.problem, &problem, a)))
-                && restrictive(&problem, &placed_a) =>
+                || (prev.placement(a).is_none() && moved_only(&prev.problem, problem, a)))
+                && restrictive(problem, &placed_a) =>
         {
             // The original steps of the activities run so far, in their order.
             let mut run: Vec<usize> = problem.order[..done].iter().map(|&j| orig(j)).collect();
@@ -170,7 +175,7 @@ pub(crate) fn placements_if_placed(
         let step_no = k + 1;
         if let Some((old_state, pa)) = old.as_mut() {
             let before = &prev.steps[orig(j)];
-            if !interacts(&problem, pa, j) {
+            if !interacts(problem, pa, j) {
                 let old_ev = old_state.replay(before);
                 match (before.outcome.placement(), old_ev) {
                     (None, _) => continue,

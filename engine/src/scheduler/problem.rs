@@ -1,6 +1,7 @@
 //! The compiled plan: interned ids and fixed-point quantities (docs/semantics.md).
 
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 use crate::error::Error;
 use crate::model::{AwakeMode, Duration, EffectAt, LocalTime, Plan};
@@ -178,8 +179,9 @@ pub struct Problem {
     pub zone_names: Vec<String>,
     /// Number of distinct unit resources.
     pub resource_count: usize,
-    /// Activities, in file order.
-    pub acts: Vec<Act>,
+    /// Activities, in file order (shared: an edited plan's problem shares
+    /// the activities the edit leaves as they were, [`Problem::compile_reusing`]).
+    pub acts: Vec<Arc<Act>>,
     /// Step order: `order[k - 1]` is the activity of step k.
     pub order: Vec<usize>,
     /// The inverse of `order`: `step_of[a]` is the step (1-based) of activity `a`.
@@ -292,6 +294,35 @@ impl Problem {
 
     /// Compiles a validated plan.
     pub fn compile(plan: &Plan) -> Result<Problem, Error> {
+        Self::compile_with(plan, None)
+    }
+
+    /// [`Problem::compile`] for a plan that differs from the one `base` was
+    /// compiled from only in activity `edited` (`None`: in none of them; the
+    /// horizon, states, thermal zones, activity ids and cycle the same): every
+    /// other activity's compiled form is taken from `base` (shared, not
+    /// copied) where the names it interns get the same indices, as they do
+    /// unless the edit changes which activity names a resource, a comm kind
+    /// or a group first. The suggestion verifier compiles thousands of edits
+    /// of one plan. Debug builds compare the result with a full compile.
+    pub(crate) fn compile_reusing(
+        plan: &Plan,
+        base: &Problem,
+        edited: Option<usize>,
+    ) -> Result<Problem, Error> {
+        let out = Self::compile_with(plan, Some((base, edited)));
+        debug_assert_eq!(
+            out.as_ref().ok(),
+            Self::compile(plan).as_ref().ok(),
+            "compiling with the base's activities differs"
+        );
+        out
+    }
+
+    fn compile_with(
+        plan: &Plan,
+        reuse: Option<(&Problem, Option<usize>)>,
+    ) -> Result<Problem, Error> {
         let ids: BTreeMap<&str, usize> = plan
             .activities
             .iter()
@@ -323,6 +354,40 @@ impl Problem {
         let horizon = plan.horizon;
         let mut acts = Vec::with_capacity(plan.activities.len());
         for (i, a) in plan.activities.iter().enumerate() {
+            // An activity the edit left alone, compiled in `base`: what it
+            // interns gets the same indices there as here (the names are
+            // interned all the same, so that later activities get theirs).
+            let unedited = reuse
+                .filter(|(_, edited)| *edited != Some(i))
+                .and_then(|(base, _)| base.acts.get(i));
+            if let Some(old) = unedited {
+                let mut same = a.resources.len() == old.resources.len();
+                for (r, &k) in a.resources.iter().zip(&old.resources) {
+                    let n = resources.len();
+                    same &= *resources.entry(r.as_str()).or_insert(n) == k;
+                }
+                let uhf: Option<Vec<usize>> = a.uhf_interactions.as_ref().map(|list| {
+                    list.iter()
+                        .map(|k| {
+                            let n = kinds.len();
+                            *kinds.entry(k.as_str()).or_insert(n)
+                        })
+                        .collect()
+                });
+                let comm = a.comm_kind.as_deref().map(|k| {
+                    let n = kinds.len();
+                    *kinds.entry(k).or_insert(n)
+                });
+                let group = a.group.as_deref().map(|g| {
+                    let n = groups.len();
+                    *groups.entry(g).or_insert(n)
+                });
+                if same && uhf == old.uhf && comm == old.comm && group == old.group {
+                    acts.push(Arc::clone(old));
+                    continue;
+                }
+                // Indices moved: compile it (interning again finds the same).
+            }
             let p = format!("activities[{i}]");
             let (dur_min, dur_max) = match a.duration {
                 Duration::Fixed(d) => (d, d),
@@ -412,7 +477,7 @@ impl Problem {
                 let n = groups.len();
                 *groups.entry(g).or_insert(n)
             });
-            acts.push(Act {
+            acts.push(Arc::new(Act {
                 dur_min,
                 dur_max,
                 mandatory: a.mandatory,
@@ -431,7 +496,7 @@ impl Problem {
                 comm,
                 group,
                 held: plan.cycle.as_ref().is_some_and(|c| c.held.contains(&a.id)),
-            });
+            }));
         }
         // Activities still executing come first (they are not decided again).
         let mut order: Vec<usize> = (0..plan.activities.len()).collect();

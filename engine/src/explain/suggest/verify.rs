@@ -17,12 +17,17 @@ use crate::edit::edited;
 use crate::explain::Suggestion;
 use crate::model::Plan;
 use crate::scheduler::{
-    Schedule, placement_after_edit, placements_if_placed, probe_after_edit, schedule,
+    Problem, Schedule, placement_after_edit, placements_if_placed, probe_after_edit, schedule,
 };
 
 /// Placements by activity index in the run of an edited plan (`None`: not
 /// placed, or its step not run).
 type Placements = Vec<Option<(i64, i64)>>;
+
+/// The plan's top-level fields that its compiled activities read (the horizon
+/// bounds an activity without windows; states, zones and ids are interned):
+/// an edit of any other plan field leaves every compiled activity as it was.
+const SHAPES_ACTIVITIES: [&str; 4] = ["horizon", "states", "thermal_zones", "activities"];
 
 /// An edit's identity: its target and its fields as JSON text.
 type EditKey = (String, String);
@@ -64,6 +69,27 @@ impl<'a> Runs<'a> {
         }
     }
 
+    /// The plan edited by `c`, compiled sharing the original plan's compiled
+    /// activities that the edit leaves alone; `None` when the edit gives no
+    /// valid plan.
+    fn edit(&self, c: &Candidate) -> Option<(Plan, Problem)> {
+        let plan = edited(self.plan, &c.target, &c.set)?;
+        let edited_activity = match c.target.strip_prefix("activity:") {
+            Some(id) => Some(Some(plan.activities.iter().position(|a| a.id == id)?)),
+            None => (!c
+                .set
+                .keys()
+                .any(|k| SHAPES_ACTIVITIES.contains(&k.as_str())))
+            .then_some(None),
+        };
+        let problem = match edited_activity {
+            Some(edited) => Problem::compile_reusing(&plan, &self.sched.problem, edited),
+            None => Problem::compile(&plan),
+        }
+        .ok()?;
+        Some((plan, problem))
+    }
+
     /// The whole run of the plan edited by `c`, if one was computed.
     fn known_run(&self, c: &Candidate) -> Option<Arc<OnceLock<Option<Placements>>>> {
         let map = self.edits.lock().unwrap_or_else(PoisonError::into_inner);
@@ -99,21 +125,23 @@ impl<'a> Runs<'a> {
         match whole {
             Some(cell) => {
                 let placements = cell.get_or_init(|| {
-                    let plan = edited(self.plan, &c.target, &c.set)?;
+                    let (plan, problem) = self.edit(c)?;
                     let all: Vec<usize> = (0..plan.activities.len()).collect();
-                    placements_if_placed(self.sched, &plan, &all).ok().flatten()
+                    placements_if_placed(self.sched, &plan, &problem, &all)
+                        .ok()
+                        .flatten()
                 });
                 placed_in(placements.as_ref(), a)
             }
             None => {
-                let Some(plan) = edited(self.plan, &c.target, &c.set) else {
+                let Some((plan, problem)) = self.edit(c) else {
                     return false;
                 };
                 let Some(chain) = chain else {
-                    return places(&plan, a, self.sched);
+                    return places(&plan, problem, a, self.sched);
                 };
                 let prev = chain.as_ref().unwrap_or(self.sched);
-                match probe_after_edit(prev, &plan, a) {
+                match probe_after_edit(prev, &plan, problem, a) {
                     Ok((Some(_), _)) => true,
                     Ok((None, run)) => {
                         *chain = Some(run);
@@ -156,20 +184,20 @@ impl<'a> Runs<'a> {
                 return answer(placements.as_ref());
             }
         }
-        let Some(plan) = edited(self.plan, &c.target, &c.set) else {
+        let Some((plan, problem)) = self.edit(c) else {
             return vec![None; asking.len()];
         };
         if let [a] = asking {
-            return vec![side_effects(&plan, *a, self.sched)];
+            return vec![side_effects(&plan, &problem, *a, self.sched)];
         }
-        let placements = placements_if_placed(self.sched, &plan, asking)
+        let placements = placements_if_placed(self.sched, &plan, &problem, asking)
             .ok()
             .flatten();
         #[cfg(debug_assertions)]
         for &a in asking {
             debug_assert_eq!(
                 placed_in(placements.as_ref(), a),
-                side_effects(&plan, a, self.sched).is_some(),
+                side_effects(&plan, &problem, a, self.sched).is_some(),
                 "one run for several activities disagrees with the run for one"
             );
         }
@@ -188,7 +216,8 @@ impl Runs<'_> {
     ) -> Option<Vec<Suggestion>> {
         let once = edited(self.plan, &x.target, &x.set)?;
         let twice = edited(&once, &y.target, &y.set)?;
-        let side_effects = side_effects(&twice, a, self.sched)?;
+        let problem = Problem::compile(&twice).ok()?;
+        let side_effects = side_effects(&twice, &problem, a, self.sched)?;
         Some(
             [x, y]
                 .into_iter()
@@ -274,10 +303,13 @@ pub(super) fn verified(
         .collect()
 }
 
-/// Whether activity `a` is placed in the run of the edited `plan` (only the steps
-/// up to its own are run). Debug builds check it against a full run from scratch.
-fn places(plan: &Plan, a: usize, before: &Schedule) -> bool {
-    let placed = placement_after_edit(before, plan, a).ok().flatten();
+/// Whether activity `a` is placed in the run of the edited `plan` (compiled:
+/// `problem`; only the steps up to its own are run). Debug builds check it
+/// against a full run from scratch.
+fn places(plan: &Plan, problem: Problem, a: usize, before: &Schedule) -> bool {
+    let placed = placement_after_edit(before, plan, problem, a)
+        .ok()
+        .flatten();
     debug_assert_eq!(
         placed,
         schedule(plan).ok().and_then(|s| s.placement(a)),
@@ -290,8 +322,10 @@ fn places(plan: &Plan, a: usize, before: &Schedule) -> bool {
 /// scheduled in `before` that are not any more. The steps after `a`'s are run
 /// only when it is placed, and only where `a`'s placement can change them
 /// ([`placements_if_placed`], which debug builds check against a full run).
-fn side_effects(plan: &Plan, a: usize, before: &Schedule) -> Option<Vec<usize>> {
-    let after = placements_if_placed(before, plan, &[a]).ok().flatten()?;
+fn side_effects(plan: &Plan, problem: &Problem, a: usize, before: &Schedule) -> Option<Vec<usize>> {
+    let after = placements_if_placed(before, plan, problem, &[a])
+        .ok()
+        .flatten()?;
     Some(
         before
             .steps
