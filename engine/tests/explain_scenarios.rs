@@ -839,6 +839,40 @@ fn data_volume_alone_suggests_the_least_larger_capacity() {
     assert!((110.0..110.002).contains(&cap), "{cap}");
 }
 
+/// `data_volume` with more producers than it blames: twelve activities store
+/// 1, 2, .., 12 Mbit (78 in all) before `b`, whose 30 Mbit would overflow a
+/// 100 Mbit store. The conflict blames the ten that stored the most, largest
+/// first, not every producer (which, when a store fills, made each failure's
+/// explanation as long as the plan).
+#[test]
+fn data_volume_blames_the_ten_largest_producers() {
+    let mut acts: Vec<Value> = (1..=12)
+        .map(|k| {
+            json!({ "id": format!("p{k}"), "priority": 1, "duration": 100,
+                    "data_rate": 0.01 * f64::from(k),
+                    "windows": [ { "start": 1000 + 200 * k, "end": 1000 + 200 * k } ] })
+        })
+        .collect();
+    acts.push(
+        json!({ "id": "b", "priority": 2, "duration": 1000, "data_rate": 0.03,
+                      "windows": [ { "start": 5000, "end": 5000 } ] }),
+    );
+    let p = plan(
+        json!({ "data": { "capacity": 100.0, "initial": 0.0 } }),
+        Value::Array(acts),
+    );
+    let (_, ex) = explain_one(&p, "b");
+    assert_eq!(
+        ex.conflicts,
+        vec![vec![Category::Execution, Category::DataVolume]]
+    );
+    let want: Vec<(String, usize, &str)> = (3..=12)
+        .rev()
+        .map(|k| c(&format!("p{k}"), k, "data_volume"))
+        .collect();
+    assert_eq!(culprits(&p, &ex), want);
+}
+
 /// The least lowering of `battery.min_soc` for an optional activity of a plan
 /// with a handover limit (realistic profile, 300 activities over 3 sols, seed
 /// 7: its one such suggestion). The search runs each value it tries from the

@@ -169,6 +169,12 @@ impl Blame {
 /// nothing; the app's energy plot lists them all.
 pub const ENERGY_CULPRITS: usize = 10;
 
+/// How many data producers a `data_volume` conflict blames: the ones that
+/// produced the most before the blocked span ends (every producer before it
+/// would make an explanation per failure as long as the plan, and a document
+/// quadratic in it, when the data store fills).
+pub const DATA_CULPRITS: usize = 10;
+
 /// The activities a run places, by the charge their whole placement draws
 /// (mJ: energy rate times duration), largest first (ties by activity): the
 /// energy culprits at any step of the run are ranked from it, stopping once
@@ -295,6 +301,7 @@ pub(crate) fn culprits(state: &State<'_>, ex: &Explanation, rank: &EnergyRank) -
                     }
                 }
             }
+            let mut producers: Vec<(i64, usize)> = Vec::new();
             for (cat, span_lo, span_hi) in blamed {
                 let overlaps = |(s, e): (i64, i64)| s < span_hi && span_lo < e;
                 let blame = Blame::Constraint(cat);
@@ -349,8 +356,19 @@ pub(crate) fn culprits(state: &State<'_>, ex: &Explanation, rank: &EnergyRank) -
                         }
                     };
                     if hit {
-                        push(x, blame);
+                        if cat == Category::DataVolume {
+                            let produced = other.data.saturating_mul(iv.1.min(span_hi) - iv.0);
+                            producers.push((produced, x));
+                        } else {
+                            push(x, blame);
+                        }
                     }
+                }
+                // The producers that stored the most, largest first (ties by
+                // activity), as the energy users are ranked.
+                producers.sort_by(energy_order);
+                for (_, x) in producers.drain(..).take(DATA_CULPRITS) {
+                    push(x, blame);
                 }
             }
         }
