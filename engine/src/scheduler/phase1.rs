@@ -280,6 +280,54 @@ impl State<'_> {
         if rest.is_empty() {
             return sure;
         }
+        // The rest is searched over spans of starts, as the phase-2 search
+        // goes over them: a span where the bound on the lowest level (the
+        // volume at its highest, negated) with the added volume proves every
+        // start overflows is skipped whole, a span with few breakpoints is
+        // split into cells; in between, it is halved. A full store then costs
+        // about the places where the volume could still fit, not every cell
+        // of the horizon.
+        let fails = |a: i64, b: i64| self.data.drain_bound(a, b.saturating_add(d), energy) < -cap;
+        let rate_points = self.data.rate().points();
+        let splits = |a: i64, b: i64| {
+            b - a >= super::phase2::SPAN_MIN_SECONDS
+                && rate_points.partition_point(|p| p.0 <= b.saturating_add(d))
+                    - rate_points.partition_point(|p| p.0 < a)
+                    > super::phase2::SPAN_LEAF_BREAKPOINTS
+        };
+        let mut feasible = sure.intervals().to_vec();
+        let mut spans: Vec<(i64, i64)> = rest.intervals().iter().map(|iv| (iv.lo, iv.hi)).collect();
+        while let Some((a, b)) = spans.pop() {
+            if fails(a, b) {
+                continue;
+            }
+            if splits(a, b) {
+                let mid = a + (b - a) / 2;
+                spans.push((a, mid));
+                spans.push((mid + 1, b));
+                continue;
+            }
+            feasible.extend(self.data_cells(&margin, d, a, b));
+        }
+        #[cfg(debug_assertions)]
+        {
+            let mut all = sure.intervals().to_vec();
+            for iv in rest.intervals() {
+                all.extend(self.data_cells(&margin, d, iv.lo, iv.hi));
+            }
+            debug_assert_eq!(
+                IntervalSet::from_intervals(feasible.clone()),
+                IntervalSet::from_intervals(all),
+                "skipping spans changed the data category"
+            );
+        }
+        IntervalSet::from_intervals(feasible)
+    }
+
+    /// The starts in `[lo, hi]` whose data `margin` (concave between the
+    /// breakpoints a piece of length `d` can reach) is not negative, cell by
+    /// cell.
+    fn data_cells(&self, margin: &dyn Fn(i64) -> i128, d: i64, lo: i64, hi: i64) -> Vec<Interval> {
         // Only breakpoints that a piece starting in [lo, hi] can reach split cells
         // (the breakpoints are sorted).
         let near = self.data.breakpoints_in(lo, hi + d + 1);
@@ -288,12 +336,9 @@ impl State<'_> {
         for shift in [0, 1, 1 - d, -d] {
             points.extend(near.iter().map(|&x| x + shift));
         }
-        let mut feasible = sure.intervals().to_vec();
-        for (a, b) in cells(&rest, points) {
-            if let Some(iv) = concave_feasible(a, b, &margin).0 {
-                feasible.push(iv);
-            }
-        }
-        IntervalSet::from_intervals(feasible)
+        cells(&IntervalSet::single(lo, hi), points)
+            .into_iter()
+            .filter_map(|(a, b)| concave_feasible(a, b, margin).0)
+            .collect()
     }
 }

@@ -24,13 +24,14 @@ use super::trace::{Phase2Reason, Rejected, Try};
 use crate::model::AwakeMode;
 use crate::timeline::{Interval, IntervalSet};
 
-/// `State::search_outcome` halves a span of starts while it is at least this
+/// `State::search_outcome` (and the data category of phase 1) halves a span of
+/// starts while it is at least this
 /// long and holds more than [`SPAN_LEAF_BREAKPOINTS`] rate breakpoints. Debug
 /// builds (the tests, on small plans) split down to single breakpoints, so that
 /// the cross-check against the full search sees every kind of span.
-const SPAN_MIN_SECONDS: i64 = if cfg!(debug_assertions) { 2 } else { 64 };
+pub(super) const SPAN_MIN_SECONDS: i64 = if cfg!(debug_assertions) { 2 } else { 64 };
 /// See [`SPAN_MIN_SECONDS`].
-const SPAN_LEAF_BREAKPOINTS: usize = if cfg!(debug_assertions) { 1 } else { 8 };
+pub(super) const SPAN_LEAF_BREAKPOINTS: usize = if cfg!(debug_assertions) { 1 } else { 8 };
 
 /// The room a passing placement leaves on energy, local in time (see
 /// [`State::soc_budget`] and `RateTimeline::local_budget`): while the other
