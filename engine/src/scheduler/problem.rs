@@ -360,33 +360,26 @@ impl Problem {
             let unedited = reuse
                 .filter(|(_, edited)| *edited != Some(i))
                 .and_then(|(base, _)| base.acts.get(i));
+            // Names interned by first appearance, for every activity (so that
+            // later ones get their indices).
+            let res: Vec<usize> = a
+                .resources
+                .iter()
+                .map(|r| intern(&mut resources, r))
+                .collect();
+            let uhf: Option<Vec<usize>> = a
+                .uhf_interactions
+                .as_ref()
+                .map(|list| list.iter().map(|k| intern(&mut kinds, k)).collect());
+            let comm = a.comm_kind.as_deref().map(|k| intern(&mut kinds, k));
+            let group = a.group.as_deref().map(|g| intern(&mut groups, g));
             if let Some(old) = unedited {
-                let mut same = a.resources.len() == old.resources.len();
-                for (r, &k) in a.resources.iter().zip(&old.resources) {
-                    let n = resources.len();
-                    same &= *resources.entry(r.as_str()).or_insert(n) == k;
-                }
-                let uhf: Option<Vec<usize>> = a.uhf_interactions.as_ref().map(|list| {
-                    list.iter()
-                        .map(|k| {
-                            let n = kinds.len();
-                            *kinds.entry(k.as_str()).or_insert(n)
-                        })
-                        .collect()
-                });
-                let comm = a.comm_kind.as_deref().map(|k| {
-                    let n = kinds.len();
-                    *kinds.entry(k).or_insert(n)
-                });
-                let group = a.group.as_deref().map(|g| {
-                    let n = groups.len();
-                    *groups.entry(g).or_insert(n)
-                });
-                if same && uhf == old.uhf && comm == old.comm && group == old.group {
+                if res == old.resources && uhf == old.uhf && comm == old.comm && group == old.group
+                {
                     acts.push(Arc::clone(old));
                     continue;
                 }
-                // Indices moved: compile it (interning again finds the same).
+                // Indices moved: compile it.
             }
             let p = format!("activities[{i}]");
             let (dur_min, dur_max) = match a.duration {
@@ -410,11 +403,6 @@ impl Problem {
                     cutoff: None,
                 }],
             };
-            let mut res = Vec::new();
-            for r in &a.resources {
-                let n = resources.len();
-                res.push(*resources.entry(r.as_str()).or_insert(n));
-            }
             let mut zones = Vec::new();
             for (k, z) in a.thermal_zones.iter().enumerate() {
                 let zi = zone_names.iter().position(|n| n == z).ok_or_else(|| {
@@ -461,22 +449,6 @@ impl Problem {
                     at: e.at,
                 });
             }
-            let uhf = a.uhf_interactions.as_ref().map(|list| {
-                list.iter()
-                    .map(|k| {
-                        let n = kinds.len();
-                        *kinds.entry(k.as_str()).or_insert(n)
-                    })
-                    .collect()
-            });
-            let comm = a.comm_kind.as_deref().map(|k| {
-                let n = kinds.len();
-                *kinds.entry(k).or_insert(n)
-            });
-            let group = a.group.as_deref().map(|g| {
-                let n = groups.len();
-                *groups.entry(g).or_insert(n)
-            });
             acts.push(Arc::new(Act {
                 dur_min,
                 dur_max,
@@ -593,6 +565,13 @@ impl Problem {
             heaters,
         })
     }
+}
+
+/// The index of `name` in `map`, adding it as the next one when new (names are
+/// interned by first appearance).
+fn intern<'a>(map: &mut BTreeMap<&'a str, usize>, name: &'a str) -> usize {
+    let n = map.len();
+    *map.entry(name).or_insert(n)
 }
 
 /// The step (1-based) of each activity, from the step order.
