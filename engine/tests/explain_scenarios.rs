@@ -841,7 +841,7 @@ fn data_volume_alone_suggests_the_least_larger_capacity() {
 
 /// `data_volume` with more producers than it blames: twelve activities store
 /// 1, 2, .., 12 Mbit (78 in all) before `b`, whose 30 Mbit would overflow a
-/// 100 Mbit store. The conflict blames the ten that stored the most, largest
+/// 100 Mbit store. The conflict blames the ten that produced the most, largest
 /// first, not every producer (which, when a store fills, made each failure's
 /// explanation as long as the plan).
 #[test]

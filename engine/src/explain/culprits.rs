@@ -364,7 +364,7 @@ pub(crate) fn culprits(state: &State<'_>, ex: &Explanation, rank: &EnergyRank) -
                         }
                     }
                 }
-                // The producers that stored the most, largest first (ties by
+                // The producers that produced the most, largest first (ties by
                 // activity), as the energy users are ranked.
                 producers.sort_by(energy_order);
                 for (_, x) in producers.drain(..).take(DATA_CULPRITS) {

@@ -307,7 +307,9 @@ fn render_each<R: Send>(
 /// The verified suggestions for an explained failure (what [`explain`] adds unless
 /// `no_suggestions`): for a caller that already holds the explanation, such as the
 /// app, which explains on selection and verifies suggestions in the background.
-/// Reschedules the plan once per candidate edit.
+/// Reschedules the plan once per candidate edit. `plan` must be valid and
+/// `sched` its schedule, `ex` one of its explanations (edited plans are
+/// compiled sharing `sched`'s compiled activities).
 pub fn verified_suggestions(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Vec<Suggestion> {
     if ex.failure_step.is_none() {
         return Vec::new();

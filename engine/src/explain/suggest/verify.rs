@@ -24,10 +24,18 @@ use crate::scheduler::{
 /// placed, or its step not run).
 type Placements = Vec<Option<(i64, i64)>>;
 
-/// The plan's top-level fields that its compiled activities read (the horizon
-/// bounds an activity without windows; states, zones and ids are interned):
-/// an edit of any other plan field leaves every compiled activity as it was.
-const SHAPES_ACTIVITIES: [&str; 4] = ["horizon", "states", "thermal_zones", "activities"];
+/// The plan's top-level fields that no compiled activity reads (its limits
+/// and the number of sequence engines): an edit of these alone leaves every
+/// compiled activity as it was. Any other plan field is compiled again in
+/// full (a field added to the format later is too, until it is listed here).
+const LEAVES_ACTIVITIES: [&str; 6] = [
+    "battery",
+    "power",
+    "sleep",
+    "data",
+    "handover",
+    "sequence_engines",
+];
 
 /// An edit's identity: its target and its fields as JSON text.
 type EditKey = (String, String);
@@ -75,12 +83,13 @@ impl<'a> Runs<'a> {
     fn edit(&self, c: &Candidate) -> Option<(Plan, Problem)> {
         let plan = edited(self.plan, &c.target, &c.set)?;
         let edited_activity = match c.target.strip_prefix("activity:") {
-            Some(id) => Some(Some(plan.activities.iter().position(|a| a.id == id)?)),
-            None => (!c
+            // (An edit that renamed it is compiled in full.)
+            Some(id) => plan.activities.iter().position(|a| a.id == id).map(Some),
+            None => c
                 .set
                 .keys()
-                .any(|k| SHAPES_ACTIVITIES.contains(&k.as_str())))
-            .then_some(None),
+                .all(|k| LEAVES_ACTIVITIES.contains(&k.as_str()))
+                .then_some(None),
         };
         let problem = match edited_activity {
             Some(edited) => Problem::compile_reusing(&plan, &self.sched.problem, edited),
