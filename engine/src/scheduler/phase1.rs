@@ -5,6 +5,7 @@
 
 use super::Scope;
 use super::cells::{cells, concave_feasible};
+use super::phase2::worth_halving;
 use super::problem::{Dep, Win};
 use super::state::State;
 use super::trace::{Category, CategoryIntervals};
@@ -289,12 +290,7 @@ impl State<'_> {
         // of the horizon.
         let fails = |a: i64, b: i64| self.data.drain_bound(a, b.saturating_add(d), energy) < -cap;
         let rate_points = self.data.rate().points();
-        let splits = |a: i64, b: i64| {
-            b - a >= super::phase2::SPAN_MIN_SECONDS
-                && rate_points.partition_point(|p| p.0 <= b.saturating_add(d))
-                    - rate_points.partition_point(|p| p.0 < a)
-                    > super::phase2::SPAN_LEAF_BREAKPOINTS
-        };
+        let splits = |a: i64, b: i64| worth_halving(rate_points, a, b, b.saturating_add(d));
         let mut feasible = sure.intervals().to_vec();
         let mut spans: Vec<(i64, i64)> = rest.intervals().iter().map(|iv| (iv.lo, iv.hi)).collect();
         while let Some((a, b)) = spans.pop() {

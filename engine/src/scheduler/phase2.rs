@@ -25,13 +25,23 @@ use crate::model::AwakeMode;
 use crate::timeline::{Interval, IntervalSet};
 
 /// `State::search_outcome` (and the data category of phase 1) halves a span of
-/// starts while it is at least this
-/// long and holds more than [`SPAN_LEAF_BREAKPOINTS`] rate breakpoints. Debug
-/// builds (the tests, on small plans) split down to single breakpoints, so that
-/// the cross-check against the full search sees every kind of span.
-pub(super) const SPAN_MIN_SECONDS: i64 = if cfg!(debug_assertions) { 2 } else { 64 };
+/// starts while it is at least this long and holds more than
+/// [`SPAN_LEAF_BREAKPOINTS`] rate breakpoints ([`worth_halving`]). Debug builds
+/// (the tests, on small plans) split down to single breakpoints, so that the
+/// cross-checks against the cell-by-cell searches see every kind of span.
+const SPAN_MIN_SECONDS: i64 = if cfg!(debug_assertions) { 2 } else { 64 };
 /// See [`SPAN_MIN_SECONDS`].
-pub(super) const SPAN_LEAF_BREAKPOINTS: usize = if cfg!(debug_assertions) { 1 } else { 8 };
+const SPAN_LEAF_BREAKPOINTS: usize = if cfg!(debug_assertions) { 1 } else { 8 };
+
+/// Whether the span of starts `[lo, hi]` is halved before its cells are
+/// searched: it is at least [`SPAN_MIN_SECONDS`] long and more than
+/// [`SPAN_LEAF_BREAKPOINTS`] of the rate breakpoints `points` (sorted) lie in
+/// `[lo, reach]`, `reach` the last time the span's placements can touch.
+pub(super) fn worth_halving(points: &[(i64, i64)], lo: i64, hi: i64, reach: i64) -> bool {
+    hi - lo >= SPAN_MIN_SECONDS
+        && points.partition_point(|p| p.0 <= reach) - points.partition_point(|p| p.0 < lo)
+            > SPAN_LEAF_BREAKPOINTS
+}
 
 /// The room a passing placement leaves on energy, local in time (see
 /// [`State::soc_budget`] and `RateTimeline::local_budget`): while the other
@@ -799,12 +809,7 @@ impl State<'_> {
         };
         let dist = |lo: i64, hi: i64| distance(lo, hi, preferred);
         let rate = self.soc.rate().points();
-        let splits = |lo: i64, hi: i64| {
-            energy.is_some()
-                && hi - lo >= SPAN_MIN_SECONDS
-                && rate.partition_point(|p| p.0 <= hi) - rate.partition_point(|p| p.0 < lo)
-                    > SPAN_LEAF_BREAKPOINTS
-        };
+        let splits = |lo: i64, hi: i64| energy.is_some() && worth_halving(rate, lo, hi, hi);
         let mut spans = std::collections::BinaryHeap::new();
         spans.push(std::cmp::Reverse((dist(first, last), first, last)));
         let mut best: Option<(i64, i64)> = None; // (distance, start)
