@@ -121,3 +121,74 @@ fn an_awake_period_that_charges_still_gets_the_longest_duration() {
         }
     );
 }
+
+/// The hanging plan of issue 10 with an effect at the activity's end, which makes
+/// feasibility non-monotone in the duration, so that a binary search cannot decide
+/// it: every duration used to be searched, one second at a time. Leaving out the
+/// state_effect category bounds the answer, and here proves that no duration
+/// fits (its peak power fails everywhere).
+#[test]
+fn end_effect_expanding_activity_that_fails_everywhere_fails_quickly() {
+    let mut p: serde_json::Value = serde_json::from_str(HANG).expect("json");
+    p["states"] = json!({ "arm": { "values": ["stowed", "unstowed"], "initial": "stowed" } });
+    p["activities"][0]["effects"] = json!([{ "state": "arm", "value": "unstowed", "at": "end" }]);
+    let loaded = load_plan(&p.to_string()).expect("valid plan");
+    let t = Instant::now();
+    let s = schedule(&loaded.plan).expect("schedules");
+    let took = t.elapsed();
+    assert!(took < Duration::from_secs(30), "schedule took {took:?}");
+    let step = &s.steps[0];
+    assert_eq!(step.outcome, Outcome::Failed(FailurePhase::Placement));
+    assert_eq!(step.duration, 1);
+    let tries = s.tries(step.step);
+    assert!(!tries.is_empty() && tries.len() <= 4, "{tries:?}");
+    assert!(tries.iter().all(|t| t.duration == 1
+        && matches!(t.reason, Some(Phase2Reason::MaxPeakPower { .. }))));
+    let ex = explain(&loaded.plan, &s, &ExplainOptions::default()).expect("explains");
+    assert_eq!(ex.len(), 1);
+    assert!(!ex[0].reasons.is_empty() && ex[0].reasons.len() <= 4);
+}
+
+/// An end effect that makes the longest durations fail while shorter ones fit.
+/// X starts in 0..=1000 and sets `arm` to `b` at its end; Y sets it back to `a` at
+/// 4000 and R needs `a` over [4500, 5000), so an end in [4000, 5000) fails on
+/// state_effect. B holds all the peak power over [4900, 5100), so an end after
+/// 4900 fails phase 2. Of 100..=4500 the longest duration that fits is 3999, from
+/// 0. The longer durations with an end after 4900 fail in phase 2; the trace
+/// holds the tries of 3999 only (docs/semantics.md), not one entry per duration.
+#[test]
+fn end_effect_longest_duration_below_a_blocked_band() {
+    let p = json!({
+        "format": "solscope.plan/1",
+        "horizon": { "start": 0, "end": 20000 },
+        "battery": { "capacity": 1000.0, "initial": 1000.0, "min_soc": 0.0 },
+        "power": { "rtg": 0.0, "asleep": 0.0, "awake": 0.0, "max_peak": 100.0 },
+        "states": { "arm": { "values": ["a", "b"], "initial": "a" } },
+        "activities": [
+            { "id": "R", "priority": 1, "duration": 500, "awake": "any",
+              "windows": [ { "start": 4500, "end": 4500 } ],
+              "requires": [ { "state": "arm", "value": "a" } ] },
+            { "id": "Y", "priority": 2, "duration": 100, "awake": "any",
+              "windows": [ { "start": 4000, "end": 4000 } ],
+              "effects": [ { "state": "arm", "value": "a", "at": "start" } ] },
+            { "id": "B", "priority": 3, "duration": 200, "awake": "any",
+              "peak_power": 100.0, "windows": [ { "start": 4900, "end": 4900 } ] },
+            { "id": "X", "priority": 4, "duration": { "min": 100, "max": 4500 },
+              "awake": "any", "peak_power": 10.0, "windows": [ { "start": 0, "end": 1000 } ],
+              "effects": [ { "state": "arm", "value": "b", "at": "end" } ] }
+        ]
+    });
+    let loaded = load_plan(&p.to_string()).expect("valid plan");
+    let s = schedule(&loaded.plan).expect("schedules");
+    let x = s.step_of(3).expect("step");
+    assert_eq!(
+        x.outcome,
+        Outcome::Scheduled {
+            start: 0,
+            end: 3999
+        }
+    );
+    assert_eq!(x.duration, 3999);
+    let tries = s.tries(x.step);
+    assert!(tries.iter().all(|t| t.duration == 3999), "{tries:?}");
+}

@@ -1,12 +1,15 @@
 //! Choosing the duration of an expanding activity: the longest in `[min, max]`
 //! with a passing start (docs/semantics.md). Binary search where feasibility is
 //! downward closed in the duration, a head/tail split where only the backward
-//! min_awake extension near the plan end breaks that, and a scan otherwise.
+//! min_awake extension near the plan end breaks that, and otherwise a scan down
+//! from an upper bound: the longest duration that passes without the
+//! state_effect category (the only phase-1 category an effect at the end makes
+//! non-monotone), itself found by binary search or the split.
 
 use super::problem::{Act, Problem};
 use super::state::State;
 use super::trace::Category;
-use super::{Scope, try_duration};
+use super::{Part, Scope, try_duration};
 use crate::model::{AwakeMode, EffectAt};
 use crate::timeline::IntervalSet;
 
@@ -16,24 +19,40 @@ fn has_end_effect(act: &Act) -> bool {
     act.effects.iter().any(|e| e.at == EffectAt::End)
 }
 
-/// Whether "fits with duration d" implies "fits with every shorter duration" for
-/// this activity: true unless it has an effect at its end (which moves with the
-/// duration), its awake period could need extending backwards from its end
-/// (docs/semantics.md, min_awake extension near the plan end), or being awake
-/// draws less than sleeping (`power.awake < power.asleep`).
-pub(super) fn duration_monotone(problem: &Problem, a: usize) -> bool {
+/// What can make a shorter duration fail where a longer one fits.
+struct Breaks {
+    /// A state effect at the activity's end, which moves with the duration.
+    end_effect: bool,
+    /// An awake period that may need extending backwards from the activity's
+    /// end (docs/semantics.md, min_awake extension near the plan end).
+    backward: bool,
+    /// Being awake draws less than sleeping (`power.awake < power.asleep`): a
+    /// longer awake need charges more.
+    awake_charges: bool,
+}
+
+fn breaks(problem: &Problem, a: usize) -> Breaks {
     let act = &problem.acts[a];
-    let end_effect = has_end_effect(act);
-    let backward = act.awake == AwakeMode::Required
-        && problem.min_awake > 0
-        && act
-            .windows
-            .iter()
-            .any(|w| w.end - problem.wake + problem.min_awake > problem.h1);
-    // An awake period that draws less than sleep charges the battery: a longer
-    // awake need can then pass where a shorter one runs out of energy.
-    let awake_charges = act.awake == AwakeMode::Required && problem.awake < problem.asleep;
-    !end_effect && !backward && !awake_charges
+    let awake = act.awake == AwakeMode::Required;
+    Breaks {
+        end_effect: has_end_effect(act),
+        backward: awake
+            && problem.min_awake > 0
+            && act
+                .windows
+                .iter()
+                .any(|w| w.end - problem.wake + problem.min_awake > problem.h1),
+        awake_charges: awake && problem.awake < problem.asleep,
+    }
+}
+
+/// Whether "fits with duration d" implies "fits with every shorter duration" for
+/// this activity: true unless it has an effect at its end, its awake period could
+/// need extending backwards from its end, or being awake charges the battery
+/// ([`Breaks`]).
+pub(super) fn duration_monotone(problem: &Problem, a: usize) -> bool {
+    let b = breaks(problem, a);
+    !b.end_effect && !b.backward && !b.awake_charges
 }
 
 /// For an expanding activity whose only break of monotonicity is the backward
@@ -53,12 +72,16 @@ pub(super) fn duration_monotone(problem: &Problem, a: usize) -> bool {
 /// awake period must not charge) and no effect at the end (the only phase-1
 /// category that is not monotone in the duration). `None` when that does not hold.
 pub(super) fn head_tail_split(problem: &Problem, a: usize) -> Option<i64> {
+    (!has_end_effect(&problem.acts[a]))
+        .then(|| split_point(problem, a))
+        .flatten()
+}
+
+/// [`head_tail_split`] without the condition on end effects: where the split
+/// holds once the state_effect category is left out.
+fn split_point(problem: &Problem, a: usize) -> Option<i64> {
     let act = &problem.acts[a];
-    let end_effect = has_end_effect(act);
-    (!end_effect
-        && act.awake == AwakeMode::Required
-        && problem.min_awake > 0
-        && problem.awake >= problem.asleep)
+    (act.awake == AwakeMode::Required && problem.min_awake > 0 && problem.awake >= problem.asleep)
         .then(|| problem.h1 - problem.min_awake + problem.wake)
 }
 
@@ -70,20 +93,27 @@ pub(super) fn head_tail_split(problem: &Problem, a: usize) -> Option<i64> {
 /// (`> head_end`) needs `s + d + shutdown <= horizon.end`, so only durations below
 /// `min_awake - wakeup - shutdown` have any; those longer than the head's result
 /// are scanned, longest first, over the tail starts only.
+///
+/// With `without_effects`, the same for the activity without its state_effect
+/// category ([`longest_bound`]).
 pub(super) fn longest_split(
     state: &State<'_>,
     a: usize,
     scope: &Scope,
     span: (i64, i64),
     head_end: i64,
+    without_effects: bool,
 ) -> Option<i64> {
     let problem = state.problem;
     let act = &problem.acts[a];
     let top = longest_monotone(state, a, scope, span);
     let fits = |d: i64, only: (i64, i64)| {
-        try_duration(state, a, d, scope, span, Some(only), false)
-            .found
-            .is_some()
+        let part = Part {
+            only: Some(only),
+            without_effects,
+            ..Part::default()
+        };
+        try_duration(state, a, d, scope, span, part).found.is_some()
     };
     let (mut lo, mut hi) = (act.dur_min, top);
     let mut best = None;
@@ -115,21 +145,84 @@ pub(super) fn longest_by_scan(
 ) -> Option<i64> {
     let act = &state.problem.acts[a];
     let top = longest_monotone(state, a, scope, span);
-    (act.dur_min..=top).rev().find(|&d| {
-        try_duration(state, a, d, scope, span, None, false)
-            .found
-            .is_some()
-    })
+    (act.dur_min..=top)
+        .rev()
+        .find(|&d| fits(state, a, d, scope, span))
 }
 
-/// The longest duration for which the duration-monotone phase-1 categories (all but
-/// state_effect) leave a start in some window; below `dur_min` if none.
-pub(super) fn longest_monotone(
+/// Whether some start passes with duration `d` (an outcome-only search).
+fn fits(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, i64)) -> bool {
+    try_duration(state, a, d, scope, span, Part::default())
+        .found
+        .is_some()
+}
+
+/// The longest duration with a passing start, for an activity whose
+/// feasibility is not monotone in the duration and is not split at the plan end
+/// ([`head_tail_split`]): every duration from [`longest_bound`] down, longest
+/// first. `None` if none has one.
+pub(super) fn longest_scanned(
     state: &State<'_>,
     a: usize,
     scope: &Scope,
     span: (i64, i64),
-) -> i64 {
+) -> Option<i64> {
+    let act = &state.problem.acts[a];
+    let top = longest_bound(state, a, scope, span);
+    (act.dur_min..=top)
+        .rev()
+        .find(|&d| fits(state, a, d, scope, span))
+}
+
+/// An upper bound on the longest duration with a passing start; below
+/// `dur_min` if no duration has one.
+///
+/// Why: when the only break of monotonicity is an effect at the end (no awake
+/// period that charges), every category but state_effect, and phase 2, are
+/// monotone in the duration for each start (starts before the split,
+/// [`head_tail_split`]). Passing with duration `d` then implies passing without
+/// state_effect with every shorter duration, so the longest duration that passes
+/// without state_effect, found by binary search (or by the split search where
+/// the min_awake extension near the plan end applies), bounds the answer; when
+/// none passes, the activity fails at every duration. With an awake period that
+/// charges, only the monotone phase-1 categories bound it.
+fn longest_bound(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64)) -> i64 {
+    let problem = state.problem;
+    let act = &problem.acts[a];
+    let b = breaks(problem, a);
+    let top = longest_monotone(state, a, scope, span);
+    if b.awake_charges {
+        return top;
+    }
+    if b.backward {
+        return split_point(problem, a)
+            .and_then(|head_end| longest_split(state, a, scope, span, head_end, true))
+            .unwrap_or(act.dur_min - 1);
+    }
+    let passes = |d: i64| {
+        let part = Part {
+            without_effects: true,
+            ..Part::default()
+        };
+        try_duration(state, a, d, scope, span, part).found.is_some()
+    };
+    let (mut lo, mut hi) = (act.dur_min, top);
+    let mut best = act.dur_min - 1;
+    while lo <= hi {
+        let mid = lo + (hi - lo) / 2;
+        if passes(mid) {
+            best = mid;
+            lo = mid + 1;
+        } else {
+            hi = mid - 1;
+        }
+    }
+    best
+}
+
+/// The longest duration for which the duration-monotone phase-1 categories (all but
+/// state_effect) leave a start in some window; below `dur_min` if none.
+fn longest_monotone(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64)) -> i64 {
     let act = &state.problem.acts[a];
     let fits = |d: i64| {
         let others = state

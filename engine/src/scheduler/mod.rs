@@ -18,7 +18,7 @@ mod trace;
 
 #[cfg(debug_assertions)]
 use duration::longest_by_scan;
-use duration::{duration_monotone, head_tail_split, longest_monotone, longest_split};
+use duration::{duration_monotone, head_tail_split, longest_scanned, longest_split};
 pub use inspect::{PartialSchedule, partial_schedule, valid_intervals_at};
 pub use outcomes::{RunOutcomes, run_outcomes};
 pub(crate) use outcomes::{placement_after_edit, placements_if_placed, probe_after_edit};
@@ -405,7 +405,11 @@ pub(crate) fn run_step(
     let traced = detail != Detail::Outcome;
     let mut rejected = Rejected::default();
     let mut attempt = |d: i64, step: &mut Step, record: bool| {
-        let tried = try_duration(state, a, d, scope, span, None, traced);
+        let part = Part {
+            record: traced,
+            ..Part::default()
+        };
+        let tried = try_duration(state, a, d, scope, span, part);
         any_candidate |= !tried.union.is_empty();
         pending.extend(tried.tries);
         rejected = rejected.join(tried.rejected);
@@ -435,38 +439,28 @@ pub(crate) fn run_step(
         // Successes come at increasing durations, so the last one `attempt` recorded
         // is the chosen duration's.
         best
-    } else if let Some(head_end) = head_tail_split(problem, a) {
-        // Only the min_awake extension near the plan end breaks monotonicity, and
-        // only for starts after `head_end`: search the two parts separately, then
-        // redo the chosen (or shortest) duration over every start so that the start
-        // and the record are those of the plain search.
-        let d = longest_split(state, a, scope, span, head_end);
+    } else {
+        // Feasibility is not monotone in the duration (the min_awake extension near
+        // the plan end, an effect at the activity's end, an awake period that
+        // charges): find the longest duration with outcome-only searches, then
+        // search it (or the shortest, when none fits) again with the record, so
+        // that the start and the record are those of the plain search and the
+        // trace holds one duration's tries.
+        let d = if let Some(head_end) = head_tail_split(problem, a) {
+            longest_split(state, a, scope, span, head_end, false)
+        } else {
+            longest_scanned(state, a, scope, span)
+        };
         #[cfg(debug_assertions)]
         if act.dur_max - act.dur_min <= 400 {
             debug_assert_eq!(
                 d,
                 longest_by_scan(state, a, scope, span),
-                "split search disagrees with the scan"
+                "duration search disagrees with the scan"
             );
         }
         let found = attempt(d.unwrap_or(act.dur_min), &mut step, true);
         debug_assert_eq!(found.is_some(), d.is_some());
-        found
-    } else {
-        // End effects (or a backward min_awake extension) can make a shorter
-        // duration fail where a longer one fits: scan down from the longest duration
-        // the monotone categories allow.
-        let top = longest_monotone(state, a, scope, span);
-        let mut found = None;
-        for d in (act.dur_min..=top).rev() {
-            if let Some(ev) = attempt(d, &mut step, d == act.dur_min) {
-                found = Some(ev);
-                break;
-            }
-        }
-        if top < act.dur_min {
-            attempt(act.dur_min, &mut step, true);
-        }
         found
     };
     // Cells proven to fail on min_soc carry a bound instead of numbers; the exact
@@ -518,22 +512,39 @@ pub(super) struct Tried {
     rejected: Rejected,
 }
 
+/// How much of one duration's search [`try_duration`] does.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Part {
+    /// Only the starts in this range as well as in the span: a partial search,
+    /// never recorded (its categories are for the clipped span).
+    pub only: Option<(i64, i64)>,
+    /// Keep the tries. Without it only the outcome counts, and the search may
+    /// skip whole spans that a bound proves to fail (`State::search_outcome`).
+    pub record: bool,
+    /// Leave the state_effect category out: a relaxation, never recorded, that
+    /// bounds the duration of an activity with an effect at its end
+    /// (`duration::longest_bound`).
+    pub without_effects: bool,
+}
+
 /// Phase 1 over starts in `span` and the window-by-window phase-2 search for one
-/// duration; with `only`, over the starts in `span` and in `only` (a partial
-/// search, never recorded: its categories are for the clipped span). Without
-/// `record`, only the outcome counts: no tries, and the search may skip whole
-/// spans that a bound proves to fail (`State::search_outcome`).
+/// duration, to the extent `part` says.
 pub(super) fn try_duration(
     state: &State<'_>,
     a: usize,
     d: i64,
     scope: &Scope,
     span: (i64, i64),
-    only: Option<(i64, i64)>,
-    record: bool,
+    part: Part,
 ) -> Tried {
     let problem = state.problem;
     let act = &problem.acts[a];
+    let Part {
+        only,
+        record,
+        without_effects,
+    } = part;
+    debug_assert!(!(record && (only.is_some() || without_effects)));
     let span = only.map_or(span, |(lo, hi)| (span.0.max(lo), span.1.min(hi)));
     if span.0 > span.1 {
         return Tried {
@@ -548,6 +559,7 @@ pub(super) fn try_duration(
     let others = categories
         .iter()
         .skip(1)
+        .filter(|c| !(without_effects && c.category == Category::StateEffect))
         .fold(IntervalSet::single(span.0, span.1), |acc, c| {
             acc.intersect(&c.valid)
         });
@@ -595,8 +607,7 @@ pub(crate) fn accepted_starts(state: &State<'_>, a: usize, d: i64) -> (IntervalS
         d,
         &Scope::default(),
         (problem.h0, problem.h1),
-        None,
-        false,
+        Part::default(),
     );
     let both = state.passing(a, d, &tried.union);
     (tried.union, both)
