@@ -192,3 +192,51 @@ fn end_effect_longest_duration_below_a_blocked_band() {
     let tries = s.tries(x.step);
     assert!(tries.iter().all(|t| t.duration == 3999), "{tries:?}");
 }
+
+/// Feasibility with gaps in the duration, which a binary search over the
+/// activity itself would miss: X starts at 0 and sets `arm` to `b` at its end,
+/// which holds until the next effect. Y1, Y2 and Y3 set `a` at 1001, 3000 and
+/// 3501; R2 needs `a` over [2900, 3000) and R4 over [4400, 4600). An end in
+/// [1001, 2999] leaves `b` over R2, an end after 3500 over R4, so of 100..=4500
+/// the durations that fit are 100..=1000 and 3000..=3500. A binary search would
+/// try 2300, fail, and settle on 1000; the bound without the end-effect checks is
+/// 4500, and the scan down from it finds 3500.
+#[test]
+fn end_effect_longest_duration_above_a_gap() {
+    let fixed = |id: &str, at: i64, dur: i64, key: &str| {
+        json!({ "id": id, "priority": 1, "duration": dur, "awake": "any",
+                "windows": [ { "start": at, "end": at } ],
+                key: if key == "effects" {
+                    json!([{ "state": "arm", "value": "a", "at": "start" }])
+                } else {
+                    json!([{ "state": "arm", "value": "a" }])
+                } })
+    };
+    let p = json!({
+        "format": "solscope.plan/1",
+        "horizon": { "start": 0, "end": 20000 },
+        "battery": { "capacity": 1000.0, "initial": 1000.0, "min_soc": 0.0 },
+        "power": { "rtg": 0.0, "asleep": 0.0, "awake": 0.0 },
+        "states": { "arm": { "values": ["a", "b"], "initial": "a" } },
+        "activities": [
+            fixed("Y1", 1001, 10, "effects"),
+            fixed("Y2", 3000, 10, "effects"),
+            fixed("Y3", 3501, 10, "effects"),
+            fixed("R2", 2900, 100, "requires"),
+            fixed("R4", 4400, 200, "requires"),
+            { "id": "X", "priority": 2, "duration": { "min": 100, "max": 4500 },
+              "awake": "any", "windows": [ { "start": 0, "end": 0 } ],
+              "effects": [ { "state": "arm", "value": "b", "at": "end" } ] }
+        ]
+    });
+    let loaded = load_plan(&p.to_string()).expect("valid plan");
+    let s = schedule(&loaded.plan).expect("schedules");
+    let x = s.step_of(5).expect("step");
+    assert_eq!(
+        x.outcome,
+        Outcome::Scheduled {
+            start: 0,
+            end: 3500
+        }
+    );
+}

@@ -89,6 +89,7 @@ impl Thresholds {
             skip_reqs: (0..self.reqs.len())
                 .filter(|&j| pending(&self.reqs[j]))
                 .collect(),
+            skip_end_effects: false,
         }
     }
 }

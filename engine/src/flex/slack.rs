@@ -60,6 +60,7 @@ pub(crate) fn free_slack(
                 .filter(|&i| problem.acts[b].after[i].target == a)
                 .collect(),
             skip_reqs: Vec::new(),
+            skip_end_effects: false,
         };
         let fits = if problem.acts[b].held {
             state.replay(step)

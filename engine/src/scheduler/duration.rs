@@ -2,9 +2,9 @@
 //! with a passing start (docs/semantics.md). Binary search where feasibility is
 //! downward closed in the duration, a head/tail split where only the backward
 //! min_awake extension near the plan end breaks that, and otherwise a scan down
-//! from an upper bound: the longest duration that passes without the
-//! state_effect category (the only phase-1 category an effect at the end makes
-//! non-monotone), itself found by binary search or the split.
+//! from an upper bound: the longest duration that passes without the checks of
+//! the activity's end effects (the only part of phase 1 an effect at the end
+//! makes non-monotone), itself found by binary search or the split.
 
 use super::problem::{Act, Problem};
 use super::state::State;
@@ -94,15 +94,14 @@ fn split_point(problem: &Problem, a: usize) -> Option<i64> {
 /// `min_awake - wakeup - shutdown` have any; those longer than the head's result
 /// are scanned, longest first, over the tail starts only.
 ///
-/// With `without_effects`, the same for the activity without its state_effect
-/// category ([`longest_bound`]).
+/// With `scope.skip_end_effects`, the same for the activity without the checks
+/// of its end effects ([`longest_bound`]).
 pub(super) fn longest_split(
     state: &State<'_>,
     a: usize,
     scope: &Scope,
     span: (i64, i64),
     head_end: i64,
-    without_effects: bool,
 ) -> Option<i64> {
     let problem = state.problem;
     let act = &problem.acts[a];
@@ -110,7 +109,6 @@ pub(super) fn longest_split(
     let fits = |d: i64, only: (i64, i64)| {
         let part = Part {
             only: Some(only),
-            without_effects,
             ..Part::default()
         };
         try_duration(state, a, d, scope, span, part).found.is_some()
@@ -178,14 +176,16 @@ pub(super) fn longest_scanned(
 /// `dur_min` if no duration has one.
 ///
 /// Why: when the only break of monotonicity is an effect at the end (no awake
-/// period that charges), every category but state_effect, and phase 2, are
-/// monotone in the duration for each start (starts before the split,
-/// [`head_tail_split`]). Passing with duration `d` then implies passing without
-/// state_effect with every shorter duration, so the longest duration that passes
-/// without state_effect, found by binary search (or by the split search where
-/// the min_awake extension near the plan end applies), bounds the answer; when
-/// none passes, the activity fails at every duration. With an awake period that
-/// charges, only the monotone phase-1 categories bound it.
+/// period that charges), the activity without the checks of its end effects is
+/// monotone in the duration for each start (before the split,
+/// [`head_tail_split`]): every other phase-1 category is, a start effect holds
+/// until the activity's end at most (a longer run can only break more), and
+/// phase 2 does not read states. Passing with duration `d` then implies passing
+/// that relaxation with every shorter duration, so the longest duration that
+/// passes it, found by binary search (or by the split search where the min_awake
+/// extension near the plan end applies), bounds the answer; when none passes, the
+/// activity fails at every duration. With an awake period that charges, only the
+/// monotone phase-1 categories bound it.
 fn longest_bound(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64)) -> i64 {
     let problem = state.problem;
     let act = &problem.acts[a];
@@ -194,23 +194,20 @@ fn longest_bound(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64)) -
     if b.awake_charges {
         return top;
     }
+    let relaxed = Scope {
+        skip_end_effects: true,
+        ..scope.clone()
+    };
     if b.backward {
         return split_point(problem, a)
-            .and_then(|head_end| longest_split(state, a, scope, span, head_end, true))
+            .and_then(|head_end| longest_split(state, a, &relaxed, span, head_end))
             .unwrap_or(act.dur_min - 1);
     }
-    let passes = |d: i64| {
-        let part = Part {
-            without_effects: true,
-            ..Part::default()
-        };
-        try_duration(state, a, d, scope, span, part).found.is_some()
-    };
     let (mut lo, mut hi) = (act.dur_min, top);
     let mut best = act.dur_min - 1;
     while lo <= hi {
         let mid = lo + (hi - lo) / 2;
-        if passes(mid) {
+        if fits(state, a, mid, &relaxed, span) {
             best = mid;
             lo = mid + 1;
         } else {

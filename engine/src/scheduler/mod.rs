@@ -46,6 +46,10 @@ pub struct Scope {
     pub skip_deps: Vec<usize>,
     /// Indices into the activity's `requires` to ignore.
     pub skip_reqs: Vec<usize>,
+    /// Leave out the checks of the activity's effects at its end: a relaxation,
+    /// never recorded, that bounds the duration of an expanding activity with an
+    /// end effect (`duration::longest_bound`).
+    pub skip_end_effects: bool,
 }
 
 /// The result of a scheduling run: the compiled problem and the full step trace.
@@ -447,7 +451,7 @@ pub(crate) fn run_step(
         // that the start and the record are those of the plain search and the
         // trace holds one duration's tries.
         let d = if let Some(head_end) = head_tail_split(problem, a) {
-            longest_split(state, a, scope, span, head_end, false)
+            longest_split(state, a, scope, span, head_end)
         } else {
             longest_scanned(state, a, scope, span)
         };
@@ -521,10 +525,6 @@ pub(super) struct Part {
     /// Keep the tries. Without it only the outcome counts, and the search may
     /// skip whole spans that a bound proves to fail (`State::search_outcome`).
     pub record: bool,
-    /// Leave the state_effect category out: a relaxation, never recorded, that
-    /// bounds the duration of an activity with an effect at its end
-    /// (`duration::longest_bound`).
-    pub without_effects: bool,
 }
 
 /// Phase 1 over starts in `span` and the window-by-window phase-2 search for one
@@ -539,12 +539,8 @@ pub(super) fn try_duration(
 ) -> Tried {
     let problem = state.problem;
     let act = &problem.acts[a];
-    let Part {
-        only,
-        record,
-        without_effects,
-    } = part;
-    debug_assert!(!(record && (only.is_some() || without_effects)));
+    let Part { only, record } = part;
+    debug_assert!(!(record && (only.is_some() || scope.skip_end_effects)));
     let span = only.map_or(span, |(lo, hi)| (span.0.max(lo), span.1.min(hi)));
     if span.0 > span.1 {
         return Tried {
@@ -559,7 +555,6 @@ pub(super) fn try_duration(
     let others = categories
         .iter()
         .skip(1)
-        .filter(|c| !(without_effects && c.category == Category::StateEffect))
         .fold(IntervalSet::single(span.0, span.1), |acc, c| {
             acc.intersect(&c.valid)
         });

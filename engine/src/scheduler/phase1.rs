@@ -202,7 +202,12 @@ impl State<'_> {
                 .map(|e| (if e.at == EffectAt::Start { 0 } else { d }, e.value))
                 .collect();
             own.sort_unstable();
-            eff = eff.intersect(&self.states[st].effect_valid(&own, lo, hi));
+            let valid = if scope.skip_end_effects {
+                self.states[st].start_effects_valid(&own, lo, hi)
+            } else {
+                self.states[st].effect_valid(&own, lo, hi)
+            };
+            eff = eff.intersect(&valid);
         }
         // data_volume
         let mut data = all();

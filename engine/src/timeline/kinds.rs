@@ -255,6 +255,23 @@ impl StateTimeline {
     /// a placed requirement. A requirement sees the state without its own
     /// activity's effects.
     pub fn effect_valid(&self, own: &[(i64, usize)], lo: i64, hi: i64) -> IntervalSet {
+        self.effects_valid(own, false, lo, hi)
+    }
+
+    /// [`Self::effect_valid`] checking only the effects at offset 0 (each still
+    /// cut by the activity's next own effect): leaving out the effects at its end,
+    /// the one part of the category that is not monotone in the duration.
+    pub fn start_effects_valid(&self, own: &[(i64, usize)], lo: i64, hi: i64) -> IntervalSet {
+        self.effects_valid(own, true, lo, hi)
+    }
+
+    fn effects_valid(
+        &self,
+        own: &[(i64, usize)],
+        only_start: bool,
+        lo: i64,
+        hi: i64,
+    ) -> IntervalSet {
         let mut bad = Vec::new();
         let mut all: Vec<i64> = self.effects.iter().map(|e| e.time).collect();
         all.dedup();
@@ -285,7 +302,7 @@ impl StateTimeline {
             };
             for (k, &(offset, value)) in own.iter().enumerate() {
                 let next_own = own.get(k + 1).map(|e| e.0);
-                if req == value {
+                if req == value || (only_start && offset != 0) {
                     continue;
                 }
                 // The effect at tau = s + offset holds on [tau, next) where next is the
@@ -395,6 +412,16 @@ mod tests {
             st.effect_valid(&[(0, 0), (10, 1)], 0, 300),
             set(&[(0, 110), (140, 300)])
         );
+        // Setting 0 at the start and 0 again at the end 10 s later: the end effect
+        // holds from s + 10 until the next effect, so every start in [90, 139]
+        // breaks the requirement, and more than the start effect alone refuses.
+        let both = st.effect_valid(&[(0, 0), (10, 0)], 0, 300);
+        assert_eq!(both, set(&[(0, 89), (140, 300)]));
+        // Leaving out the end effect checks the start effect alone, cut at s + 10:
+        // the relaxation keeps what the full check refuses only for the end effect.
+        let start = st.start_effects_valid(&[(0, 0), (10, 0)], 0, 300);
+        assert_eq!(start, set(&[(0, 110), (140, 300)]));
+        assert!(both.subtract(&start).is_empty());
     }
 
     #[test]
