@@ -240,3 +240,45 @@ fn end_effect_longest_duration_above_a_gap() {
         }
     );
 }
+
+/// The hanging plan's shape with an end effect that only short durations can
+/// take: X (1 s to 900,000,000 s, starting by 1000) sets `arm` to `b` at its
+/// end, Y sets `a` at 5000, and R needs `a` near the plan end. An end at 5000
+/// or later leaves `b` over R, so the longest duration that fits is 4999, from
+/// 0. Without the end-effect checks every duration passes, so the bound is the
+/// longest; the scan must skip the durations whose ends no start can reach
+/// before 5000 rather than search 900 million of them.
+#[test]
+fn end_effect_blocked_near_the_plan_end_scans_only_reachable_durations() {
+    let p = json!({
+        "format": "solscope.plan/1",
+        "horizon": { "start": 0, "end": 1_000_000_000 },
+        "battery": { "capacity": 1600.0, "initial": 1200.0, "min_soc": 500.0 },
+        "power": { "rtg": 110.0, "asleep": 25.0, "awake": 190.0, "max_peak": 900.0 },
+        "states": { "arm": { "values": ["a", "b"], "initial": "a" } },
+        "activities": [
+            { "id": "Y", "priority": 1, "duration": 10, "awake": "any",
+              "windows": [ { "start": 5000, "end": 5000 } ],
+              "effects": [ { "state": "arm", "value": "a", "at": "start" } ] },
+            { "id": "R", "priority": 1, "duration": 1000, "awake": "any",
+              "windows": [ { "start": 999_999_000, "end": 999_999_000 } ],
+              "requires": [ { "state": "arm", "value": "a" } ] },
+            { "id": "X", "priority": 2, "duration": { "min": 1, "max": 900_000_000 },
+              "awake": "any", "peak_power": 5.0, "windows": [ { "start": 0, "end": 1000 } ],
+              "effects": [ { "state": "arm", "value": "b", "at": "end" } ] }
+        ]
+    });
+    let loaded = load_plan(&p.to_string()).expect("valid plan");
+    let t = Instant::now();
+    let s = schedule(&loaded.plan).expect("schedules");
+    let took = t.elapsed();
+    assert!(took < Duration::from_secs(30), "schedule took {took:?}");
+    let x = s.step_of(2).expect("step");
+    assert_eq!(
+        x.outcome,
+        Outcome::Scheduled {
+            start: 0,
+            end: 4999
+        }
+    );
+}

@@ -11,7 +11,7 @@ use super::state::State;
 use super::trace::Category;
 use super::{Part, Scope, try_duration};
 use crate::model::{AwakeMode, EffectAt};
-use crate::timeline::IntervalSet;
+use crate::timeline::{Interval, IntervalSet};
 
 /// Whether the activity has a state effect at its end (which moves with the
 /// duration, so that a shorter duration can fail where a longer one fits).
@@ -157,8 +157,16 @@ fn fits(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, i64)) ->
 
 /// The longest duration with a passing start, for an activity whose
 /// feasibility is not monotone in the duration and is not split at the plan end
-/// ([`head_tail_split`]): every duration from [`longest_bound`] down, longest
+/// ([`head_tail_split`]): the durations from [`longest_bound`] down, longest
 /// first. `None` if none has one.
+///
+/// Only durations that can pass phase 1 are searched: a duration `d` needs a
+/// start `s` that passes without the end-effect checks, and such starts lie
+/// among those passing with `dur_min` (the rest is monotone); it also needs
+/// `s + d` to be a time the end effects can take ([`State::end_effect_times`]).
+/// So `d` lies in `ends - starts`, the differences of the two sets, and the scan
+/// skips every other duration: a requirement near the plan end that no end
+/// effect may reach leaves the durations that end before it, not the whole range.
 pub(super) fn longest_scanned(
     state: &State<'_>,
     a: usize,
@@ -167,9 +175,73 @@ pub(super) fn longest_scanned(
 ) -> Option<i64> {
     let act = &state.problem.acts[a];
     let top = longest_bound(state, a, scope, span);
-    (act.dur_min..=top)
+    if top < act.dur_min {
+        return None;
+    }
+    phase1_durations(state, a, scope, span, top)
+        .intervals()
+        .iter()
         .rev()
+        .flat_map(|iv| (iv.lo..=iv.hi).rev())
         .find(|&d| fits(state, a, d, scope, span))
+}
+
+/// The durations in `[dur_min, top]` for which some start can pass phase 1
+/// ([`longest_scanned`]): `ends - starts`, or all of them when those sets are
+/// too fragmented for the differences to be worth computing.
+fn phase1_durations(
+    state: &State<'_>,
+    a: usize,
+    scope: &Scope,
+    span: (i64, i64),
+    top: i64,
+) -> IntervalSet {
+    let act = &state.problem.acts[a];
+    let all = IntervalSet::single(act.dur_min, top);
+    let relaxed = Scope {
+        skip_end_effects: true,
+        ..scope.clone()
+    };
+    let others = state
+        .phase1_in(a, act.dur_min, &relaxed, span.0, span.1)
+        .iter()
+        .skip(1)
+        .fold(IntervalSet::single(span.0, span.1), |acc, c| {
+            acc.intersect(&c.valid)
+        });
+    let starts = act
+        .windows
+        .iter()
+        .map(|w| state.window_range(a, w, act.dur_min))
+        .fold(IntervalSet::empty(), |acc, r| {
+            acc.union(&others.clip(r.lo, r.hi))
+        });
+    let (Some(first), Some(last)) = (starts.intervals().first(), starts.intervals().last()) else {
+        return IntervalSet::empty();
+    };
+    let ends = state.end_effect_times(
+        a,
+        first.lo.saturating_add(act.dur_min),
+        last.hi.saturating_add(top),
+    );
+    if starts
+        .intervals()
+        .len()
+        .saturating_mul(ends.intervals().len())
+        > 100_000
+    {
+        return all;
+    }
+    let mut diffs = Vec::new();
+    for e in ends.intervals() {
+        for s in starts.intervals() {
+            diffs.push(Interval::new(
+                e.lo.saturating_sub(s.hi),
+                e.hi.saturating_sub(s.lo),
+            ));
+        }
+    }
+    IntervalSet::from_intervals(diffs).intersect(&all)
 }
 
 /// An upper bound on the longest duration with a passing start; below

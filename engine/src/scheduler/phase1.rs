@@ -236,6 +236,35 @@ impl State<'_> {
         ]
     }
 
+    /// The times `t` in `[lo, hi]` at which activity `a`'s effects at its end break
+    /// no placed requirement. An end effect at `s + d` holds until the next placed
+    /// effect whatever `s` and `d` are, so a start `s` with duration `d` passes the
+    /// end-effect part of state_effect exactly when `s + d` is among these (the
+    /// start effects are checked apart, `Scope::skip_end_effects`).
+    pub(super) fn end_effect_times(&self, a: usize, lo: i64, hi: i64) -> IntervalSet {
+        let act = &self.problem.acts[a];
+        let mut out = IntervalSet::single(lo, hi);
+        let mut states: Vec<usize> = act
+            .effects
+            .iter()
+            .filter(|e| e.at == EffectAt::End)
+            .map(|e| e.state)
+            .collect();
+        states.sort_unstable();
+        states.dedup();
+        for st in states {
+            let mut own: Vec<(i64, usize)> = act
+                .effects
+                .iter()
+                .filter(|e| e.state == st && e.at == EffectAt::End)
+                .map(|e| (0, e.value))
+                .collect();
+            own.sort_unstable();
+            out = out.intersect(&self.states[st].effect_valid(&own, lo, hi));
+        }
+        out
+    }
+
     /// The execution range of window `w` of activity `a` for duration `d`: the
     /// window, its cutoff, the plan bounds, and for an activity that needs the rover
     /// awake room for the wakeup before and the shutdown after it.
