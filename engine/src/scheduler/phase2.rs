@@ -765,8 +765,11 @@ impl State<'_> {
     /// `preferred` first. A span is skipped whole when the state-of-charge bound
     /// (`RateTimeline::drain_bound` over the span: the activity drains somewhere
     /// inside it, and its generated pieces only drain more) proves that every
-    /// start in it fails on `min_soc`; otherwise it is halved, down to spans of a
-    /// few rate breakpoints, whose cells are searched as `search` searches them.
+    /// start in it fails on `min_soc`, or the same bound on the level at the
+    /// handover time (`RateTimeline::level_bound`) proves that every start fails
+    /// the handover minimum of an optional activity; otherwise it is halved,
+    /// down to spans of a few rate breakpoints, whose cells are searched as
+    /// `search` searches them.
     /// An activity that fails everywhere then costs about the number of places
     /// where it could have fit, not the number of cells in its windows.
     pub(crate) fn search_outcome(
@@ -788,18 +791,31 @@ impl State<'_> {
         let energy = (act.energy > 0 && problem.awake >= problem.asleep)
             .then(|| i128::from(act.energy) * i128::from(d));
         let handover_gap = problem.handover_gap(a);
-        // The bound on the lowest state of charge when it proves that every
-        // start in `[lo, hi]` fails on `min_soc`.
+        let handover = problem.handover_soc_of(a);
+        // When a bound proves that every start in `[lo, hi]` fails on energy:
+        // `Some(Some(bound))`, the bound on the lowest state of charge, when it
+        // is `min_soc`; `Some(None)` when it is the handover minimum (the level
+        // at the handover time is bounded as the lowest level is).
         let fails = |lo: i64, hi: i64| {
-            let bound = self.soc.drain_bound(lo, hi.saturating_add(d), energy?);
-            (bound < problem.min_soc).then(|| clamp_i64(bound))
+            let (energy, until) = (energy?, hi.saturating_add(d));
+            let bound = self.soc.drain_bound(lo, until, energy);
+            if bound < problem.min_soc {
+                return Some(Some(clamp_i64(bound)));
+            }
+            let (t, min) = handover?;
+            (self.soc.level_bound(lo, until, energy, t) < min).then_some(None)
         };
-        let skipped = |rejected: &mut Rejected, bound: i64, lo: i64| {
-            let reason = Phase2Reason::MinSoc {
-                at: lo,
-                soc_mj: bound,
-            };
-            rejected.add(Some(&reason), false, None);
+        // A start failing the handover minimum fails whatever `battery.min_soc`
+        // is, and `Rejected` bounds only the starts whose handover part passes:
+        // such a span adds nothing.
+        let skipped = |rejected: &mut Rejected, bound: Option<i64>, lo: i64| {
+            if let Some(bound) = bound {
+                let reason = Phase2Reason::MinSoc {
+                    at: lo,
+                    soc_mj: bound,
+                };
+                rejected.add(Some(&reason), false, None);
+            }
         };
         // The span's part of `cand`, as its first and last start.
         let clip = |lo: i64, hi: i64| {

@@ -159,6 +159,12 @@ impl RateTimeline {
         self.levels().drain_bound(from, until, energy)
     }
 
+    /// An upper bound on the level at `probe` if `energy` (> 0) more is drained
+    /// over some span inside `[from, until)`: see [`Levels::level_bound`].
+    pub fn level_bound(&self, from: i64, until: i64, energy: i128, probe: i64) -> i128 {
+        self.levels().level_bound(from, until, energy, probe)
+    }
+
     /// The starts in `[lo, hi]` for which draining at most `energy` more after the
     /// start provably keeps every level at or above `floor`: see
     /// [`Levels::surely_at_least`].
@@ -420,6 +426,21 @@ impl Levels {
         let (m, idx) = self.points.suffix_min(i);
         let absorbed = self.points.waste(idx) - self.level_and_waste_at(from).1;
         before.min(m - (energy - absorbed).max(0))
+    }
+
+    /// An upper bound on the level at `probe` if `energy` (> 0) more is drained
+    /// over some span inside `[from, until)` (and any further drain anywhere):
+    /// more drain never raises a capped integrator, and when the span ends by
+    /// `probe` the level there falls by at least `energy` less the charge the
+    /// unchanged trajectory loses to the cap between `from` and `probe` (the most
+    /// the cap can give back), as in [`Self::drain_bound`].
+    fn level_bound(&self, from: i64, until: i64, energy: i128, probe: i64) -> i128 {
+        let (level, waste) = self.level_and_waste_at(probe);
+        if until > probe || from < self.points.first_time() || probe > self.points.last_time() {
+            return level;
+        }
+        let absorbed = waste - self.level_and_waste_at(from).1;
+        level - (energy - absorbed).max(0)
     }
 
     /// The starts `s` in `[lo, hi]` (one interval, or `None`) for which draining at
@@ -870,6 +891,33 @@ mod tests {
                 assert!(min <= bound, "s={s} min={min} bound={bound}");
             }
         }
+    }
+
+    #[test]
+    fn level_bound_bounds_every_placement() {
+        let mut next = xorshift(0x2f6b_1c3d_9a85_e417);
+        let mut below_level = 0;
+        for _ in 0..400 {
+            let (rate, initial, cap, tl) = random_timeline(&mut next);
+            let (d, r) = (1 + next(20), 1 + next(12));
+            let from = next(100);
+            let to = from + next(10);
+            let probe = next(125) - 2;
+            let bound = tl.level_bound(from, to + d, i128::from(r * d), probe);
+            below_level += usize::from(bound < tl.level_at(probe));
+            for s in from..=to.min(120 - d) {
+                // The activity's own drain, plus an arbitrary extra drain elsewhere.
+                let (x, extra) = (next(120), next(30));
+                let drain = [(s, s + d, r), (x, (x + extra).min(120), next(5))];
+                let mut drain: Vec<_> = drain.into_iter().filter(|p| p.0 < p.1).collect();
+                drain.sort_unstable();
+                let b = brute(&rate, &drain, initial, cap);
+                let at = b[probe.clamp(0, 120) as usize];
+                assert!(at <= bound, "s={s} probe={probe} level={at} bound={bound}");
+            }
+        }
+        // The bound does more than say "no higher than now" (the drain shows).
+        assert!(below_level > 100, "{below_level}");
     }
 
     #[test]
