@@ -53,11 +53,7 @@ impl State<'_> {
             return false;
         }
         // unit_resource
-        if act
-            .resources
-            .iter()
-            .any(|&r| self.busy[r].iter().any(|&(x, y)| overlaps(x, y)))
-        {
+        if act.resources.iter().any(|&r| self.busy[r].overlaps(s, e)) {
             return false;
         }
         // sequence_engines
@@ -117,7 +113,7 @@ impl State<'_> {
         // unit_resource
         let mut res = all();
         for &r in &act.resources {
-            res = res.intersect(&atomic_valid(&self.busy[r], d, lo, hi));
+            res = res.intersect(&self.busy[r].valid(d, lo, hi));
         }
         out.push((Category::UnitResource, res));
         // sequence_engines

@@ -4,7 +4,7 @@
 
 use super::problem::Problem;
 use crate::model::{AwakeMode, EffectAt};
-use crate::timeline::{RateTimeline, StateTimeline, StepFn};
+use crate::timeline::{RateTimeline, StateTimeline, StepFn, UnitTimeline};
 
 /// A decided placement with everything phase 2 generated for it.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -38,7 +38,7 @@ pub struct State<'p> {
     /// The scheduled member of each group.
     pub group_member: Vec<Option<usize>>,
     /// Busy intervals per unit resource.
-    pub busy: Vec<Vec<(i64, i64)>>,
+    pub busy: Vec<UnitTimeline>,
     /// Sequence engines in use.
     pub engines: StepFn,
     /// State timelines.
@@ -84,7 +84,7 @@ impl<'p> State<'p> {
             by_start: std::collections::BTreeSet::new(),
             longest: 0,
             group_member: vec![None; groups],
-            busy: vec![Vec::new(); problem.resource_count],
+            busy: vec![UnitTimeline::default(); problem.resource_count],
             engines: StepFn::constant(problem.h0, problem.h1, 0),
             states: problem
                 .state_initial
@@ -267,7 +267,7 @@ impl<'p> State<'p> {
             self.group_member[g] = Some(p.act);
         }
         for &r in &act.resources {
-            self.busy[r].push((s, e));
+            self.busy[r].add(s, e);
         }
         self.engines.add(s, e, act.engines);
         for r in &act.requires {

@@ -17,6 +17,56 @@ pub fn atomic_valid(busy: &[(i64, i64)], d: i64, lo: i64, hi: i64) -> IntervalSe
     IntervalSet::single(lo, hi).subtract(&forbidden)
 }
 
+/// A unit resource's busy intervals (half-open `[start, end)`), sorted by start,
+/// so that a query looks only at the intervals near its range rather than at
+/// every placement on the resource (a windowless activity's query over 30 sols
+/// made phase 1 quadratic in the plan).
+#[derive(Clone, Debug, Default)]
+pub struct UnitTimeline {
+    busy: Vec<(i64, i64)>,
+    /// The longest interval: one starting more than this before a time ends
+    /// before it.
+    longest: i64,
+}
+
+impl UnitTimeline {
+    /// Marks `[s, e)` busy.
+    pub fn add(&mut self, s: i64, e: i64) {
+        let i = self.busy.partition_point(|&(a, b)| (a, b) <= (s, e));
+        self.busy.insert(i, (s, e));
+        self.longest = self.longest.max(e - s);
+    }
+
+    /// The busy intervals that can overlap `[from, to)`: those starting in
+    /// `[from - longest, to)`, a sorted slice (it may hold some that end by
+    /// `from`).
+    fn near(&self, from: i64, to: i64) -> &[(i64, i64)] {
+        let i = self
+            .busy
+            .partition_point(|&(a, _)| a < from.saturating_sub(self.longest));
+        let j = self.busy.partition_point(|&(a, _)| a < to);
+        &self.busy[i..j.max(i)]
+    }
+
+    /// Whether some busy interval overlaps `[from, to)`.
+    pub fn overlaps(&self, from: i64, to: i64) -> bool {
+        self.near(from, to).iter().any(|&(a, b)| a < to && from < b)
+    }
+
+    /// [`atomic_valid`] over these intervals.
+    pub fn valid(&self, d: i64, lo: i64, hi: i64) -> IntervalSet {
+        let near = self.near(lo, hi.saturating_add(d));
+        let valid = atomic_valid(near, d, lo, hi);
+        #[cfg(debug_assertions)]
+        debug_assert_eq!(
+            valid,
+            atomic_valid(&self.busy, d, lo, hi),
+            "near {lo}..{hi}"
+        );
+        valid
+    }
+}
+
 /// Starts `s` in `[lo, hi]` for which `usage <= limit` at every second of
 /// `[s, s + d)`. The claimable timeline (sequence engines, peak power).
 pub fn claimable_valid(usage: &StepFn, limit: i64, d: i64, lo: i64, hi: i64) -> IntervalSet {
@@ -346,6 +396,39 @@ mod tests {
     }
 
     /// Brute-force overlap test for the atomic timeline.
+    #[test]
+    fn unit_timeline_matches_every_interval() {
+        let mut next = {
+            let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+            move |n: i64| {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                (x % n as u64) as i64
+            }
+        };
+        for _ in 0..200 {
+            let mut unit = UnitTimeline::default();
+            let mut all = Vec::new();
+            for _ in 0..next(8) {
+                // Any order, any length, overlaps allowed (held placements).
+                let a = next(200);
+                let long = next(4) == 0;
+                let b = a + 1 + next(if long { 120 } else { 15 });
+                unit.add(a, b);
+                all.push((a, b));
+            }
+            for _ in 0..20 {
+                let (d, lo) = (1 + next(30), next(220) - 10);
+                let hi = lo + next(60);
+                assert_eq!(unit.valid(d, lo, hi), atomic_valid(&all, d, lo, hi));
+                let to = lo + 1 + next(40);
+                let want = all.iter().any(|&(a, b)| a < to && lo < b);
+                assert_eq!(unit.overlaps(lo, to), want, "{all:?} {lo}..{to}");
+            }
+        }
+    }
+
     #[test]
     fn atomic_matches_brute_force() {
         let busy = [(10, 20), (25, 26), (40, 60)];

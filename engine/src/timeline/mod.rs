@@ -3,7 +3,7 @@
 //! disjoint integer intervals.
 //!
 //! - [`StateTimeline`]: a named state's value over time (requirements, effects).
-//! - [`atomic_valid`]: unit resources (no overlap).
+//! - [`UnitTimeline`] / [`atomic_valid`]: unit resources (no overlap).
 //! - [`claimable_valid`]: sequence engines and peak power (usage under a cap).
 //! - [`cumulative_valid`]: a total over a time range (handover data produced).
 //! - [`RateTimeline`]: cumulative-rate levels (state of charge, data volume).
@@ -16,6 +16,6 @@ mod rate;
 mod step;
 
 pub use intervals::{Interval, IntervalSet};
-pub use kinds::{StateTimeline, atomic_valid, claimable_valid, cumulative_valid};
+pub use kinds::{StateTimeline, UnitTimeline, atomic_valid, claimable_valid, cumulative_valid};
 pub use rate::RateTimeline;
 pub use step::StepFn;
