@@ -181,6 +181,30 @@ impl<'p> State<'p> {
     fn add_load(&mut self, a: i64, b: i64, energy: i64, peak: i64) {
         self.soc.add_rate(a, b, -energy);
         self.peak.add(a, b, peak);
+        self.peak_max = self.peak_max_after_add(a, b, peak);
+    }
+
+    /// The largest peak and its first time after `peak` was added on `[a, b)`,
+    /// from the one before, without reading the whole horizon (which made every
+    /// placement linear in the plan): outside `[a, b)` nothing changed. A rise
+    /// keeps the old maximum unless the range now reaches it (on a tie the
+    /// earlier time wins; a range segment merged with its left neighbour can only
+    /// tie, and the old first time is then earlier still). A fall keeps it unless
+    /// it lay in the range: then the whole horizon is read again.
+    fn peak_max_after_add(&self, a: i64, b: i64, peak: i64) -> Option<(i64, i64)> {
+        let problem = self.problem;
+        let (a, b) = (a.max(problem.h0), b.min(problem.h1));
+        let whole = || self.peak.max_on(problem.h0, problem.h1);
+        match self.peak_max {
+            _ if a >= b || peak == 0 => self.peak_max,
+            Some((v, t)) if peak > 0 => match self.peak.max_on(a, b) {
+                Some((vr, tr)) if vr > v => Some((vr, tr)),
+                Some((vr, tr)) if vr == v => Some((v, t.min(tr))),
+                _ => Some((v, t)),
+            },
+            Some((v, t)) if !(a <= t && t < b) => Some((v, t)),
+            _ => whole(),
+        }
     }
 
     /// Replays a recorded step: re-derives its placement (deterministic) and applies
@@ -331,7 +355,11 @@ impl<'p> State<'p> {
             }
         }
         self.add_load(s, e, act.energy, act.peak);
-        self.peak_max = self.peak.max_on(problem.h0, problem.h1);
+        debug_assert_eq!(
+            self.peak_max,
+            self.peak.max_on(problem.h0, problem.h1),
+            "the running peak maximum"
+        );
     }
 
     /// Whether the heater of zone `z` is on over the second `t`.
