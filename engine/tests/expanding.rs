@@ -52,6 +52,26 @@ fn huge_expanding_range_without_windows_fails_quickly() {
     assert!(!ex[0].reasons.is_empty() && ex[0].reasons.len() <= 4);
 }
 
+/// The hanging plan with `power.awake < power.asleep`: a longer awake period
+/// then charges more, so no duration bound of the monotone kind holds and every
+/// duration used to be searched. Its peak power (5000 W against 900 W) fails at
+/// any start whatever the duration, which the start's peak alone proves.
+#[test]
+fn charging_awake_expanding_activity_that_fails_on_peak_fails_quickly() {
+    let mut p: serde_json::Value = serde_json::from_str(HANG).expect("json");
+    p["power"]["awake"] = json!(20.0);
+    let loaded = load_plan(&p.to_string()).expect("valid plan");
+    let t = Instant::now();
+    let s = schedule(&loaded.plan).expect("schedules");
+    let took = t.elapsed();
+    assert!(took < Duration::from_secs(30), "schedule took {took:?}");
+    let step = &s.steps[0];
+    assert_eq!(step.outcome, Outcome::Failed(FailurePhase::Placement));
+    assert_eq!(step.duration, 1);
+    let tries = s.tries(step.step);
+    assert!(!tries.is_empty() && tries.len() <= 4, "{tries:?}");
+}
+
 /// Only starts after `horizon.end - min_awake + wakeup` fit (a blocker's peak power
 /// rules out every earlier one), so the longest duration comes from the part of
 /// the search where the awake period is extended backwards from the activity's end.

@@ -186,6 +186,54 @@ pub(super) fn longest_scanned(
         .find(|&d| fits(state, a, d, scope, span))
 }
 
+/// The starts in `span` that pass phase 1 with the shortest duration and
+/// without the checks of the end effects: those that pass phase 1 with any
+/// duration are among them (those checks left out, phase 1 is monotone).
+fn shortest_starts(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64)) -> IntervalSet {
+    let act = &state.problem.acts[a];
+    let relaxed = Scope {
+        skip_end_effects: true,
+        ..scope.clone()
+    };
+    let others = state
+        .phase1_in(a, act.dur_min, &relaxed, span.0, span.1)
+        .iter()
+        .skip(1)
+        .fold(IntervalSet::single(span.0, span.1), |acc, c| {
+            acc.intersect(&c.valid)
+        });
+    act.windows
+        .iter()
+        .map(|w| state.window_range(a, w, act.dur_min))
+        .fold(IntervalSet::empty(), |acc, r| {
+            acc.union(&others.clip(r.lo, r.hi))
+        })
+}
+
+/// Whether some start of `starts` can pass the peak power check with some
+/// duration: every placement runs the activity at its start, where the peak is
+/// at least the placed one there plus the activity's own, less what being
+/// awake saves against sleeping (heaters only add), whatever the duration.
+fn peak_room(state: &State<'_>, a: usize, starts: &IntervalSet) -> bool {
+    let problem = state.problem;
+    let Some(max) = problem.max_peak else {
+        return true;
+    };
+    let act = &problem.acts[a];
+    let saves = if act.awake == AwakeMode::Required {
+        (problem.awake - problem.asleep).min(0)
+    } else {
+        0
+    };
+    let floor = act.peak.saturating_add(saves);
+    starts.intervals().iter().any(|iv| {
+        state
+            .peak
+            .segments(iv.lo, iv.hi.saturating_add(1))
+            .any(|(_, _, v)| v.saturating_add(floor) <= max)
+    })
+}
+
 /// The durations in `[dur_min, top]` for which some start can pass phase 1
 /// ([`longest_scanned`]): `ends - starts`, or all of them when those sets are
 /// too fragmented for the differences to be worth computing.
@@ -198,24 +246,7 @@ fn phase1_durations(
 ) -> IntervalSet {
     let act = &state.problem.acts[a];
     let all = IntervalSet::single(act.dur_min, top);
-    let relaxed = Scope {
-        skip_end_effects: true,
-        ..scope.clone()
-    };
-    let others = state
-        .phase1_in(a, act.dur_min, &relaxed, span.0, span.1)
-        .iter()
-        .skip(1)
-        .fold(IntervalSet::single(span.0, span.1), |acc, c| {
-            acc.intersect(&c.valid)
-        });
-    let starts = act
-        .windows
-        .iter()
-        .map(|w| state.window_range(a, w, act.dur_min))
-        .fold(IntervalSet::empty(), |acc, r| {
-            acc.union(&others.clip(r.lo, r.hi))
-        });
+    let starts = shortest_starts(state, a, scope, span);
     let (Some(first), Some(last)) = (starts.intervals().first(), starts.intervals().last()) else {
         return IntervalSet::empty();
     };
@@ -264,7 +295,15 @@ fn longest_bound(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64)) -
     let b = breaks(problem, a);
     let top = longest_monotone(state, a, scope, span);
     if b.awake_charges {
-        return top;
+        // Energy and peak power are not monotone in the duration then (a longer
+        // awake period charges more and draws less): only a start with room for
+        // the activity's peak bounds it, for any duration.
+        let starts = shortest_starts(state, a, scope, span);
+        return if peak_room(state, a, &starts) {
+            top
+        } else {
+            act.dur_min - 1
+        };
     }
     let relaxed = Scope {
         skip_end_effects: true,
