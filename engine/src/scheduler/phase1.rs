@@ -6,7 +6,7 @@
 use super::Scope;
 use super::cells::{cells, concave_feasible};
 use super::phase2::worth_halving;
-use super::problem::{Dep, Win};
+use super::problem::{Act, Dep, Win};
 use super::state::State;
 use super::trace::{Category, CategoryIntervals};
 use crate::model::{AwakeMode, EffectAt};
@@ -187,17 +187,7 @@ impl State<'_> {
         }
         // state_effect
         let mut eff = all();
-        let mut states: Vec<usize> = act.effects.iter().map(|e| e.state).collect();
-        states.sort_unstable();
-        states.dedup();
-        for st in states {
-            let mut own: Vec<(i64, usize)> = act
-                .effects
-                .iter()
-                .filter(|e| e.state == st)
-                .map(|e| (if e.at == EffectAt::Start { 0 } else { d }, e.value))
-                .collect();
-            own.sort_unstable();
+        for (st, own) in effects_by_state(act, d, false) {
             let valid = if scope.skip_end_effects {
                 self.states[st].start_effects_valid(&own, lo, hi)
             } else {
@@ -240,22 +230,7 @@ impl State<'_> {
     pub(super) fn end_effect_times(&self, a: usize, lo: i64, hi: i64) -> IntervalSet {
         let act = &self.problem.acts[a];
         let mut out = IntervalSet::single(lo, hi);
-        let mut states: Vec<usize> = act
-            .effects
-            .iter()
-            .filter(|e| e.at == EffectAt::End)
-            .map(|e| e.state)
-            .collect();
-        states.sort_unstable();
-        states.dedup();
-        for st in states {
-            let mut own: Vec<(i64, usize)> = act
-                .effects
-                .iter()
-                .filter(|e| e.state == st && e.at == EffectAt::End)
-                .map(|e| (0, e.value))
-                .collect();
-            own.sort_unstable();
+        for (st, own) in effects_by_state(act, 0, true) {
             out = out.intersect(&self.states[st].effect_valid(&own, lo, hi));
         }
         out
@@ -367,4 +342,33 @@ impl State<'_> {
             .filter_map(|(a, b)| concave_feasible(a, b, margin).0)
             .collect()
     }
+}
+
+/// The activity's effects grouped by the state they change (states in order),
+/// each group as `(offset, value)` sorted, with offset 0 for an effect at the
+/// start and `end` for one at the end; with `ends_only`, the effects at the end
+/// alone.
+fn effects_by_state(act: &Act, end: i64, ends_only: bool) -> Vec<(usize, Vec<(i64, usize)>)> {
+    let kept = |at: EffectAt| !ends_only || at == EffectAt::End;
+    let mut states: Vec<usize> = act
+        .effects
+        .iter()
+        .filter(|e| kept(e.at))
+        .map(|e| e.state)
+        .collect();
+    states.sort_unstable();
+    states.dedup();
+    states
+        .into_iter()
+        .map(|st| {
+            let mut own: Vec<(i64, usize)> = act
+                .effects
+                .iter()
+                .filter(|e| e.state == st && kept(e.at))
+                .map(|e| (if e.at == EffectAt::Start { 0 } else { end }, e.value))
+                .collect();
+            own.sort_unstable();
+            (st, own)
+        })
+        .collect()
 }
