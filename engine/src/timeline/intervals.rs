@@ -117,9 +117,16 @@ impl IntervalSet {
 
     /// Members of both sets.
     pub fn intersect(&self, other: &IntervalSet) -> IntervalSet {
+        // One interval (a span, a window's range): a slice of the other set.
+        if let [only] = other.items[..] {
+            return self.clip(only.lo, only.hi);
+        }
+        if let [only] = self.items[..] {
+            return other.clip(only.lo, only.hi);
+        }
         let (a, b) = (&self.items, &other.items);
         let (mut i, mut j) = (0, 0);
-        let mut out = Vec::new();
+        let mut out = Vec::with_capacity(a.len().max(b.len()));
         while i < a.len() && j < b.len() {
             let x = a[i].intersect(&b[j]);
             if !x.is_empty() {
@@ -134,16 +141,59 @@ impl IntervalSet {
         IntervalSet { items: out }
     }
 
-    /// Members of this set within `[lo, hi]`.
+    /// Members of this set within `[lo, hi]`: the intervals that reach into it,
+    /// found by binary search, with the two ends cut.
     pub fn clip(&self, lo: i64, hi: i64) -> IntervalSet {
-        self.intersect(&IntervalSet::single(lo, hi))
+        if lo > hi {
+            return IntervalSet::empty();
+        }
+        let i = self.items.partition_point(|iv| iv.hi < lo);
+        let j = self.items.partition_point(|iv| iv.lo <= hi);
+        let mut items = self.items[i..j.max(i)].to_vec();
+        if let Some(first) = items.first_mut() {
+            first.lo = first.lo.max(lo);
+        }
+        if let Some(last) = items.last_mut() {
+            last.hi = last.hi.min(hi);
+        }
+        IntervalSet { items }
     }
 
-    /// Members of either set.
+    /// Members of either set: the two sorted lists merged in one pass.
     pub fn union(&self, other: &IntervalSet) -> IntervalSet {
-        let mut v = self.items.clone();
-        v.extend_from_slice(&other.items);
-        IntervalSet::from_intervals(v)
+        if other.items.is_empty() {
+            return self.clone();
+        }
+        if self.items.is_empty() {
+            return other.clone();
+        }
+        let (a, b) = (&self.items, &other.items);
+        let mut out: Vec<Interval> = Vec::with_capacity(a.len() + b.len());
+        let (mut i, mut j) = (0, 0);
+        while i < a.len() || j < b.len() {
+            let next = match (a.get(i), b.get(j)) {
+                (Some(x), Some(y)) if x.lo <= y.lo => {
+                    i += 1;
+                    *x
+                }
+                (_, Some(y)) => {
+                    j += 1;
+                    *y
+                }
+                (Some(x), None) => {
+                    i += 1;
+                    *x
+                }
+                (None, None) => break,
+            };
+            match out.last_mut() {
+                Some(last) if next.lo <= last.hi.saturating_add(1) => {
+                    last.hi = last.hi.max(next.hi);
+                }
+                _ => out.push(next),
+            }
+        }
+        IntervalSet { items: out }
     }
 
     /// Members of this set not in `other`.
@@ -212,6 +262,52 @@ mod tests {
         );
         assert_eq!(set(&[(0, 2), (4, 5)]).intervals().len(), 2);
         assert!(set(&[(3, 2)]).is_empty());
+    }
+
+    #[test]
+    fn set_operations_match_membership() {
+        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = move |n: i64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x % n as u64) as i64
+        };
+        let random = |next: &mut dyn FnMut(i64) -> i64| -> IntervalSet {
+            (0..next(6))
+                .map(|_| {
+                    let lo = next(60) - 5;
+                    Interval::new(lo, lo + next(12) - 1)
+                })
+                .collect()
+        };
+        for _ in 0..2000 {
+            let (a, b) = (random(&mut next), random(&mut next));
+            let (lo, hi) = (next(70) - 8, next(70) - 8);
+            let (i, u, c) = (a.intersect(&b), a.union(&b), a.clip(lo, hi));
+            for t in -12..72 {
+                assert_eq!(
+                    i.contains(t),
+                    a.contains(t) && b.contains(t),
+                    "{a:?} & {b:?}"
+                );
+                assert_eq!(
+                    u.contains(t),
+                    a.contains(t) || b.contains(t),
+                    "{a:?} | {b:?}"
+                );
+                let inside = lo <= t && t <= hi;
+                assert_eq!(
+                    c.contains(t),
+                    a.contains(t) && inside,
+                    "{a:?} clip {lo}..{hi}"
+                );
+            }
+            // Results are in normal form: sorted, disjoint, not adjacent, none empty.
+            for s in [&i, &u, &c] {
+                assert_eq!(*s, s.intervals().iter().copied().collect::<IntervalSet>());
+            }
+        }
     }
 
     #[test]
