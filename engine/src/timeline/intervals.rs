@@ -266,13 +266,7 @@ mod tests {
 
     #[test]
     fn set_operations_match_membership() {
-        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut next = move |n: i64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x % n as u64) as i64
-        };
+        let mut next = crate::timeline::xorshift(0x2545_f491_4f6c_dd1d);
         let random = |next: &mut dyn FnMut(i64) -> i64| -> IntervalSet {
             (0..next(6))
                 .map(|_| {

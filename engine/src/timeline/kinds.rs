@@ -395,18 +395,10 @@ mod tests {
         v.iter().map(|&(a, b)| Interval::new(a, b)).collect()
     }
 
-    /// Brute-force overlap test for the atomic timeline.
+    /// The sorted unit timeline against the scan of every interval.
     #[test]
     fn unit_timeline_matches_every_interval() {
-        let mut next = {
-            let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
-            move |n: i64| {
-                x ^= x << 13;
-                x ^= x >> 7;
-                x ^= x << 17;
-                (x % n as u64) as i64
-            }
-        };
+        let mut next = crate::timeline::xorshift(0x9e37_79b9_7f4a_7c15);
         for _ in 0..200 {
             let mut unit = UnitTimeline::default();
             let mut all = Vec::new();
@@ -429,6 +421,7 @@ mod tests {
         }
     }
 
+    /// Brute-force overlap test for the atomic timeline.
     #[test]
     fn atomic_matches_brute_force() {
         let busy = [(10, 20), (25, 26), (40, 60)];

@@ -19,3 +19,15 @@ pub use intervals::{Interval, IntervalSet};
 pub use kinds::{StateTimeline, UnitTimeline, atomic_valid, claimable_valid, cumulative_valid};
 pub use rate::RateTimeline;
 pub use step::StepFn;
+
+/// A small deterministic generator for the timeline tests: `next(m)` is in
+/// `[0, m)`.
+#[cfg(test)]
+fn xorshift(mut seed: u64) -> impl FnMut(i64) -> i64 {
+    move |m: i64| {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed % (m as u64)) as i64
+    }
+}

@@ -732,6 +732,7 @@ impl Levels {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::timeline::xorshift;
 
     #[test]
     fn profile_with_drain_matches_check_and_leaves_the_timeline_alone() {
@@ -803,16 +804,6 @@ mod tests {
                     "{drain:?} probe {probe}"
                 );
             }
-        }
-    }
-
-    /// A xorshift generator: `next(m)` is in `[0, m)`.
-    fn xorshift(mut seed: u64) -> impl FnMut(i64) -> i64 {
-        move |m: i64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % (m as u64)) as i64
         }
     }
 
