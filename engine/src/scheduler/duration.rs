@@ -9,7 +9,7 @@
 use super::problem::{Act, Problem};
 use super::state::State;
 use super::trace::Category;
-use super::{Part, Scope, try_duration};
+use super::{Part, Scope, outside_execution, try_duration};
 use crate::model::{AwakeMode, EffectAt};
 use crate::timeline::{Interval, IntervalSet};
 
@@ -113,17 +113,7 @@ pub(super) fn longest_split(
         };
         try_duration(state, a, d, scope, span, part).found.is_some()
     };
-    let (mut lo, mut hi) = (act.dur_min, top);
-    let mut best = None;
-    while lo <= hi {
-        let mid = lo + (hi - lo) / 2;
-        if fits(mid, (i64::MIN, head_end)) {
-            best = Some(mid);
-            lo = mid + 1;
-        } else {
-            hi = mid - 1;
-        }
-    }
+    let best = longest_passing(act.dur_min, top, |d| fits(d, (i64::MIN, head_end)));
     let tail_top = top.min(problem.min_awake - problem.wake - problem.shut - 1);
     let floor = best.map_or(act.dur_min, |b| b + 1);
     (floor..=tail_top)
@@ -191,17 +181,9 @@ pub(super) fn longest_scanned(
 /// duration are among them (those checks left out, phase 1 is monotone).
 fn shortest_starts(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64)) -> IntervalSet {
     let act = &state.problem.acts[a];
-    let relaxed = Scope {
-        skip_end_effects: true,
-        ..scope.clone()
-    };
-    let others = state
-        .phase1_in(a, act.dur_min, &relaxed, span.0, span.1)
-        .iter()
-        .skip(1)
-        .fold(IntervalSet::single(span.0, span.1), |acc, c| {
-            acc.intersect(&c.valid)
-        });
+    let relaxed = scope.without_end_effects();
+    let categories = state.phase1_in(a, act.dur_min, &relaxed, span.0, span.1);
+    let others = outside_execution(&categories, span);
     act.windows
         .iter()
         .map(|w| state.window_range(a, w, act.dur_min))
@@ -305,21 +287,26 @@ fn longest_bound(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64)) -
             act.dur_min - 1
         };
     }
-    let relaxed = Scope {
-        skip_end_effects: true,
-        ..scope.clone()
-    };
-    if b.backward {
-        return split_point(problem, a)
+    let relaxed = scope.without_end_effects();
+    let longest = if b.backward {
+        split_point(problem, a)
             .and_then(|head_end| longest_split(state, a, &relaxed, span, head_end))
-            .unwrap_or(act.dur_min - 1);
-    }
-    let (mut lo, mut hi) = (act.dur_min, top);
-    let mut best = act.dur_min - 1;
+    } else {
+        longest_passing(act.dur_min, top, |d| fits(state, a, d, &relaxed, span))
+    };
+    longest.unwrap_or(act.dur_min - 1)
+}
+
+/// The largest `d` in `[lo, hi]` that `passes`, for a test that holds for every
+/// duration below one that passes (downward closed): binary search. `None` if
+/// none passes.
+fn longest_passing(lo: i64, hi: i64, mut passes: impl FnMut(i64) -> bool) -> Option<i64> {
+    let (mut lo, mut hi) = (lo, hi);
+    let mut best = None;
     while lo <= hi {
         let mid = lo + (hi - lo) / 2;
-        if fits(state, a, mid, &relaxed, span) {
-            best = mid;
+        if passes(mid) {
+            best = Some(mid);
             lo = mid + 1;
         } else {
             hi = mid - 1;
@@ -345,16 +332,5 @@ fn longest_monotone(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64)
             !others.clip(r.lo, r.hi).is_empty()
         })
     };
-    let (mut lo, mut hi) = (act.dur_min, act.dur_max);
-    let mut best = act.dur_min - 1;
-    while lo <= hi {
-        let mid = lo + (hi - lo) / 2;
-        if fits(mid) {
-            best = mid;
-            lo = mid + 1;
-        } else {
-            hi = mid - 1;
-        }
-    }
-    best
+    longest_passing(act.dur_min, act.dur_max, fits).unwrap_or(act.dur_min - 1)
 }

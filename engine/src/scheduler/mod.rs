@@ -52,6 +52,16 @@ pub struct Scope {
     pub skip_end_effects: bool,
 }
 
+impl Scope {
+    /// This scope without the checks of the activity's end effects.
+    fn without_end_effects(&self) -> Scope {
+        Scope {
+            skip_end_effects: true,
+            ..self.clone()
+        }
+    }
+}
+
 /// The result of a scheduling run: the compiled problem and the full step trace.
 #[derive(Clone, Debug)]
 pub struct Schedule {
@@ -552,12 +562,7 @@ pub(super) fn try_duration(
         };
     }
     let categories = state.phase1_in(a, d, scope, span.0, span.1);
-    let others = categories
-        .iter()
-        .skip(1)
-        .fold(IntervalSet::single(span.0, span.1), |acc, c| {
-            acc.intersect(&c.valid)
-        });
+    let others = outside_execution(&categories, span);
     let mut union = IntervalSet::empty();
     let mut found = None;
     let mut tries = Vec::new();
@@ -588,6 +593,18 @@ pub(super) fn try_duration(
         tries,
         rejected,
     }
+}
+
+/// The starts in `span` that pass every phase-1 category of `categories` (as
+/// `State::phase1_in` gives them) but the first, execution, which each window's
+/// range stands for.
+fn outside_execution(categories: &[CategoryIntervals], span: (i64, i64)) -> IntervalSet {
+    categories
+        .iter()
+        .skip(1)
+        .fold(IntervalSet::single(span.0, span.1), |acc, c| {
+            acc.intersect(&c.valid)
+        })
 }
 
 /// The starts at which activity `a` with duration `d` passes every phase-1
