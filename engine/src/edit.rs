@@ -54,13 +54,7 @@ pub(crate) fn edited(
     set: &serde_json::Map<String, Value>,
 ) -> Option<Plan> {
     let quick = || -> Option<Plan> {
-        let id = target.strip_prefix("activity:")?;
-        let i = plan.activities.iter().position(|a| a.id == id)?;
-        let mut v = serde_json::to_value(&plan.activities[i]).ok()?;
-        let obj = v.as_object_mut()?;
-        merge_set(obj, set);
-        check_activity_shape(obj, "").ok()?;
-        let activity: Activity = serde_json::from_value(v).ok()?;
+        let (i, activity) = edited_activity(plan, target, set)?;
         let mut out = plan.clone();
         out.activities[i] = activity;
         validate(&out).ok()?;
@@ -71,22 +65,14 @@ pub(crate) fn edited(
         if set.contains_key("activities") {
             return apply_edit(plan, target, set).ok();
         }
-        let shell = plan.without_activities();
-        let mut v = serde_json::to_value(&shell).ok()?;
-        let obj = v.as_object_mut()?;
-        merge_set(obj, set);
-        check_json_shape(&v).ok()?;
-        let mut out: Plan = serde_json::from_value(v).ok()?;
-        out.activities = plan.activities.clone();
-        // A cycle's starting state is not part of the file format: it stays.
-        out.cycle = plan.cycle.clone();
         if set.keys().all(|k| LIMIT_SECTIONS.contains(&k.as_str())) {
-            // Only limits changed, and the rest was valid (the explainer edits
-            // the plan it explains, which is valid).
-            validate_limits(&out).ok()?;
-        } else {
-            validate(&out).ok()?;
+            let mut out = edited_limits(plan, set)?;
+            out.activities = plan.activities.clone();
+            return Some(out);
         }
+        let mut out = edited_shell(plan, set)?;
+        out.activities = plan.activities.clone();
+        validate(&out).ok()?;
         Some(out)
     };
     let out = if target == "plan" {
@@ -100,6 +86,54 @@ pub(crate) fn edited(
         "the quick edit disagrees with apply_edit"
     );
     out
+}
+
+/// The activity that an edit of `target` (`"activity:ID"`) in `plan` gives,
+/// read from JSON with its shape checked, and its index; `None` for another
+/// target, an unknown id or a shape the format refuses. Whether the plan with
+/// it is valid is left to the caller ([`validate`], or
+/// `validate::ActivityEdits` for an edit that keeps the id).
+pub(crate) fn edited_activity(
+    plan: &Plan,
+    target: &str,
+    set: &serde_json::Map<String, Value>,
+) -> Option<(usize, Activity)> {
+    let id = target.strip_prefix("activity:")?;
+    let i = plan.activities.iter().position(|a| a.id == id)?;
+    let mut v = serde_json::to_value(&plan.activities[i]).ok()?;
+    let obj = v.as_object_mut()?;
+    merge_set(obj, set);
+    check_activity_shape(obj, "").ok()?;
+    let activity: Activity = serde_json::from_value(v).ok()?;
+    Some((i, activity))
+}
+
+/// The plan without its activities that an edit of `"plan"` gives, read from
+/// JSON with its shape checked (not validated).
+fn edited_shell(plan: &Plan, set: &serde_json::Map<String, Value>) -> Option<Plan> {
+    let shell = plan.without_activities();
+    let mut v = serde_json::to_value(&shell).ok()?;
+    let obj = v.as_object_mut()?;
+    merge_set(obj, set);
+    check_json_shape(&v).ok()?;
+    let mut out: Plan = serde_json::from_value(v).ok()?;
+    // A cycle's starting state is not part of the file format: it stays.
+    out.cycle = plan.cycle.clone();
+    Some(out)
+}
+
+/// The plan without its activities that an edit of `"plan"` setting only
+/// plan-wide limits ([`LIMIT_SECTIONS`]) gives, when the plan so edited is
+/// valid. Only the limit sections are checked: no other check reads them, and
+/// the rest of `plan` is valid (the explainer edits the plan it explains).
+pub(crate) fn edited_limits(plan: &Plan, set: &serde_json::Map<String, Value>) -> Option<Plan> {
+    debug_assert!(
+        set.keys().all(|k| LIMIT_SECTIONS.contains(&k.as_str())),
+        "an edit of more than the limits"
+    );
+    let out = edited_shell(plan, set)?;
+    validate_limits(&out).ok()?;
+    Some(out)
 }
 
 /// The spec's `set`: each field replaces the object's, and `null` removes it.

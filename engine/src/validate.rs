@@ -1006,47 +1006,8 @@ impl<'p> Validator<'p> {
     // ----- activities ---------------------------------------------------------
 
     fn activities(&mut self) -> Result<(), Error> {
+        let ctx = ActivityContext::of(&self.plan.activities);
         let acts = &self.plan.activities;
-        // First occurrence of every id, so that `after` may name later activities
-        // and a duplicate is reported where it occurs.
-        let mut first: HashMap<&str, usize> = HashMap::new();
-        for (i, a) in acts.iter().enumerate() {
-            first.entry(a.id.as_str()).or_insert(i);
-        }
-        // Step order: by (priority, file index); step[i] is 1-based.
-        let mut order: Vec<usize> = (0..acts.len()).collect();
-        order.sort_by_key(|&i| (acts[i].priority, i));
-        let mut step = vec![0usize; acts.len()];
-        for (k, &i) in order.iter().enumerate() {
-            step[i] = k + 1;
-        }
-        // Which activities set each (state, value).
-        let mut setters: HashMap<(&str, &str), Vec<usize>> = HashMap::new();
-        for (i, a) in acts.iter().enumerate() {
-            for e in &a.effects {
-                setters
-                    .entry((e.state.as_str(), e.value.as_str()))
-                    .or_default()
-                    .push(i);
-            }
-        }
-        // One pass from the end instead of a scan per optional activity (which
-        // took most of the load time of a 200,000-activity plan).
-        let mut next_mandatory = vec![None; order.len() + 1];
-        for k in (0..order.len()).rev() {
-            next_mandatory[k] = if acts[order[k]].mandatory {
-                Some(order[k])
-            } else {
-                next_mandatory[k + 1]
-            };
-        }
-        let ctx = ActivityContext {
-            first,
-            order,
-            step,
-            next_mandatory,
-            setters,
-        };
         for (i, a) in acts.iter().enumerate() {
             self.activity(i, a, &ctx)?;
         }
@@ -1436,6 +1397,89 @@ struct ActivityContext<'p> {
     next_mandatory: Vec<Option<usize>>,
     /// Activities with an effect setting each (state, value).
     setters: HashMap<(&'p str, &'p str), Vec<usize>>,
+}
+
+impl<'p> ActivityContext<'p> {
+    fn of(acts: &'p [Activity]) -> Self {
+        // First occurrence of every id, so that `after` may name later activities
+        // and a duplicate is reported where it occurs.
+        let mut first: HashMap<&str, usize> = HashMap::new();
+        for (i, a) in acts.iter().enumerate() {
+            first.entry(a.id.as_str()).or_insert(i);
+        }
+        // Step order: by (priority, file index); step[i] is 1-based.
+        let mut order: Vec<usize> = (0..acts.len()).collect();
+        order.sort_by_key(|&i| (acts[i].priority, i));
+        let mut step = vec![0usize; acts.len()];
+        for (k, &i) in order.iter().enumerate() {
+            step[i] = k + 1;
+        }
+        // Which activities set each (state, value).
+        let mut setters: HashMap<(&str, &str), Vec<usize>> = HashMap::new();
+        for (i, a) in acts.iter().enumerate() {
+            for e in &a.effects {
+                setters
+                    .entry((e.state.as_str(), e.value.as_str()))
+                    .or_default()
+                    .push(i);
+            }
+        }
+        // One pass from the end instead of a scan per optional activity (which
+        // took most of the load time of a 200,000-activity plan).
+        let mut next_mandatory = vec![None; order.len() + 1];
+        for k in (0..order.len()).rev() {
+            next_mandatory[k] = if acts[order[k]].mandatory {
+                Some(order[k])
+            } else {
+                next_mandatory[k + 1]
+            };
+        }
+        ActivityContext {
+            first,
+            order,
+            step,
+            next_mandatory,
+            setters,
+        }
+    }
+}
+
+/// The checks of one activity of a valid plan, for edits of it that keep its
+/// id. Another activity's checks read this one only for its id (its priority,
+/// effects and `mandatory` only for warnings), so with the id kept they still
+/// pass, and the edited plan is valid exactly when the edited activity passes
+/// its own checks in the plan's context. The suggestion verifier checks
+/// thousands of edits of one activity each (debug builds compare with
+/// [`validate`]).
+pub(crate) struct ActivityEdits<'p> {
+    plan: &'p Plan,
+    ctx: ActivityContext<'p>,
+}
+
+impl<'p> ActivityEdits<'p> {
+    /// The context of `plan`'s activities, built once.
+    pub(crate) fn new(plan: &'p Plan) -> Self {
+        Self {
+            plan,
+            ctx: ActivityContext::of(&plan.activities),
+        }
+    }
+
+    /// Whether `plan` with activity `i` replaced by `a` (the same id) is valid,
+    /// as [`validate`] would say: its first error, if any.
+    pub(crate) fn check(&self, i: usize, a: &Activity) -> Result<(), Error> {
+        debug_assert_eq!(
+            self.plan.activities.get(i).map(|x| x.id.as_str()),
+            Some(a.id.as_str()),
+            "not an edit that keeps the id"
+        );
+        let mut v = Validator {
+            plan: self.plan,
+            warnings: Vec::new(),
+            errors: None,
+        };
+        v.activity(i, a, &self.ctx)
+    }
 }
 
 /// `known: a, b` or `the plan defines no <what>`.
@@ -2637,6 +2681,84 @@ mod tests {
         assert_eq!(
             shape_err(|v| v["battery"]["initial"] = json!(2000.0)).0,
             "battery.initial"
+        );
+    }
+
+    /// The check of one edited activity in the plan's context says what
+    /// `validate` says of the whole plan so edited, for edits that keep the
+    /// id: edits of every kind the explainer makes, valid and not, on each
+    /// activity (some making other activities' warnings change).
+    #[test]
+    fn activity_edits_agree_with_validate() {
+        let plan = parse(base_json());
+        let checks = ActivityEdits::new(&plan);
+        let edits: Vec<(&str, Value)> = vec![
+            ("priority", json!(0)),
+            ("priority", json!(9)),
+            ("priority", json!(-3)),
+            ("mandatory", json!(false)),
+            ("mandatory", json!(true)),
+            ("duration", json!(60)),
+            ("duration", json!(0)),
+            ("duration", json!({ "min": 600, "max": 300 })),
+            ("duration", json!({ "min": 10, "max": 20000 })),
+            ("windows", json!([{ "start": 100, "end": 50 }])),
+            (
+                "windows",
+                json!([{ "start": 100, "end": 5000, "preferred": 200 }]),
+            ),
+            (
+                "windows",
+                json!([{ "start": 100, "end": 5000, "preferred": 9000 }]),
+            ),
+            ("windows", json!([{ "start": 0, "end": 99999 }])),
+            ("windows", json!([{ "start": 10, "end": 20, "cutoff": 15 }])),
+            ("windows", json!(null)),
+            ("after", json!([])),
+            ("after", json!([{ "activity": "nobody" }])),
+            ("after", json!([{ "activity": "pano" }])),
+            (
+                "after",
+                json!([{ "activity": "unstow", "min_delay": 50, "max_delay": 10 }]),
+            ),
+            ("group", json!(null)),
+            ("peak_power", json!(-1.0)),
+            ("peak_power", json!(5000.0)),
+            ("energy_rate", json!(1e13)),
+            ("requires", json!([{ "state": "drill", "value": "lost" }])),
+            ("requires", json!([{ "state": "none", "value": "x" }])),
+            (
+                "effects",
+                json!([{ "state": "drill", "value": "deployed", "at": "start" }]),
+            ),
+            ("thermal_zones", json!(["nowhere"])),
+            ("thermal_zones", json!([])),
+            ("sequence_engines", json!(4)),
+        ];
+        let (mut valid, mut invalid) = (0, 0);
+        for i in 0..plan.activities.len() {
+            for (field, value) in &edits {
+                let edited = with(|v| {
+                    let a = v["activities"][i].as_object_mut().expect("an object");
+                    if value.is_null() {
+                        a.remove(*field);
+                    } else {
+                        a.insert((*field).to_string(), value.clone());
+                    }
+                });
+                let whole = validate(&edited).is_ok();
+                let alone = checks.check(i, &edited.activities[i]).is_ok();
+                assert_eq!(alone, whole, "activities[{i}].{field} = {value}");
+                if whole {
+                    valid += 1;
+                } else {
+                    invalid += 1;
+                }
+            }
+        }
+        assert!(
+            valid > 20 && invalid > 20,
+            "{valid} valid, {invalid} invalid"
         );
     }
 }

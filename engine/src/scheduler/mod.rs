@@ -172,7 +172,11 @@ impl Schedule {
 
 /// Schedules a validated plan.
 pub fn schedule(plan: &Plan) -> Result<Schedule, Error> {
-    let problem = Problem::compile(plan)?;
+    Ok(schedule_compiled(Problem::compile(plan)?))
+}
+
+/// Schedules a compiled plan.
+pub(crate) fn schedule_compiled(problem: Problem) -> Schedule {
     let until = problem.order.len();
     // A cycle of an execution starts in the awake period the rover is in.
     let generated = problem
@@ -187,7 +191,7 @@ pub fn schedule(plan: &Plan) -> Result<Schedule, Error> {
         })
         .into_iter()
         .collect();
-    Ok(run(problem, Vec::new(), generated, until))
+    run(problem, Vec::new(), generated, until)
 }
 
 /// Schedules an edited plan, reusing the steps of `prev` (the run of the plan

@@ -38,17 +38,16 @@ use crate::model::{AwakeMode, Plan};
 /// Placements by activity index (`None`: not placed, or its step not run).
 pub(crate) type Placements = Vec<Option<(i64, i64)>>;
 
-/// Where activity `a` is placed when the edited `plan` (compiled: `problem`)
+/// Where activity `a` is placed when the edited plan compiled as `problem`
 /// is scheduled (`None`: it fails), running only the steps up to `a`'s and
 /// reusing the steps of `prev` (the run before the edit) that the edit cannot
 /// change.
 pub(crate) fn placement_after_edit(
     prev: &Schedule,
-    plan: &Plan,
     problem: super::Problem,
     a: usize,
 ) -> Result<Option<(i64, i64)>, Error> {
-    Ok(run_to(prev, plan, problem, a, false)?.0)
+    Ok(run_to(prev, problem, a, false)?.0)
 }
 
 /// [`placement_after_edit`], with the run's record of the steps up to `a`'s: a
@@ -62,29 +61,27 @@ pub(crate) fn placement_after_edit(
 /// search, in [`Run::up_to`]).
 pub(crate) fn probe_after_edit(
     prev: &Schedule,
-    plan: &Plan,
     problem: super::Problem,
     a: usize,
 ) -> Result<(Option<(i64, i64)>, Schedule), Error> {
-    run_to(prev, plan, problem, a, true)
+    run_to(prev, problem, a, true)
 }
 
-/// The run of the edited `plan` (compiled: `problem`) up to `a`'s step: where
+/// The run of the edited plan compiled as `problem` up to `a`'s step: where
 /// `a` is placed, and with `record` the steps' records (else none).
 fn run_to(
     prev: &Schedule,
-    plan: &Plan,
     problem: super::Problem,
     a: usize,
     record: bool,
 ) -> Result<(Option<(i64, i64)>, Schedule), Error> {
-    debug_assert_eq!(plan.activities.len(), problem.acts.len(), "not the plan's");
     let until = problem.step_of.get(a).copied().unwrap_or(0);
     let run = Run::up_to(prev, &problem, until, Some(a), record);
     let placed = run.placements.get(a).copied().flatten();
     let steps = run.steps;
     #[cfg(debug_assertions)]
-    if let Ok(full) = super::schedule(plan) {
+    {
+        let full = super::schedule_compiled(problem.clone());
         debug_assert_eq!(placed, full.placement(a), "the outcome-only run disagrees");
         for (mine, theirs) in steps.iter().zip(&full.steps) {
             debug_assert_eq!(
@@ -105,7 +102,7 @@ fn run_to(
     ))
 }
 
-/// Where each activity is placed in the run of the edited `plan` (compiled:
+/// Where each activity is placed in the run of the edited plan (compiled:
 /// `problem`), when one of the activities `targets` is placed in it; `None` when none is (only the steps
 /// up to the last target's are then run). `prev` is the run of the plan before
 /// the edit.
@@ -117,11 +114,9 @@ fn run_to(
 /// starts away from them (the module docs).
 pub(crate) fn placements_if_placed(
     prev: &Schedule,
-    plan: &Plan,
     problem: &super::Problem,
     targets: &[usize],
 ) -> Result<Option<Placements>, Error> {
-    debug_assert_eq!(plan.activities.len(), problem.acts.len(), "not the plan's");
     let until = targets
         .iter()
         .filter_map(|&t| problem.step_of.get(t).copied())
@@ -221,7 +216,8 @@ pub(crate) fn placements_if_placed(
         }
     }
     #[cfg(debug_assertions)]
-    if let Ok(full) = super::schedule(plan) {
+    {
+        let full = super::schedule_compiled(problem.clone());
         let want: Vec<Option<(i64, i64)>> =
             (0..problem.acts.len()).map(|x| full.placement(x)).collect();
         debug_assert_eq!(
@@ -264,7 +260,8 @@ pub fn run_outcomes(plan: &Plan) -> Result<RunOutcomes, Error> {
         }
     }
     #[cfg(debug_assertions)]
-    if let Ok(full) = super::schedule(plan) {
+    {
+        let full = super::schedule_compiled(problem.clone());
         let want: Vec<Option<(i64, i64)>> =
             (0..problem.acts.len()).map(|x| full.placement(x)).collect();
         debug_assert_eq!(placements, want, "the outcome-only run disagrees");

@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use crate::error::Error;
-use crate::model::{AwakeMode, Duration, EffectAt, LocalTime, Plan};
+use crate::model::{Activity, AwakeMode, Duration, EffectAt, LocalTime, Plan};
 use crate::units::{Fixed, Toward, to_fixed};
 
 /// A window in compiled form.
@@ -319,6 +319,81 @@ impl Problem {
         out
     }
 
+    /// This problem, compiled from `plan`, with activity `i` replaced by
+    /// `new` (an edit of it that keeps its id), compiling `new` alone: what
+    /// [`Problem::compile`] gives for the plan so edited (debug builds
+    /// compare). `None` when the edit changes the names `new` interns (its
+    /// resources, UHF kinds, communication kind or group), which can move
+    /// other activities' indices: compile the edited plan then. The
+    /// suggestion verifier compiles thousands of edits of one activity each.
+    pub(crate) fn with_activity(
+        &self,
+        plan: &Plan,
+        i: usize,
+        new: &Activity,
+    ) -> Option<Result<Problem, Error>> {
+        let old = plan.activities.get(i)?;
+        let base = self.acts.get(i)?;
+        if new.id != old.id
+            || new.resources != old.resources
+            || new.uhf_interactions != old.uhf_interactions
+            || new.comm_kind != old.comm_kind
+            || new.group != old.group
+        {
+            return None;
+        }
+        let names = Names {
+            resources: base.resources.clone(),
+            uhf: base.uhf.clone(),
+            comm: base.comm,
+            group: base.group,
+        };
+        // Ids are unique in a valid plan.
+        let ids = |id: &str| plan.activities.iter().position(|a| a.id == id);
+        let act = match compile_act(plan, &self.zone_names, i, new, names, &ids) {
+            Ok(act) => act,
+            Err(e) => return Some(Err(e)),
+        };
+        let mut out = self.clone();
+        out.acts[i] = Arc::new(act);
+        if new.priority != old.priority {
+            // `i` moves in the step order, sorted by (not held, priority,
+            // index); the others keep theirs.
+            let key = |j: usize| {
+                let p = if j == i {
+                    new.priority
+                } else {
+                    plan.activities[j].priority
+                };
+                (!out.acts[j].held, p, j)
+            };
+            out.order.retain(|&j| j != i);
+            let at = out.order.partition_point(|&j| key(j) < key(i));
+            out.order.insert(at, i);
+            out.step_of = step_numbers(&out.order);
+        }
+        Some(Ok(out))
+    }
+
+    /// This problem with the plan-wide limits of `shell` (the plan without
+    /// its activities, edited in its limit sections alone): what
+    /// [`Problem::compile`] gives for the plan so edited, its activities,
+    /// step order and heating holds taken from this problem as they are
+    /// (debug builds compare the two where the caller has the edited plan).
+    pub(crate) fn with_limits(&self, shell: &Plan) -> Result<Problem, Error> {
+        debug_assert!(
+            shell.activities.is_empty(),
+            "not a plan without its activities"
+        );
+        let mut out = Self::compile_with(shell, None)?;
+        out.acts = self.acts.clone();
+        out.order = self.order.clone();
+        out.step_of = self.step_of.clone();
+        out.resource_count = self.resource_count;
+        out.heaters = self.heaters.clone();
+        Ok(out)
+    }
+
     fn compile_with(
         plan: &Plan,
         reuse: Option<(&Problem, Option<usize>)>,
@@ -332,26 +407,7 @@ impl Problem {
         let mut resources: BTreeMap<&str, usize> = BTreeMap::new();
         let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
         let mut groups: BTreeMap<&str, usize> = BTreeMap::new();
-        let state_names: Vec<&str> = plan.states.keys().map(String::as_str).collect();
         let zone_names: Vec<String> = plan.thermal_zones.keys().cloned().collect();
-        let state_index = |path: &str, name: &str| {
-            state_names
-                .iter()
-                .position(|s| *s == name)
-                .ok_or_else(|| Error::invalid(path, format!("unknown state \"{name}\"")))
-        };
-        let value_index = |path: &str, state: &str, value: &str| {
-            plan.states
-                .get(state)
-                .and_then(|s| s.values.iter().position(|v| v == value))
-                .ok_or_else(|| {
-                    Error::invalid(
-                        path,
-                        format!("unknown value \"{value}\" for state \"{state}\""),
-                    )
-                })
-        };
-        let horizon = plan.horizon;
         let mut acts = Vec::with_capacity(plan.activities.len());
         for (i, a) in plan.activities.iter().enumerate() {
             // An activity the edit left alone, compiled in `base`: what it
@@ -381,94 +437,21 @@ impl Problem {
                 }
                 // Indices moved: compile it.
             }
-            let p = format!("activities[{i}]");
-            let (dur_min, dur_max) = match a.duration {
-                Duration::Fixed(d) => (d, d),
-                Duration::Expanding { min, max } => (min, max),
-            };
-            let windows = match &a.windows {
-                Some(ws) => ws
-                    .iter()
-                    .map(|w| Win {
-                        start: w.start,
-                        end: w.end,
-                        preferred: w.preferred_start(),
-                        cutoff: w.cutoff,
-                    })
-                    .collect(),
-                None => vec![Win {
-                    start: horizon.start,
-                    end: horizon.end,
-                    preferred: horizon.start,
-                    cutoff: None,
-                }],
-            };
-            let mut zones = Vec::new();
-            for (k, z) in a.thermal_zones.iter().enumerate() {
-                let zi = zone_names.iter().position(|n| n == z).ok_or_else(|| {
-                    Error::invalid(
-                        format!("{p}.thermal_zones[{k}]"),
-                        format!("unknown zone \"{z}\""),
-                    )
-                })?;
-                zones.push(zi);
-            }
-            let mut after = Vec::new();
-            for (k, d) in a.after.iter().enumerate() {
-                let target = *ids.get(d.activity.as_str()).ok_or_else(|| {
-                    Error::invalid(
-                        format!("{p}.after[{k}].activity"),
-                        format!("unknown activity \"{}\"", d.activity),
-                    )
-                })?;
-                let (min_delay, max_delay) = if d.meets {
-                    (0, Some(0))
-                } else {
-                    (d.min_delay.unwrap_or(0), d.max_delay)
-                };
-                after.push(Dep {
-                    target,
-                    min_delay,
-                    max_delay,
-                });
-            }
-            let mut requires = Vec::new();
-            for (k, r) in a.requires.iter().enumerate() {
-                let path = format!("{p}.requires[{k}]");
-                requires.push(Requirement {
-                    state: state_index(&path, &r.state)?,
-                    value: value_index(&path, &r.state, &r.value)?,
-                });
-            }
-            let mut effects = Vec::new();
-            for (k, e) in a.effects.iter().enumerate() {
-                let path = format!("{p}.effects[{k}]");
-                effects.push(Effect {
-                    state: state_index(&path, &e.state)?,
-                    value: value_index(&path, &e.state, &e.value)?,
-                    at: e.at,
-                });
-            }
-            acts.push(Arc::new(Act {
-                dur_min,
-                dur_max,
-                mandatory: a.mandatory,
-                windows,
+            let ids_of = |id: &str| ids.get(id).copied();
+            let names = Names {
                 resources: res,
-                engines: i64::from(a.sequence_engines),
-                energy: to_fixed(a.energy_rate, Fixed::MilliWatt, Toward::Up),
-                peak: to_fixed(a.peak_power, Fixed::MilliWatt, Toward::Up),
-                data: to_fixed(a.data_rate, Fixed::Bit, Toward::Up),
-                awake: a.awake,
-                zones,
-                after,
-                requires,
-                effects,
                 uhf,
                 comm,
                 group,
-                held: plan.cycle.as_ref().is_some_and(|c| c.held.contains(&a.id)),
-            }));
+            };
+            acts.push(Arc::new(compile_act(
+                plan,
+                &zone_names,
+                i,
+                a,
+                names,
+                &ids_of,
+            )?));
         }
         // Activities still executing come first (they are not decided again).
         let mut order: Vec<usize> = (0..plan.activities.len()).collect();
@@ -494,7 +477,7 @@ impl Problem {
         let state_initial = plan
             .states
             .iter()
-            .map(|(name, s)| value_index(&format!("states.{name}.initial"), name, &s.initial))
+            .map(|(name, s)| value_index(plan, &format!("states.{name}.initial"), name, &s.initial))
             .collect::<Result<_, _>>()?;
         // Rounded to the safe side (docs/semantics.md, "Numbers"): what the
         // battery and the data store hold, and the limits, as the exact decimals
@@ -519,8 +502,8 @@ impl Problem {
             });
         }
         Ok(Problem {
-            h0: horizon.start,
-            h1: horizon.end,
+            h0: plan.horizon.start,
+            h1: plan.horizon.end,
             clock: plan.local_time,
             capacity: wh(plan.battery.capacity, Toward::Down),
             soc0: if plan.cycle.is_some() {
@@ -567,6 +550,137 @@ impl Problem {
     }
 }
 
+/// The indices of the names an activity interns (resources, UHF kinds, its
+/// communication kind, its group), by first appearance in the plan.
+struct Names {
+    resources: Vec<usize>,
+    uhf: Option<Vec<usize>>,
+    comm: Option<usize>,
+    group: Option<usize>,
+}
+
+/// Activity `i` of `plan` (`a`, which may be an edit of it) compiled, with the
+/// indices of its interned names and `ids`, the index of each activity id.
+fn compile_act(
+    plan: &Plan,
+    zone_names: &[String],
+    i: usize,
+    a: &Activity,
+    names: Names,
+    ids: &dyn Fn(&str) -> Option<usize>,
+) -> Result<Act, Error> {
+    let horizon = plan.horizon;
+    let p = format!("activities[{i}]");
+    let (dur_min, dur_max) = match a.duration {
+        Duration::Fixed(d) => (d, d),
+        Duration::Expanding { min, max } => (min, max),
+    };
+    let windows = match &a.windows {
+        Some(ws) => ws
+            .iter()
+            .map(|w| Win {
+                start: w.start,
+                end: w.end,
+                preferred: w.preferred_start(),
+                cutoff: w.cutoff,
+            })
+            .collect(),
+        None => vec![Win {
+            start: horizon.start,
+            end: horizon.end,
+            preferred: horizon.start,
+            cutoff: None,
+        }],
+    };
+    let mut zones = Vec::new();
+    for (k, z) in a.thermal_zones.iter().enumerate() {
+        let zi = zone_names.iter().position(|n| n == z).ok_or_else(|| {
+            Error::invalid(
+                format!("{p}.thermal_zones[{k}]"),
+                format!("unknown zone \"{z}\""),
+            )
+        })?;
+        zones.push(zi);
+    }
+    let mut after = Vec::new();
+    for (k, d) in a.after.iter().enumerate() {
+        let target = ids(d.activity.as_str()).ok_or_else(|| {
+            Error::invalid(
+                format!("{p}.after[{k}].activity"),
+                format!("unknown activity \"{}\"", d.activity),
+            )
+        })?;
+        let (min_delay, max_delay) = if d.meets {
+            (0, Some(0))
+        } else {
+            (d.min_delay.unwrap_or(0), d.max_delay)
+        };
+        after.push(Dep {
+            target,
+            min_delay,
+            max_delay,
+        });
+    }
+    let mut requires = Vec::new();
+    for (k, r) in a.requires.iter().enumerate() {
+        let path = format!("{p}.requires[{k}]");
+        requires.push(Requirement {
+            state: state_index(plan, &path, &r.state)?,
+            value: value_index(plan, &path, &r.state, &r.value)?,
+        });
+    }
+    let mut effects = Vec::new();
+    for (k, e) in a.effects.iter().enumerate() {
+        let path = format!("{p}.effects[{k}]");
+        effects.push(Effect {
+            state: state_index(plan, &path, &e.state)?,
+            value: value_index(plan, &path, &e.state, &e.value)?,
+            at: e.at,
+        });
+    }
+    Ok(Act {
+        dur_min,
+        dur_max,
+        mandatory: a.mandatory,
+        windows,
+        resources: names.resources,
+        engines: i64::from(a.sequence_engines),
+        energy: to_fixed(a.energy_rate, Fixed::MilliWatt, Toward::Up),
+        peak: to_fixed(a.peak_power, Fixed::MilliWatt, Toward::Up),
+        data: to_fixed(a.data_rate, Fixed::Bit, Toward::Up),
+        awake: a.awake,
+        zones,
+        after,
+        requires,
+        effects,
+        uhf: names.uhf,
+        comm: names.comm,
+        group: names.group,
+        held: plan.cycle.as_ref().is_some_and(|c| c.held.contains(&a.id)),
+    })
+}
+
+/// The index of state `name`, in the plan's order of states.
+fn state_index(plan: &Plan, path: &str, name: &str) -> Result<usize, Error> {
+    plan.states
+        .keys()
+        .position(|s| s == name)
+        .ok_or_else(|| Error::invalid(path, format!("unknown state \"{name}\"")))
+}
+
+/// The index of `value` among the values of state `state`.
+fn value_index(plan: &Plan, path: &str, state: &str, value: &str) -> Result<usize, Error> {
+    plan.states
+        .get(state)
+        .and_then(|s| s.values.iter().position(|v| v == value))
+        .ok_or_else(|| {
+            Error::invalid(
+                path,
+                format!("unknown value \"{value}\" for state \"{state}\""),
+            )
+        })
+}
+
 /// The index of `name` in `map`, adding it as the next one when new (names are
 /// interned by first appearance).
 fn intern<'a>(map: &mut BTreeMap<&'a str, usize>, name: &'a str) -> usize {
@@ -581,4 +695,86 @@ fn step_numbers(order: &[usize]) -> Vec<usize> {
         step_of[a] = k + 1;
     }
     step_of
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::load::load_plan;
+
+    fn default_plan() -> Plan {
+        load_plan(include_str!("../../../assets/default-plan.json"))
+            .expect("the default plan loads")
+            .plan
+    }
+
+    /// Compiling one edited activity alone gives the full compile of the
+    /// edited plan, for edits that move it anywhere in the step order.
+    #[test]
+    fn one_activity_compiled_alone_is_the_full_compile() {
+        let plan = default_plan();
+        let base = Problem::compile(&plan).expect("compiles");
+        let priorities: Vec<i64> = plan.activities.iter().map(|a| a.priority).collect();
+        let (lo, hi) = (
+            priorities.iter().min().copied().unwrap_or(0),
+            priorities.iter().max().copied().unwrap_or(0),
+        );
+        let mut moved = 0;
+        for i in 0..plan.activities.len() {
+            let edits: Vec<Box<dyn Fn(&mut Activity)>> = vec![
+                Box::new(|a| a.priority = lo - 1),
+                Box::new(|a| a.priority = hi + 1),
+                Box::new(|a| a.priority = (lo + hi) / 2),
+                Box::new(|a| a.priority = priorities[(i * 7) % priorities.len()]),
+                Box::new(|a| a.energy_rate += 1.5),
+                Box::new(|a| a.mandatory = !a.mandatory),
+                Box::new(|a| a.windows = None),
+                Box::new(|a| a.after.clear()),
+            ];
+            for edit in &edits {
+                let mut edited = plan.clone();
+                edit(&mut edited.activities[i]);
+                let alone = base
+                    .with_activity(&plan, i, &edited.activities[i])
+                    .expect("the names are the same")
+                    .expect("compiles");
+                let full = Problem::compile(&edited).expect("compiles");
+                assert_eq!(alone, full, "activity {i}");
+                moved += usize::from(alone.order != base.order);
+            }
+        }
+        assert!(moved > plan.activities.len(), "few edits moved an activity");
+    }
+
+    /// An edit that changes the names an activity interns is left to a full
+    /// compile.
+    #[test]
+    fn new_names_are_compiled_in_full() {
+        let plan = default_plan();
+        let base = Problem::compile(&plan).expect("compiles");
+        let i = plan
+            .activities
+            .iter()
+            .position(|a| !a.resources.is_empty())
+            .expect("an activity with a resource");
+        let mut a = plan.activities[i].clone();
+        a.resources.push("a_new_resource".into());
+        assert!(base.with_activity(&plan, i, &a).is_none());
+    }
+
+    /// Compiling edited limits alone gives the full compile of the edited plan.
+    #[test]
+    fn limits_compiled_alone_are_the_full_compile() {
+        let plan = default_plan();
+        let base = Problem::compile(&plan).expect("compiles");
+        let mut edited = plan.clone();
+        edited.battery.min_soc *= 0.5;
+        edited.power.max_peak = Some(1234.5);
+        edited.sleep.min_awake += 60;
+        let shell = edited.without_activities();
+        assert_eq!(
+            base.with_limits(&shell).expect("compiles"),
+            Problem::compile(&edited).expect("compiles")
+        );
+    }
 }

@@ -13,12 +13,13 @@ use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 use rayon::prelude::*;
 
 use super::{Candidate, round3};
-use crate::edit::edited;
+use crate::edit::{edited, edited_activity, edited_limits};
 use crate::explain::Suggestion;
 use crate::model::Plan;
 use crate::scheduler::{
-    Problem, Schedule, placement_after_edit, placements_if_placed, probe_after_edit, schedule,
+    Problem, Schedule, placement_after_edit, placements_if_placed, probe_after_edit,
 };
+use crate::validate::{ActivityEdits, LIMIT_SECTIONS};
 
 /// Placements by activity index in the run of an edited plan (`None`: not
 /// placed, or its step not run).
@@ -57,6 +58,9 @@ pub(super) struct Runs<'a> {
     share: bool,
     /// What is known per edit asked about.
     edits: Mutex<BTreeMap<EditKey, Asked>>,
+    /// The plan's context for checking edits of one activity, built on first
+    /// use.
+    checks: OnceLock<ActivityEdits<'a>>,
 }
 
 /// An edit asked about: how many times, and its whole run once computed
@@ -74,13 +78,49 @@ impl<'a> Runs<'a> {
             sched,
             share,
             edits: Mutex::new(BTreeMap::new()),
+            checks: OnceLock::new(),
         }
     }
 
     /// The plan edited by `c`, compiled sharing the original plan's compiled
     /// activities that the edit leaves alone; `None` when the edit gives no
-    /// valid plan.
-    fn edit(&self, c: &Candidate) -> Option<(Plan, Problem)> {
+    /// valid plan. An edit of one activity that keeps its id and the names it
+    /// interns is checked and compiled alone, without building the edited
+    /// plan (debug builds compare with the edited plan, compiled in full).
+    fn edit(&self, c: &Candidate) -> Option<Problem> {
+        if !c.set.contains_key("id") {
+            if let Some((i, activity)) = edited_activity(self.plan, &c.target, &c.set) {
+                let checks = self.checks.get_or_init(|| ActivityEdits::new(self.plan));
+                // `Some(None)`: not a valid plan.
+                let quick = match checks.check(i, &activity) {
+                    Ok(()) => self
+                        .sched
+                        .problem
+                        .with_activity(self.plan, i, &activity)
+                        .map(Result::ok),
+                    Err(_) => Some(None),
+                };
+                if let Some(quick) = quick {
+                    debug_assert_eq!(
+                        quick,
+                        edited(self.plan, &c.target, &c.set)
+                            .and_then(|p| Problem::compile(&p).ok()),
+                        "the edit checked and compiled alone differs"
+                    );
+                    return quick;
+                }
+            }
+        }
+        if c.target == "plan" && c.set.keys().all(|k| LIMIT_SECTIONS.contains(&k.as_str())) {
+            let quick = edited_limits(self.plan, &c.set)
+                .and_then(|shell| self.sched.problem.with_limits(&shell).ok());
+            debug_assert_eq!(
+                quick,
+                edited(self.plan, &c.target, &c.set).and_then(|p| Problem::compile(&p).ok()),
+                "the edit of the limits compiled alone differs"
+            );
+            return quick;
+        }
         let plan = edited(self.plan, &c.target, &c.set)?;
         let edited_activity = match c.target.strip_prefix("activity:") {
             // (An edit that renamed it is compiled in full.)
@@ -96,7 +136,7 @@ impl<'a> Runs<'a> {
             None => Problem::compile(&plan),
         }
         .ok()?;
-        Some((plan, problem))
+        Some(problem)
     }
 
     /// The whole run of the plan edited by `c`, if one was computed.
@@ -134,23 +174,23 @@ impl<'a> Runs<'a> {
         match whole {
             Some(cell) => {
                 let placements = cell.get_or_init(|| {
-                    let (plan, problem) = self.edit(c)?;
-                    let all: Vec<usize> = (0..plan.activities.len()).collect();
-                    placements_if_placed(self.sched, &plan, &problem, &all)
+                    let problem = self.edit(c)?;
+                    let all: Vec<usize> = (0..problem.acts.len()).collect();
+                    placements_if_placed(self.sched, &problem, &all)
                         .ok()
                         .flatten()
                 });
                 placed_in(placements.as_ref(), a)
             }
             None => {
-                let Some((plan, problem)) = self.edit(c) else {
+                let Some(problem) = self.edit(c) else {
                     return false;
                 };
                 let Some(chain) = chain else {
-                    return places(&plan, problem, a, self.sched);
+                    return places(problem, a, self.sched);
                 };
                 let prev = chain.as_ref().unwrap_or(self.sched);
-                match probe_after_edit(prev, &plan, problem, a) {
+                match probe_after_edit(prev, problem, a) {
                     Ok((Some(_), _)) => true,
                     Ok((None, run)) => {
                         *chain = Some(run);
@@ -193,20 +233,20 @@ impl<'a> Runs<'a> {
                 return answer(placements.as_ref());
             }
         }
-        let Some((plan, problem)) = self.edit(c) else {
+        let Some(problem) = self.edit(c) else {
             return vec![None; asking.len()];
         };
         if let [a] = asking {
-            return vec![side_effects(&plan, &problem, *a, self.sched)];
+            return vec![side_effects(&problem, *a, self.sched)];
         }
-        let placements = placements_if_placed(self.sched, &plan, &problem, asking)
+        let placements = placements_if_placed(self.sched, &problem, asking)
             .ok()
             .flatten();
         #[cfg(debug_assertions)]
         for &a in asking {
             debug_assert_eq!(
                 placed_in(placements.as_ref(), a),
-                side_effects(&plan, &problem, a, self.sched).is_some(),
+                side_effects(&problem, a, self.sched).is_some(),
                 "one run for several activities disagrees with the run for one"
             );
         }
@@ -226,7 +266,7 @@ impl Runs<'_> {
         let once = edited(self.plan, &x.target, &x.set)?;
         let twice = edited(&once, &y.target, &y.set)?;
         let problem = Problem::compile(&twice).ok()?;
-        let side_effects = side_effects(&twice, &problem, a, self.sched)?;
+        let side_effects = side_effects(&problem, a, self.sched)?;
         Some(
             [x, y]
                 .into_iter()
@@ -312,29 +352,23 @@ pub(super) fn verified(
         .collect()
 }
 
-/// Whether activity `a` is placed in the run of the edited `plan` (compiled:
-/// `problem`; only the steps up to its own are run). Debug builds check it
-/// against a full run from scratch.
-fn places(plan: &Plan, problem: Problem, a: usize, before: &Schedule) -> bool {
-    let placed = placement_after_edit(before, plan, problem, a)
+/// Whether activity `a` is placed in the run of the edited plan (compiled:
+/// `problem`; only the steps up to its own are run, which debug builds check
+/// against a full run from scratch).
+fn places(problem: Problem, a: usize, before: &Schedule) -> bool {
+    placement_after_edit(before, problem, a)
         .ok()
-        .flatten();
-    debug_assert_eq!(
-        placed,
-        schedule(plan).ok().and_then(|s| s.placement(a)),
-        "the run up to the activity's step disagrees with a full run"
-    );
-    placed.is_some()
+        .flatten()
+        .is_some()
 }
 
-/// If activity `a` is placed in the run of the edited `plan`: the activities
+/// If activity `a` is placed in the run of the edited plan (compiled:
+/// `problem`): the activities
 /// scheduled in `before` that are not any more. The steps after `a`'s are run
 /// only when it is placed, and only where `a`'s placement can change them
 /// ([`placements_if_placed`], which debug builds check against a full run).
-fn side_effects(plan: &Plan, problem: &Problem, a: usize, before: &Schedule) -> Option<Vec<usize>> {
-    let after = placements_if_placed(before, plan, problem, &[a])
-        .ok()
-        .flatten()?;
+fn side_effects(problem: &Problem, a: usize, before: &Schedule) -> Option<Vec<usize>> {
+    let after = placements_if_placed(before, problem, &[a]).ok().flatten()?;
     Some(
         before
             .steps
