@@ -44,10 +44,11 @@ pub(crate) type Placements = Vec<Option<(i64, i64)>>;
 /// change.
 pub(crate) fn placement_after_edit(
     prev: &Schedule,
+    starts: Option<&Checkpoints<'_>>,
     problem: super::Problem,
     a: usize,
 ) -> Result<Option<(i64, i64)>, Error> {
-    Ok(run_to(prev, problem, a, false)?.0)
+    Ok(run_to(prev, starts, problem, a, false)?.0)
 }
 
 /// [`placement_after_edit`], with the run's record of the steps up to `a`'s: a
@@ -61,22 +62,24 @@ pub(crate) fn placement_after_edit(
 /// search, in [`Run::up_to`]).
 pub(crate) fn probe_after_edit(
     prev: &Schedule,
+    starts: Option<&Checkpoints<'_>>,
     problem: super::Problem,
     a: usize,
 ) -> Result<(Option<(i64, i64)>, Schedule), Error> {
-    run_to(prev, problem, a, true)
+    run_to(prev, starts, problem, a, true)
 }
 
 /// The run of the edited plan compiled as `problem` up to `a`'s step: where
 /// `a` is placed, and with `record` the steps' records (else none).
 fn run_to(
     prev: &Schedule,
+    starts: Option<&Checkpoints<'_>>,
     problem: super::Problem,
     a: usize,
     record: bool,
 ) -> Result<(Option<(i64, i64)>, Schedule), Error> {
     let until = problem.step_of.get(a).copied().unwrap_or(0);
-    let run = Run::up_to(prev, &problem, until, Some(a), record);
+    let run = Run::up_to(prev, starts, &problem, until, Some(a), record);
     let placed = run.placements.get(a).copied().flatten();
     let steps = run.steps;
     #[cfg(debug_assertions)]
@@ -114,6 +117,7 @@ fn run_to(
 /// starts away from them (the module docs).
 pub(crate) fn placements_if_placed(
     prev: &Schedule,
+    starts: Option<&Checkpoints<'_>>,
     problem: &super::Problem,
     targets: &[usize],
 ) -> Result<Option<Placements>, Error> {
@@ -132,7 +136,7 @@ pub(crate) fn placements_if_placed(
         placed_a,
         done,
         ..
-    } = Run::up_to(prev, problem, until, single, false);
+    } = Run::up_to(prev, starts, problem, until, single, false);
     let any_placed = match single {
         Some(_) => placed_a.is_some(),
         None => targets
@@ -155,11 +159,20 @@ pub(crate) fn placements_if_placed(
                 || (prev.placement(a).is_none() && moved_only(&prev.problem, problem, a)))
                 && restrictive(problem, &placed_a) =>
         {
-            // The original steps of the activities run so far, in their order.
+            // The original steps of the activities run so far, in their order:
+            // a prefix of the original run, and past it (when `a` moved) the
+            // steps of the activities that moved before it.
             let mut run: Vec<usize> = problem.order[..done].iter().map(|&j| orig(j)).collect();
             run.sort_unstable();
-            let mut old_state = State::new(&prev.problem);
-            for i in run {
+            let prefix = run.iter().enumerate().take_while(|&(i, &k)| i == k).count();
+            let (from, mut old_state) = match starts {
+                Some(c) => {
+                    let (k, state) = c.at_most(c.agree(prev, &prev.problem, prefix));
+                    (k, state.rebased(&prev.problem))
+                }
+                None => (0, State::new(&prev.problem)),
+            };
+            for &i in &run[from..] {
                 old_state.replay(&prev.steps[i]);
             }
             Some((old_state, placed_a.placement))
@@ -274,6 +287,82 @@ pub fn run_outcomes(plan: &Plan) -> Result<RunOutcomes, Error> {
     })
 }
 
+/// The states of a run after every `every` steps: reruns of edits of its
+/// plan start from the latest one among the steps they share with it, rather
+/// than replaying those steps from the start. At most [`CHECKPOINTS`] of
+/// them, so that their memory stays a small multiple of one state's.
+pub(crate) struct Checkpoints<'p> {
+    /// The run.
+    sched: &'p Schedule,
+    every: usize,
+    /// `states[i]`: the state after `i * every` steps.
+    states: Vec<State<'p>>,
+}
+
+/// Most checkpoints kept of one run.
+const CHECKPOINTS: usize = 32;
+
+/// Fewest steps between two checkpoints: a state costs more to copy than a
+/// few steps to replay. Debug builds keep one after every step of a small
+/// run, so that the property tests' small plans start reruns from them.
+const MIN_SPACING: usize = if cfg!(debug_assertions) { 1 } else { 16 };
+
+impl<'p> Checkpoints<'p> {
+    /// The checkpoints of `sched`, its steps replayed once.
+    pub(crate) fn new(sched: &'p Schedule) -> Self {
+        let n = sched.steps.len();
+        let every = n.div_ceil(CHECKPOINTS).max(MIN_SPACING);
+        let mut state = State::new(&sched.problem);
+        let mut states = vec![state.clone()];
+        for (k, step) in sched.steps.iter().enumerate() {
+            state.replay(step);
+            if (k + 1) % every == 0 {
+                states.push(state.clone());
+            }
+        }
+        Self {
+            sched,
+            every,
+            states,
+        }
+    }
+
+    /// How many of the first `upto` steps of `prev`, run on `problem`, give
+    /// the states of these checkpoints' run: `prev` is that run, or those
+    /// steps place the same activities, compiled the same, at the same times,
+    /// in a problem with the same timelines (a relaxed limit aside). The
+    /// least-relaxation search runs each probe from the last one's run, which
+    /// agrees with the run explained up to its first change.
+    fn agree(&self, prev: &Schedule, problem: &super::Problem, upto: usize) -> usize {
+        let upto = upto.min(prev.steps.len());
+        if std::ptr::eq(self.sched, prev) {
+            return upto;
+        }
+        let mine = &self.sched.problem;
+        if mine.acts.len() != problem.acts.len()
+            || mine.without_limits() != problem.without_limits()
+        {
+            return 0;
+        }
+        self.sched
+            .steps
+            .iter()
+            .zip(&prev.steps[..upto])
+            .take_while(|(x, y)| {
+                x.activity == y.activity
+                    && x.outcome.placement() == y.outcome.placement()
+                    && mine.acts[x.activity] == problem.acts[x.activity]
+            })
+            .count()
+    }
+
+    /// The latest checkpoint at or before step `k`: its step count and state.
+    fn at_most(&self, k: usize) -> (usize, &State<'p>) {
+        let i = (k / self.every).min(self.states.len() - 1);
+        (i * self.every, &self.states[i])
+    }
+}
+
 /// The state and placements of an outcome-only run up to some step.
 struct Run<'p> {
     state: State<'p>,
@@ -294,6 +383,7 @@ impl<'p> Run<'p> {
     /// limit rejects fewer).
     fn up_to(
         prev: &Schedule,
+        starts: Option<&Checkpoints<'_>>,
         problem: &'p super::Problem,
         until: usize,
         a: Option<usize>,
@@ -301,25 +391,62 @@ impl<'p> Run<'p> {
     ) -> Self {
         let mut steps = Vec::new();
         let common = prev.problem.common_steps(problem).min(until);
-        let mut state = State::new(problem);
+        // While every step so far came out as in `prev`, the state is the same as
+        // there, and a plan-wide relaxation can change a step only through the
+        // tries its record shows failing on the relaxed limit.
+        let relaxed = Relaxation::between(&prev.problem, problem);
+        // The steps that come out as in `prev`: the common ones, then (for a
+        // relaxation) those it keeps.
+        let kept = match relaxed {
+            Some(r) => {
+                common
+                    + prev.steps[common..until.min(prev.steps.len())]
+                        .iter()
+                        .take_while(|before| r.keeps(problem, before))
+                        .count()
+            }
+            None => common,
+        };
+        #[cfg(debug_assertions)]
+        for k in common..kept {
+            let j = problem.order[k];
+            debug_assert_eq!(
+                outcome_step(&State::replayed(problem, &prev.steps[..k]), j, k + 1)
+                    .map(|ev| span(&ev.placement)),
+                prev.steps[k].outcome.placement(),
+                "a step the relaxation {relaxed:?} keeps changed: {:?}",
+                prev.steps[k]
+            );
+        }
+        // Their state is `prev`'s: after the latest checkpoint among them (not
+        // past `a`'s step, whose evaluation is kept), the steps after it
+        // replayed.
+        let a_step = a
+            .and_then(|a| prev.problem.step_of.get(a))
+            .map_or(usize::MAX, |&k| k - 1);
+        let (from, mut state) = match starts {
+            Some(c) if kept > 0 => {
+                let (k, state) = c.at_most(c.agree(prev, problem, kept.min(a_step)));
+                (k, state.rebased(problem))
+            }
+            _ => (0, State::new(problem)),
+        };
         let mut placements = vec![None; problem.acts.len()];
         let mut placed_a = None;
-        for step in &prev.steps[..common] {
+        for (k, step) in prev.steps[..kept].iter().enumerate() {
             placements[step.activity] = step.outcome.placement();
-            let ev = state.replay(step);
-            if Some(step.activity) == a {
-                placed_a = ev;
+            if k >= from {
+                let ev = state.replay(step);
+                if Some(step.activity) == a {
+                    placed_a = ev;
+                }
             }
             if record {
                 steps.push(step.clone());
             }
         }
-        // While every step so far came out as in `prev`, the state is the same as
-        // there, and a plan-wide relaxation can change a step only through the
-        // tries its record shows failing on the relaxed limit.
-        let relaxed = Relaxation::between(&prev.problem, problem);
         let mut same_so_far = true;
-        for (k, &j) in problem.order.iter().enumerate().take(until).skip(common) {
+        for (k, &j) in problem.order.iter().enumerate().take(until).skip(kept) {
             let before = &prev.steps[k];
             if same_so_far && relaxed.is_some_and(|r| r.keeps(problem, before)) {
                 placements[j] = before.outcome.placement();

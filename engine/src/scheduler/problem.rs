@@ -216,6 +216,20 @@ impl Problem {
         self.acts.len() == other.acts.len() && self.plan_wide() == other.plan_wide()
     }
 
+    /// [`Problem::plan_wide`] without the limits that only checks read
+    /// (`min_soc`, `max_peak`, `data_cap`, the handover limits): what every
+    /// timeline of a state depends on.
+    pub(crate) fn without_limits(&self) -> Problem {
+        Problem {
+            min_soc: 0,
+            max_peak: None,
+            data_cap: None,
+            handover_soc: None,
+            handover_data: None,
+            ..self.plan_wide()
+        }
+    }
+
     /// The plan-wide parameters alone: this problem without its activities and
     /// their order (cheap to copy and compare).
     pub(crate) fn plan_wide(&self) -> Problem {
@@ -322,10 +336,11 @@ impl Problem {
     /// This problem, compiled from `plan`, with activity `i` replaced by
     /// `new` (an edit of it that keeps its id), compiling `new` alone: what
     /// [`Problem::compile`] gives for the plan so edited (debug builds
-    /// compare). `None` when the edit changes the names `new` interns (its
-    /// resources, UHF kinds, communication kind or group), which can move
-    /// other activities' indices: compile the edited plan then. The
-    /// suggestion verifier compiles thousands of edits of one activity each.
+    /// compare). `None` when the edit changes the names first interned at
+    /// `i` (a resource, UHF kind, communication kind or group that no earlier
+    /// activity names), which can move other activities' indices: compile the
+    /// edited plan then. The suggestion verifier compiles thousands of edits
+    /// of one activity each.
     pub(crate) fn with_activity(
         &self,
         plan: &Plan,
@@ -334,19 +349,22 @@ impl Problem {
     ) -> Option<Result<Problem, Error>> {
         let old = plan.activities.get(i)?;
         let base = self.acts.get(i)?;
-        if new.id != old.id
-            || new.resources != old.resources
-            || new.uhf_interactions != old.uhf_interactions
-            || new.comm_kind != old.comm_kind
-            || new.group != old.group
-        {
+        if new.id != old.id {
             return None;
         }
-        let names = Names {
-            resources: base.resources.clone(),
-            uhf: base.uhf.clone(),
-            comm: base.comm,
-            group: base.group,
+        let names = if new.resources == old.resources
+            && new.uhf_interactions == old.uhf_interactions
+            && new.comm_kind == old.comm_kind
+            && new.group == old.group
+        {
+            Names {
+                resources: base.resources.clone(),
+                uhf: base.uhf.clone(),
+                comm: base.comm,
+                group: base.group,
+            }
+        } else {
+            self.names_at(plan, i, old, new)?
         };
         // Ids are unique in a valid plan.
         let ids = |id: &str| plan.activities.iter().position(|a| a.id == id);
@@ -373,6 +391,68 @@ impl Problem {
             out.step_of = step_numbers(&out.order);
         }
         Some(Ok(out))
+    }
+
+    /// The indices `new`, in place of `old` as activity `i` of `plan`, interns
+    /// its names at, when the names first interned at `i` (named by no earlier
+    /// activity) are the same, in the same order, for both: every other
+    /// activity then keeps its indices. `None` otherwise.
+    fn names_at(&self, plan: &Plan, i: usize, old: &Activity, new: &Activity) -> Option<Names> {
+        // The names interned before `i`, with their indices.
+        let mut resources: BTreeMap<&str, usize> = BTreeMap::new();
+        let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
+        let mut groups: BTreeMap<&str, usize> = BTreeMap::new();
+        for (a, c) in plan.activities[..i].iter().zip(&self.acts) {
+            resources.extend(
+                a.resources
+                    .iter()
+                    .map(String::as_str)
+                    .zip(c.resources.iter().copied()),
+            );
+            if let (Some(names), Some(ks)) = (&a.uhf_interactions, &c.uhf) {
+                kinds.extend(names.iter().map(String::as_str).zip(ks.iter().copied()));
+            }
+            if let (Some(name), Some(k)) = (&a.comm_kind, c.comm) {
+                kinds.insert(name, k);
+            }
+            if let (Some(name), Some(g)) = (&a.group, c.group) {
+                groups.insert(name, g);
+            }
+        }
+        // Interns an activity's names after those: its indices, and the names
+        // it interned first, in order (a fresh name's index is the number
+        // of names before it in its space).
+        let intern_all = |a: &Activity| {
+            let mut fresh: Vec<(u8, String)> = Vec::new();
+            let mut take = |map: &BTreeMap<&str, usize>, space: u8, name: &str| {
+                if let Some(&k) = map.get(name) {
+                    return k;
+                }
+                let mut mine = fresh.iter().filter(|(x, _)| *x == space);
+                let rank = match mine.position(|(_, n)| *n == name) {
+                    Some(rank) => rank,
+                    None => {
+                        let rank = fresh.iter().filter(|(x, _)| *x == space).count();
+                        fresh.push((space, name.to_string()));
+                        rank
+                    }
+                };
+                map.len() + rank
+            };
+            let names = Names {
+                resources: a.resources.iter().map(|r| take(&resources, 0, r)).collect(),
+                uhf: a
+                    .uhf_interactions
+                    .as_ref()
+                    .map(|list| list.iter().map(|k| take(&kinds, 1, k)).collect()),
+                comm: a.comm_kind.as_deref().map(|k| take(&kinds, 1, k)),
+                group: a.group.as_deref().map(|g| take(&groups, 2, g)),
+            };
+            (names, fresh)
+        };
+        let (_, old_fresh) = intern_all(old);
+        let (names, new_fresh) = intern_all(new);
+        (old_fresh == new_fresh).then_some(names)
     }
 
     /// This problem with the plan-wide limits of `shell` (the plan without
@@ -744,6 +824,60 @@ mod tests {
             }
         }
         assert!(moved > plan.activities.len(), "few edits moved an activity");
+    }
+
+    /// Edits of the names an activity interns: compiled alone exactly when
+    /// they keep every other activity's indices, and then as in full.
+    #[test]
+    fn renamed_activities_compiled_alone_or_in_full() {
+        // The default plan, and one where activity 1 is the first to name
+        // two resources, in a group that activity 0 named first.
+        let mut two_fresh = default_plan();
+        two_fresh.activities[0].group = Some("shared".into());
+        two_fresh.activities[1].group = Some("shared".into());
+        two_fresh.activities[1].resources = vec!["fresh_a".into(), "fresh_b".into()];
+        let (mut alone, mut full) = (0, 0);
+        for plan in [default_plan(), two_fresh] {
+            renamed(&plan, &mut alone, &mut full);
+        }
+        assert!(alone > 100 && full > 10, "{alone} alone, {full} in full");
+    }
+
+    fn renamed(plan: &Plan, alone: &mut usize, full: &mut usize) {
+        let base = Problem::compile(plan).expect("compiles");
+        for i in 0..plan.activities.len() {
+            let first_group = plan.activities.iter().find_map(|a| a.group.clone());
+            let first_resource = plan
+                .activities
+                .iter()
+                .find_map(|a| a.resources.first().cloned());
+            let edits: Vec<Box<dyn Fn(&mut Activity)>> = vec![
+                Box::new(|a| a.group = None),
+                Box::new(|a| a.group = first_group.clone()),
+                Box::new(|a| a.resources.clear()),
+                Box::new(|a| a.resources.reverse()),
+                Box::new(|a| a.resources.extend(first_resource.clone())),
+                Box::new(|a| a.comm_kind = None),
+                Box::new(|a| a.uhf_interactions = None),
+                Box::new(|a| a.resources.push("new_resource".into())),
+            ];
+            for edit in &edits {
+                let mut edited = plan.clone();
+                edit(&mut edited.activities[i]);
+                let want = Problem::compile(&edited).expect("compiles");
+                match base.with_activity(plan, i, &edited.activities[i]) {
+                    Some(got) => {
+                        assert_eq!(got.expect("compiles"), want, "activity {i}");
+                        *alone += 1;
+                    }
+                    None => {
+                        // Left to a full compile: some other activity's
+                        // index moves, or `i` names something new.
+                        *full += 1;
+                    }
+                }
+            }
+        }
     }
 
     /// An edit that changes the names an activity interns is left to a full

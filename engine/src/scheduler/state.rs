@@ -115,6 +115,43 @@ impl<'p> State<'p> {
         .with_cycle_start()
     }
 
+    /// This state for `problem`, a plan that compiles to the same plan-wide
+    /// parameters (but for limits no timeline holds: `min_soc`, `max_peak`,
+    /// the data and handover limits) and gives the same placements at every
+    /// step this state has run (the steps two problems share,
+    /// [`Problem::common_steps`], or those a relaxation keeps): those steps
+    /// run on `problem` give this state, so it is copied, not replayed.
+    pub(crate) fn rebased<'q>(&self, problem: &'q Problem) -> State<'q> {
+        debug_assert!(
+            self.problem.without_limits() == problem.without_limits()
+                && self.placed.len() == problem.acts.len()
+                && self.group_member.len() == State::new(problem).group_member.len(),
+            "not a state of the same plan-wide problem"
+        );
+        State {
+            problem,
+            placed: self.placed.clone(),
+            by_start: self.by_start.clone(),
+            longest: self.longest,
+            group_member: self.group_member.clone(),
+            busy: self.busy.clone(),
+            engines: self.engines.clone(),
+            states: self.states.clone(),
+            data: self.data.clone(),
+            produced: self.produced,
+            comms: self.comms.clone(),
+            restricted: self.restricted.clone(),
+            awake: self.awake.clone(),
+            sleeps: self.sleeps.clone(),
+            sleep_reach: self.sleep_reach.clone(),
+            zone_draw: self.zone_draw.clone(),
+            zone_on: self.zone_on.clone(),
+            peak: self.peak.clone(),
+            soc: self.soc.clone(),
+            peak_max: self.peak_max,
+        }
+    }
+
     /// Applies what a cycle of an execution starts from (nothing otherwise): the
     /// awake period the rover is in, the heaters already on, and the data already
     /// produced towards the handover limit.

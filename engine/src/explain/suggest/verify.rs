@@ -17,7 +17,7 @@ use crate::edit::{edited, edited_activity, edited_limits};
 use crate::explain::Suggestion;
 use crate::model::Plan;
 use crate::scheduler::{
-    Problem, Schedule, placement_after_edit, placements_if_placed, probe_after_edit,
+    Checkpoints, Problem, Schedule, placement_after_edit, placements_if_placed, probe_after_edit,
 };
 use crate::validate::{ActivityEdits, LIMIT_SECTIONS};
 
@@ -61,6 +61,8 @@ pub(super) struct Runs<'a> {
     /// The plan's context for checking edits of one activity, built on first
     /// use.
     checks: OnceLock<ActivityEdits<'a>>,
+    /// States of the run explained to start reruns from, built on first use.
+    starts: OnceLock<Checkpoints<'a>>,
 }
 
 /// An edit asked about: how many times, and its whole run once computed
@@ -79,7 +81,13 @@ impl<'a> Runs<'a> {
             share,
             edits: Mutex::new(BTreeMap::new()),
             checks: OnceLock::new(),
+            starts: OnceLock::new(),
         }
+    }
+
+    /// States of the run explained to start reruns from.
+    fn starts(&self) -> Option<&Checkpoints<'a>> {
+        Some(self.starts.get_or_init(|| Checkpoints::new(self.sched)))
     }
 
     /// The plan edited by `c`, compiled sharing the original plan's compiled
@@ -176,7 +184,7 @@ impl<'a> Runs<'a> {
                 let placements = cell.get_or_init(|| {
                     let problem = self.edit(c)?;
                     let all: Vec<usize> = (0..problem.acts.len()).collect();
-                    placements_if_placed(self.sched, &problem, &all)
+                    placements_if_placed(self.sched, self.starts(), &problem, &all)
                         .ok()
                         .flatten()
                 });
@@ -187,10 +195,13 @@ impl<'a> Runs<'a> {
                     return false;
                 };
                 let Some(chain) = chain else {
-                    return places(problem, a, self.sched);
+                    return placement_after_edit(self.sched, self.starts(), problem, a)
+                        .ok()
+                        .flatten()
+                        .is_some();
                 };
                 let prev = chain.as_ref().unwrap_or(self.sched);
-                match probe_after_edit(prev, problem, a) {
+                match probe_after_edit(prev, self.starts(), problem, a) {
                     Ok((Some(_), _)) => true,
                     Ok((None, run)) => {
                         *chain = Some(run);
@@ -237,16 +248,16 @@ impl<'a> Runs<'a> {
             return vec![None; asking.len()];
         };
         if let [a] = asking {
-            return vec![side_effects(&problem, *a, self.sched)];
+            return vec![side_effects(&problem, *a, self.sched, self.starts())];
         }
-        let placements = placements_if_placed(self.sched, &problem, asking)
+        let placements = placements_if_placed(self.sched, self.starts(), &problem, asking)
             .ok()
             .flatten();
         #[cfg(debug_assertions)]
         for &a in asking {
             debug_assert_eq!(
                 placed_in(placements.as_ref(), a),
-                side_effects(&problem, a, self.sched).is_some(),
+                side_effects(&problem, a, self.sched, self.starts()).is_some(),
                 "one run for several activities disagrees with the run for one"
             );
         }
@@ -266,7 +277,7 @@ impl Runs<'_> {
         let once = edited(self.plan, &x.target, &x.set)?;
         let twice = edited(&once, &y.target, &y.set)?;
         let problem = Problem::compile(&twice).ok()?;
-        let side_effects = side_effects(&problem, a, self.sched)?;
+        let side_effects = side_effects(&problem, a, self.sched, self.starts())?;
         Some(
             [x, y]
                 .into_iter()
@@ -352,23 +363,20 @@ pub(super) fn verified(
         .collect()
 }
 
-/// Whether activity `a` is placed in the run of the edited plan (compiled:
-/// `problem`; only the steps up to its own are run, which debug builds check
-/// against a full run from scratch).
-fn places(problem: Problem, a: usize, before: &Schedule) -> bool {
-    placement_after_edit(before, problem, a)
-        .ok()
-        .flatten()
-        .is_some()
-}
-
 /// If activity `a` is placed in the run of the edited plan (compiled:
 /// `problem`): the activities
 /// scheduled in `before` that are not any more. The steps after `a`'s are run
 /// only when it is placed, and only where `a`'s placement can change them
 /// ([`placements_if_placed`], which debug builds check against a full run).
-fn side_effects(problem: &Problem, a: usize, before: &Schedule) -> Option<Vec<usize>> {
-    let after = placements_if_placed(before, problem, &[a]).ok().flatten()?;
+fn side_effects(
+    problem: &Problem,
+    a: usize,
+    before: &Schedule,
+    starts: Option<&Checkpoints<'_>>,
+) -> Option<Vec<usize>> {
+    let after = placements_if_placed(before, starts, problem, &[a])
+        .ok()
+        .flatten()?;
     Some(
         before
             .steps
