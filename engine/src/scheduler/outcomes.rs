@@ -208,7 +208,10 @@ pub(crate) fn placements_if_placed(
                 }
             }
         }
-        let ev = outcome_step(&state, j, step_no);
+        // A step that failed in the original run rarely gets its ideal
+        // placement now: searched at once.
+        let hint = prev.steps[orig(j)].outcome.placement().is_some();
+        let ev = recorded_step(&state, j, step_no, false, hint).0;
         let placement = ev.as_ref().map(|ev| span(&ev.placement));
         if let Some((old_state, _)) = old.as_mut() {
             let before = &prev.steps[orig(j)];
@@ -465,7 +468,8 @@ impl<'p> Run<'p> {
                 }
                 continue;
             }
-            let (ev, step) = recorded_step(&state, j, k + 1, record);
+            let hint = before.activity != j || before.outcome.placement().is_some();
+            let (ev, step) = recorded_step(&state, j, k + 1, record, hint);
             steps.extend(step);
             let placement = ev.as_ref().map(|ev| span(&ev.placement));
             same_so_far &= before.activity == j && placement == before.outcome.placement();
@@ -593,18 +597,22 @@ fn data_unbound(problem: &super::Problem, step: &super::Step) -> bool {
 /// The placement step `step_no` (activity `a`) makes in `state`: the ideal one
 /// when it fits, else the full search's.
 fn outcome_step(state: &State<'_>, a: usize, step_no: usize) -> Option<Evaluated> {
-    recorded_step(state, a, step_no, false).0
+    recorded_step(state, a, step_no, false, true).0
 }
 
 /// [`outcome_step`], with the step's record when `record` (the ideal placement,
-/// which nothing can beat, records no rejected start).
+/// which nothing can beat, records no rejected start). Without `try_ideal`
+/// (a hint that it rarely fits: the activity failed in a run like this one)
+/// the step is searched at once: the same outcome, without the cost of the
+/// ideal placement's check where it fails.
 fn recorded_step(
     state: &State<'_>,
     a: usize,
     step_no: usize,
     record: bool,
+    try_ideal: bool,
 ) -> (Option<Evaluated>, Option<super::Step>) {
-    if let Some(ev) = ideal(state, a) {
+    if let Some(ev) = try_ideal.then(|| ideal(state, a)).flatten() {
         debug_assert_eq!(
             run_step(state, a, step_no, &Scope::default(), Detail::Outcome)
                 .step
