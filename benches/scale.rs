@@ -25,7 +25,10 @@
 //! moving the step, as a slider drag gives one new step per frame; the same with
 //! five step changes arriving between two frames; 30 frames zooming the time
 //! range in then out), with the median and worst frame, and how long the plots
-//! take to catch up with the last step once the drag stops.
+//! take to catch up with the last step once the drag stops. `--growth` measures
+//! how time grows with the plan: 1,000 to 30,000 activities at the same density,
+//! the median of 3 seeds (`--sweep N`: N seeds), with the exponent of each size
+//! against 1,000.
 
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
@@ -123,6 +126,13 @@ fn main() {
         flex(&profiles, quick, seeds);
         return;
     }
+    if std::env::args().any(|a| a == "--growth") {
+        let seeds = arg("--sweep")
+            .and_then(|v| v.parse::<u64>().ok())
+            .unwrap_or(3);
+        growth(&profiles, seeds);
+        return;
+    }
     if let Some(n) = arg("--sweep").and_then(|v| v.parse::<u64>().ok()) {
         sweep(&profiles, sizes, n);
         return;
@@ -167,6 +177,59 @@ fn huge() {
         ms(scheduled),
         ms(explain_time)
     );
+    if let Some(mb) = peak_rss_mb() {
+        println!("\npeak resident memory of the whole run: {mb:.0} MB");
+    }
+}
+
+/// Growth with the plan's size (`--growth`): 1,000, 3,000, 10,000 and 30,000
+/// activities at the same density (3, 9, 30 and 90 sols), the median over
+/// seeds `1..=seeds` of scheduling and of explaining every failure without
+/// suggestions, and the exponent `k` of `N^k` from 1,000 to each size (the
+/// issue's targets: schedule at most N^1.3, explain at most N^1.5, to 30,000).
+fn growth(profiles: &[(&str, Profile)], seeds: u64) {
+    println!(
+        "| profile | activities | sols | seeds | median schedule | exponent | median explain (no suggestions) | exponent |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    let opts = ExplainOptions {
+        activity: None,
+        no_suggestions: true,
+    };
+    for &(name, profile) in profiles {
+        let mut base: Option<(f64, f64)> = None;
+        for (n, sols) in [(1000, 3), (3000, 9), (10_000, 30), (30_000, 90)] {
+            let (mut scheduling, mut explaining): (Vec<_>, Vec<_>) = (1..=seeds)
+                .map(|seed| {
+                    let plan = generate_plan_with(profile, n, sols, seed);
+                    let t = Instant::now();
+                    let sched = std::hint::black_box(schedule(&plan).expect("schedules"));
+                    let scheduled = t.elapsed();
+                    let t = Instant::now();
+                    std::hint::black_box(explain(&plan, &sched, &opts).expect("explains"));
+                    ((scheduled, seed), (t.elapsed(), seed))
+                })
+                .unzip();
+            let (s, _, _) = median_worst(&mut scheduling);
+            let (e, _, _) = median_worst(&mut explaining);
+            let (s_secs, e_secs) = (s.as_secs_f64(), e.as_secs_f64());
+            let (s0, e0) = *base.get_or_insert((s_secs, e_secs));
+            let exponent = |t: f64, t0: f64| {
+                if n == 1000 {
+                    "".to_string()
+                } else {
+                    format!("N^{:.2}", (t / t0).ln() / (n as f64 / 1000.0).ln())
+                }
+            };
+            println!(
+                "| {name} | {n} | {sols} | {seeds} | {} | {} | {} | {} |",
+                ms(s),
+                exponent(s_secs, s0),
+                ms(e),
+                exponent(e_secs, e0)
+            );
+        }
+    }
     if let Some(mb) = peak_rss_mb() {
         println!("\npeak resident memory of the whole run: {mb:.0} MB");
     }

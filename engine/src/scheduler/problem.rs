@@ -782,6 +782,9 @@ mod tests {
     use super::*;
     use crate::load::load_plan;
 
+    /// An edit of one activity.
+    type Edit<'a> = Box<dyn Fn(&mut Activity) + 'a>;
+
     fn default_plan() -> Plan {
         load_plan(include_str!("../../../assets/default-plan.json"))
             .expect("the default plan loads")
@@ -801,7 +804,7 @@ mod tests {
         );
         let mut moved = 0;
         for i in 0..plan.activities.len() {
-            let edits: Vec<Box<dyn Fn(&mut Activity)>> = vec![
+            let edits: Vec<Edit<'_>> = vec![
                 Box::new(|a| a.priority = lo - 1),
                 Box::new(|a| a.priority = hi + 1),
                 Box::new(|a| a.priority = (lo + hi) / 2),
@@ -851,7 +854,7 @@ mod tests {
                 .activities
                 .iter()
                 .find_map(|a| a.resources.first().cloned());
-            let edits: Vec<Box<dyn Fn(&mut Activity)>> = vec![
+            let edits: Vec<Edit<'_>> = vec![
                 Box::new(|a| a.group = None),
                 Box::new(|a| a.group = first_group.clone()),
                 Box::new(|a| a.resources.clear()),
