@@ -908,3 +908,36 @@ fn a_min_soc_lowering_with_a_handover_limit_places_the_activity() {
         );
     }
 }
+
+/// An expanding activity that fails at every duration: its explanation is
+/// that of its shortest duration, and the notes say so.
+#[test]
+fn a_failed_expanding_activity_says_which_duration_it_explains() {
+    let p = plan(
+        json!({ "power": { "rtg": 0.0, "asleep": 10.0, "awake": 10.0, "max_peak": 100.0 } }),
+        json!([
+            { "id": "heater", "priority": 1, "duration": 1000, "awake": "any", "peak_power": 60.0,
+              "windows": [ { "start": 0, "end": 0 } ] },
+            // 10 + 60 + 40 = 110 W > 100 W wherever it overlaps the heater,
+            // and every start in [0, 500] does, at every duration.
+            { "id": "y", "priority": 2, "duration": { "min": 120, "max": 600 }, "awake": "any",
+              "peak_power": 40.0, "windows": [ { "start": 0, "end": 500 } ] }
+        ]),
+    );
+    let (s, ex) = explain_one(&p, "y");
+    assert_eq!(ex.phase, Some(Phase::Placement));
+    assert_eq!(ex.duration, 120);
+    let notes = solscope_engine::explanation_notes(&p, &s.problem, &ex);
+    assert!(
+        notes.iter().any(|n| n
+            == "y may last from 2 min to 10 min, and no duration fits; what follows is for its shortest, 2 min."),
+        "{notes:#?}"
+    );
+    // The same failure with a fixed duration gets no such note.
+    let mut fixed = p.clone();
+    fixed.activities[1].duration = solscope_engine::Duration::Fixed(120);
+    let (s, ex) = explain_one(&fixed, "y");
+    assert_eq!(ex.phase, Some(Phase::Placement));
+    let notes = solscope_engine::explanation_notes(&fixed, &s.problem, &ex);
+    assert!(!notes.iter().any(|n| n.contains("may last")), "{notes:#?}");
+}

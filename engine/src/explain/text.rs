@@ -4,7 +4,7 @@ use super::{Culprit, Explanation, Phase, ReasonRange};
 use crate::model::Plan;
 use crate::scheduler::{Category, Phase2Reason, Problem, Schedule};
 use crate::timeline::IntervalSet;
-use crate::units::{format_plan_time, format_watts, format_wh};
+use crate::units::{format_plan_time, format_span, format_watts, format_wh};
 
 /// Plan time `t` as planners read it: plan seconds and local time.
 fn at(problem: &Problem, t: i64) -> String {
@@ -128,6 +128,27 @@ pub fn explanation_notes(plan: &Plan, problem: &Problem, ex: &Explanation) -> Ve
         Some(k) => format!("It first fails once the activities of steps 1–{k} are placed."),
         None => String::new(),
     };
+    // An expanding activity fails at every duration; what follows (the
+    // constraints' intervals, the reasons) is for the one its record has.
+    let durations = problem
+        .acts
+        .get(ex.activity)
+        .map(|act| (act.dur_min, act.dur_max))
+        .filter(|(min, max)| {
+            min != max && matches!(phase, Phase::ValidIntervals | Phase::Placement)
+        });
+    let for_duration = durations.map(|(min, max)| {
+        let which = if ex.duration == min {
+            format!("its shortest, {}", format_span(min))
+        } else {
+            format!("a duration of {}", format_span(ex.duration))
+        };
+        format!(
+            "{me} may last from {} to {}, and no duration fits; what follows is for {which}.",
+            format_span(min),
+            format_span(max)
+        )
+    });
     match phase {
         Phase::Group => {
             let by = ex.blocked_by.map(name).unwrap_or_default();
@@ -145,6 +166,7 @@ pub fn explanation_notes(plan: &Plan, problem: &Problem, ex: &Explanation) -> Ve
             notes.push(format!(
                 "No start time of {me} satisfies all its constraints at once. {when}"
             ));
+            notes.extend(for_duration);
             for conflict in &ex.conflicts {
                 let parts: Vec<String> = conflict
                     .iter()
@@ -172,6 +194,7 @@ pub fn explanation_notes(plan: &Plan, problem: &Problem, ex: &Explanation) -> Ve
             notes.push(format!(
                 "Some start times pass every constraint on timing and resources, but each fails on power, sleep or heating. {when}"
             ));
+            notes.extend(for_duration);
             for r in ex.reasons.iter().take(8) {
                 let range = if r.first == r.last {
                     format!("At {}", at(problem, r.first))
