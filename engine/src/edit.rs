@@ -100,12 +100,21 @@ pub(crate) fn edited_activity(
 ) -> Option<(usize, Activity)> {
     let id = target.strip_prefix("activity:")?;
     let i = plan.activities.iter().position(|a| a.id == id)?;
-    let mut v = serde_json::to_value(&plan.activities[i]).ok()?;
+    Some((i, edit_activity(&plan.activities[i], set)?))
+}
+
+/// `activity` with the fields of `set` replaced (`null` removes one), read
+/// back from JSON with its shape checked; `None` for a shape the format
+/// refuses.
+pub(crate) fn edit_activity(
+    activity: &Activity,
+    set: &serde_json::Map<String, Value>,
+) -> Option<Activity> {
+    let mut v = serde_json::to_value(activity).ok()?;
     let obj = v.as_object_mut()?;
     merge_set(obj, set);
     check_activity_shape(obj, "").ok()?;
-    let activity: Activity = serde_json::from_value(v).ok()?;
-    Some((i, activity))
+    serde_json::from_value(v).ok()
 }
 
 /// The plan without its activities that an edit of `"plan"` gives, read from

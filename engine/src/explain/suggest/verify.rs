@@ -13,7 +13,7 @@ use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 use rayon::prelude::*;
 
 use super::{Candidate, round3};
-use crate::edit::{edited, edited_activity, edited_limits};
+use crate::edit::{edit_activity, edited, edited_activity, edited_limits};
 use crate::explain::Suggestion;
 use crate::model::Plan;
 use crate::scheduler::{
@@ -266,6 +266,94 @@ impl<'a> Runs<'a> {
 }
 
 impl Runs<'_> {
+    /// The plan edited by `x` and then by `y`, compiled; `None` when either
+    /// step gives no valid plan. Edits of limits, and of one activity each
+    /// that keep its id, are checked and compiled alone as in [`Runs::edit`];
+    /// other pairs build the edited plans (debug builds compare the two).
+    fn edit_pair(&self, x: &Candidate, y: &Candidate) -> Option<Problem> {
+        let slow = || {
+            let once = edited(self.plan, &x.target, &x.set)?;
+            let twice = edited(&once, &y.target, &y.set)?;
+            Problem::compile(&twice).ok()
+        };
+        match self.quick_pair(x, y) {
+            Some(quick) => {
+                debug_assert_eq!(quick, slow(), "the pair checked and compiled alone differs");
+                quick
+            }
+            None => slow(),
+        }
+    }
+
+    /// [`Runs::edit_pair`] by the quick paths: `Some(None)` when the pair
+    /// gives no valid plan, `None` when the quick paths do not apply.
+    fn quick_pair(&self, x: &Candidate, y: &Candidate) -> Option<Option<Problem>> {
+        let limits = |c: &Candidate| {
+            c.target == "plan" && c.set.keys().all(|k| LIMIT_SECTIONS.contains(&k.as_str()))
+        };
+        let activity =
+            |c: &Candidate| c.target.starts_with("activity:") && !c.set.contains_key("id");
+        let checks = self.checks.get_or_init(|| ActivityEdits::new(self.plan));
+        // An activity edit of the plan, checked: `None` when it is not valid
+        // (the activities' checks read only the others' ids, and no limit).
+        let checked = |c: &Candidate| {
+            edited_activity(self.plan, &c.target, &c.set)
+                .filter(|(i, act)| checks.check(*i, act).is_ok())
+        };
+        let base = &self.sched.problem;
+        if limits(x) && limits(y) {
+            // Disjoint sections (a pair never edits one field twice), each
+            // checked as the slow path does: `x` alone, then both.
+            edited_limits(self.plan, &x.set)?;
+            let mut both = x.set.clone();
+            both.extend(y.set.clone());
+            return Some(
+                edited_limits(self.plan, &both).and_then(|shell| base.with_limits(&shell).ok()),
+            );
+        }
+        if limits(x) && activity(y) {
+            let Some(shell) = edited_limits(self.plan, &x.set) else {
+                return Some(None);
+            };
+            let Some((j, ay)) = checked(y) else {
+                return Some(None);
+            };
+            let p = base.with_limits(&shell).ok()?;
+            return p.with_activity(self.plan, j, &ay).map(Result::ok);
+        }
+        if activity(x) && limits(y) {
+            let Some((i, ax)) = checked(x) else {
+                return Some(None);
+            };
+            let p = base.with_activity(self.plan, i, &ax)?.ok()?;
+            return Some(
+                edited_limits(self.plan, &y.set).and_then(|shell| p.with_limits(&shell).ok()),
+            );
+        }
+        if activity(x) && activity(y) {
+            let Some((i, ax)) = checked(x) else {
+                return Some(None);
+            };
+            if x.target == y.target {
+                let Some(axy) = edit_activity(&ax, &y.set).filter(|a| checks.check(i, a).is_ok())
+                else {
+                    return Some(None);
+                };
+                return base.with_activity(self.plan, i, &axy).map(Result::ok);
+            }
+            let Some((j, ay)) = checked(y) else {
+                return Some(None);
+            };
+            let p = base.with_activity(self.plan, i, &ax)?.ok()?;
+            // The plan after `x`: `y`'s compile reads the others' priorities
+            // and names.
+            let mut once = self.plan.clone();
+            once.activities[i] = ax;
+            return p.with_activity(&once, j, &ay).map(Result::ok);
+        }
+        None
+    }
+
     /// If the plan edited by `x` and then by `y` places activity `a`: the two as
     /// suggestions, with the activities the pair makes fail.
     pub(super) fn verify_pair(
@@ -274,9 +362,7 @@ impl Runs<'_> {
         y: &Candidate,
         a: usize,
     ) -> Option<Vec<Suggestion>> {
-        let once = edited(self.plan, &x.target, &x.set)?;
-        let twice = edited(&once, &y.target, &y.set)?;
-        let problem = Problem::compile(&twice).ok()?;
+        let problem = self.edit_pair(x, y)?;
         let side_effects = side_effects(&problem, a, self.sched, self.starts())?;
         Some(
             [x, y]
@@ -464,4 +550,78 @@ pub(super) fn tune_limit(
         }
     }
     Some(make(good))
+}
+
+#[cfg(test)]
+mod tests {
+    use serde_json::json;
+
+    use super::*;
+    use crate::load::load_plan;
+    use crate::scheduler::schedule;
+
+    /// A pair of edits compiled by the quick paths is the pair applied to the
+    /// plan and compiled in full, for every kind of pair the explainer makes:
+    /// limits and limits, limits and an activity either way round, two
+    /// activities, one activity twice; valid and not.
+    #[test]
+    fn pairs_compiled_alone_are_the_full_compile() {
+        let plan = load_plan(include_str!("../../../../assets/default-plan.json"))
+            .expect("the default plan loads")
+            .plan;
+        let sched = schedule(&plan).expect("schedules");
+        let runs = Runs::new(&plan, &sched, true);
+        let b = plan.battery;
+        let (first, last) = (&plan.activities[3], &plan.activities[40]);
+        let edits = [
+            Candidate::plan_section(String::new(), "battery", &b, "min_soc", b.min_soc * 0.5),
+            // Invalid: the minimum above the capacity.
+            Candidate::plan_section(String::new(), "battery", &b, "min_soc", b.capacity * 2.0),
+            Candidate::plan(
+                "".into(),
+                "power",
+                json!({ "rtg": 120.0, "asleep": 20.0, "awake": 150.0, "max_peak": 2000.0 }),
+            ),
+            Candidate::activity(first, String::new(), "priority", json!(1_000)),
+            Candidate::activity(first, String::new(), "windows", json!(null)),
+            Candidate::activity(last, String::new(), "priority", json!(0)),
+            Candidate::activity(last, String::new(), "energy_rate", json!(1.5)),
+            // Invalid: a window ending before it starts.
+            Candidate::activity(
+                last,
+                String::new(),
+                "windows",
+                json!([{ "start": 500, "end": 100 }]),
+            ),
+        ];
+        let (mut quick, mut valid, mut invalid) = (0, 0, 0);
+        for x in &edits {
+            for y in &edits {
+                if x.target == y.target && x.set.keys().any(|k| y.set.contains_key(k)) {
+                    continue;
+                }
+                let full = edited(&plan, &x.target, &x.set)
+                    .and_then(|once| edited(&once, &y.target, &y.set))
+                    .and_then(|twice| Problem::compile(&twice).ok());
+                if let Some(alone) = runs.quick_pair(x, y) {
+                    assert_eq!(
+                        alone, full,
+                        "{} {:?} then {} {:?}",
+                        x.target, x.set, y.target, y.set
+                    );
+                    quick += 1;
+                }
+                assert_eq!(runs.edit_pair(x, y), full);
+                if full.is_some() {
+                    valid += 1;
+                } else {
+                    invalid += 1;
+                }
+            }
+        }
+        assert!(
+            quick > 40 && valid > 20 && invalid > 10,
+            "{quick} quick, {valid} valid, {invalid} invalid"
+        );
+    }
 }
