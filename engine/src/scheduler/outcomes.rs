@@ -28,6 +28,11 @@
 //!   nothing, so the others' steps, in their unchanged order, see only `a`'s new
 //!   placement.
 //!
+//! The steps a rerun shares with the run explained (the same activities, placed
+//! the same, in a problem with the same timelines) leave the state that run had
+//! after them: a rerun starts from the latest of that run's [`Checkpoints`]
+//! among them instead of replaying them all.
+//!
 //! Debug builds compare every outcome with the full scheduler's.
 
 use super::state::{Placement, State};
@@ -380,10 +385,11 @@ struct Run<'p> {
 
 impl<'p> Run<'p> {
     /// Runs `problem` (an edit of `prev`'s) up to step `until`, replaying the
-    /// steps of `prev` the edit cannot change; keeps the evaluation of `a`, and
-    /// with `record` the record of each step (a replayed step keeps `prev`'s,
-    /// which still bounds its rejected starts: the same state, and a relaxed
-    /// limit rejects fewer).
+    /// steps of `prev` the edit cannot change (from the latest of `starts`
+    /// among them, when they agree with `prev`); keeps the evaluation of `a`,
+    /// and with `record` the record of each step (a replayed step keeps
+    /// `prev`'s, which still bounds its rejected starts: the same state, and a
+    /// relaxed limit rejects fewer).
     fn up_to(
         prev: &Schedule,
         starts: Option<&Checkpoints<'_>>,

@@ -180,7 +180,7 @@ pub struct Problem {
     /// Number of distinct unit resources.
     pub resource_count: usize,
     /// Activities, in file order (shared: an edited plan's problem shares
-    /// the activities the edit leaves as they were, [`Problem::compile_reusing`]).
+    /// the activities the edit leaves as they were, `Problem::compile_reusing`).
     pub acts: Vec<Arc<Act>>,
     /// Step order: `order[k - 1]` is the activity of step k.
     pub order: Vec<usize>,
