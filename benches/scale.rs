@@ -192,24 +192,10 @@ fn growth(profiles: &[(&str, Profile)], seeds: u64) {
         "| profile | activities | sols | seeds | median schedule | exponent | median explain (no suggestions) | exponent |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|");
-    let opts = ExplainOptions {
-        activity: None,
-        no_suggestions: true,
-    };
     for &(name, profile) in profiles {
         let mut base: Option<(f64, f64)> = None;
         for (n, sols) in [(1000, 3), (3000, 9), (10_000, 30), (30_000, 90)] {
-            let (mut scheduling, mut explaining): (Vec<_>, Vec<_>) = (1..=seeds)
-                .map(|seed| {
-                    let plan = generate_plan_with(profile, n, sols, seed);
-                    let t = Instant::now();
-                    let sched = std::hint::black_box(schedule(&plan).expect("schedules"));
-                    let scheduled = t.elapsed();
-                    let t = Instant::now();
-                    std::hint::black_box(explain(&plan, &sched, &opts).expect("explains"));
-                    ((scheduled, seed), (t.elapsed(), seed))
-                })
-                .unzip();
+            let (mut scheduling, mut explaining) = timed_seeds(profile, n, sols, seeds);
             let (s, _, _) = median_worst(&mut scheduling);
             let (e, _, _) = median_worst(&mut explaining);
             let (s_secs, e_secs) = (s.as_secs_f64(), e.as_secs_f64());
@@ -235,6 +221,29 @@ fn growth(profiles: &[(&str, Profile)], seeds: u64) {
     }
 }
 
+/// Times, each with its seed.
+type SeedTimes = Vec<(Duration, u64)>;
+
+/// Seeds `1..=seeds` of a generated plan, each scheduled once and every
+/// failure explained without suggestions: the times of each, with the seed.
+fn timed_seeds(profile: Profile, n: usize, sols: usize, seeds: u64) -> (SeedTimes, SeedTimes) {
+    let opts = ExplainOptions {
+        activity: None,
+        no_suggestions: true,
+    };
+    (1..=seeds)
+        .map(|seed| {
+            let plan = generate_plan_with(profile, n, sols, seed);
+            let t = Instant::now();
+            let sched = std::hint::black_box(schedule(&plan).expect("schedules"));
+            let scheduled = t.elapsed();
+            let t = Instant::now();
+            std::hint::black_box(explain(&plan, &sched, &opts).expect("explains"));
+            ((scheduled, seed), (t.elapsed(), seed))
+        })
+        .unzip()
+}
+
 /// The median and the worst of timed seeds, with the worst one's seed.
 fn median_worst(times: &mut [(Duration, u64)]) -> (Duration, Duration, u64) {
     times.sort();
@@ -250,23 +259,9 @@ fn sweep(profiles: &[(&str, Profile)], sizes: &[(usize, usize, usize)], seeds: u
         "| profile | activities | sols | seeds | median schedule | worst schedule (seed) | median explain (no suggestions) | worst explain (seed) |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|");
-    let opts = ExplainOptions {
-        activity: None,
-        no_suggestions: true,
-    };
     for &(name, profile) in profiles {
         for &(n, sols, _) in sizes {
-            let (mut scheduling, mut explaining): (Vec<_>, Vec<_>) = (1..=seeds)
-                .map(|seed| {
-                    let plan = generate_plan_with(profile, n, sols, seed);
-                    let t = Instant::now();
-                    let sched = std::hint::black_box(schedule(&plan).expect("schedules"));
-                    let scheduled = t.elapsed();
-                    let t = Instant::now();
-                    std::hint::black_box(explain(&plan, &sched, &opts).expect("explains"));
-                    ((scheduled, seed), (t.elapsed(), seed))
-                })
-                .unzip();
+            let (mut scheduling, mut explaining) = timed_seeds(profile, n, sols, seeds);
             let (median, worst, seed) = median_worst(&mut scheduling);
             let (e_median, e_worst, e_seed) = median_worst(&mut explaining);
             println!(
