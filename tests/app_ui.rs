@@ -2971,3 +2971,30 @@ fn the_selected_activity_s_free_slack_is_computed_ahead_of_the_rest() {
             .is_some()
     );
 }
+
+/// An expanding activity's valid starts are for one duration, and the header
+/// over them says which (the tutorial's drive may last 20 to 60 minutes).
+#[test]
+fn the_valid_starts_of_an_expanding_activity_name_their_duration() {
+    let mut h = tutorial_with_selected("drive");
+    h.run_steps(3);
+    let a = index(h.state(), "drive");
+    let (start, end) = h
+        .state()
+        .analysis
+        .placement(a)
+        .expect("the drive is placed");
+    let header = format!(", for {})", solscope_engine::format_span(end - start));
+    assert!(
+        h.query_by_label_contains(&header).is_some(),
+        "no header ending {header:?}"
+    );
+    // A fixed duration is not named.
+    let mut h = tutorial_with_selected("sky_flats_mast_busy");
+    h.run_steps(3);
+    assert!(
+        h.query_by_label_contains("Valid starts per constraint")
+            .is_some()
+    );
+    assert!(h.query_by_label_contains(", for ").is_none());
+}

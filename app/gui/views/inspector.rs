@@ -4,7 +4,10 @@
 
 use eframe::egui::{self, Pos2, Rect, RichText, Sense, Stroke};
 use serde_json::{Map, Value};
-use solscope_engine::{CategoryIntervals, Phase, explanation_notes, reason_line, suggestion_line};
+use solscope_engine::{
+    CategoryIntervals, Duration, Phase, explanation_notes, format_span, reason_line,
+    suggestion_line,
+};
 
 use super::{Model, Status, TourAnchors, command_button, editor, execution, flex};
 use crate::gui::commands::{Command, UiCommand};
@@ -123,10 +126,20 @@ fn activity_ui(
             own_step.saturating_sub(1),
         ),
     };
+    // An expanding activity's intervals are for one of its durations: the
+    // explanation's (the shortest when it failed), else its step's.
+    let shown = m
+        .explanation
+        .map(|ex| ex.duration)
+        .or(step.map(|s| s.duration));
+    let for_duration = match (shown, &act.duration) {
+        (Some(d), Duration::Expanding { .. }) => format!(", for {}", format_span(d)),
+        _ => String::new(),
+    };
     if !cats.is_empty() {
         ui.label(
             RichText::new(format!(
-                "Valid starts per constraint (as seen after step {seen_at})"
+                "Valid starts per constraint (as seen after step {seen_at}{for_duration})"
             ))
             .strong(),
         )
