@@ -85,8 +85,15 @@ impl<'a> Runs<'a> {
         }
     }
 
-    /// States of the run explained to start reruns from.
+    /// States of the run explained to start reruns from, when several
+    /// failures are explained. Building them replays the whole run once;
+    /// one failure's few reruns start near its own step and do not repay
+    /// that (A/B 0.93 to 1.00 without them, and 25 MB less at 10,000
+    /// activities).
     fn starts(&self) -> Option<&Checkpoints<'a>> {
+        if !self.share {
+            return None;
+        }
         Some(self.starts.get_or_init(|| Checkpoints::new(self.sched)))
     }
 
