@@ -528,7 +528,7 @@ impl ExecutionCache {
                                     index: k,
                                     schedule: Err(e.clone()),
                                     activity_of: Vec::new(),
-                                    tries: Vec::new(),
+                                    traces: Vec::new(),
                                 },
                             );
                             lost = Some(e);

@@ -7,8 +7,8 @@
 use std::path::PathBuf;
 
 use solscope_engine::{
-    ActivityRun, Actuals, Cycle, Error, Execution, Plan, RunOutcome, Schedule, Step, Try, execute,
-    load_actuals, mbit, sample_run, watts, wh,
+    ActivityRun, Actuals, Cycle, Error, Execution, Plan, RunOutcome, Schedule, Step, StepTrace,
+    execute, load_actuals, mbit, sample_run, watts, wh,
 };
 
 use super::state::StepView;
@@ -166,9 +166,10 @@ pub struct CycleRun {
     pub schedule: Result<Schedule, String>,
     /// The plan activity of each cycle-plan activity.
     pub activity_of: Vec<usize>,
-    /// The phase-2 tries of each failed step of the run (`tries[k - 1]` for
-    /// step k; the run itself records outcomes only).
-    pub tries: Vec<Vec<Try>>,
+    /// What each step's record leaves out (`traces[k - 1]` for step k): its
+    /// category intervals, and the tries of a failed step (the run itself
+    /// records outcomes only).
+    pub traces: Vec<StepTrace>,
 }
 
 impl CycleRun {
@@ -176,12 +177,12 @@ impl CycleRun {
     /// for it.
     pub fn of(index: usize, cycle: &Cycle) -> Option<Self> {
         let schedule = cycle.schedule()?.map_err(|e| e.to_string());
-        let tries = schedule.as_ref().map_or(Vec::new(), Schedule::all_tries);
+        let traces = schedule.as_ref().map_or(Vec::new(), Schedule::all_traces);
         Some(Self {
             index,
             schedule,
             activity_of: cycle.activity_of.clone(),
-            tries,
+            traces,
         })
     }
 

@@ -66,7 +66,8 @@ pub use report::{
 pub use scheduler::{
     Act, Category, CategoryIntervals, FailurePhase, Generated, GeneratedKind, Outcome,
     PartialSchedule, Phase2Reason, Placement, Problem, Profiles, ReasonKind, RunOutcomes, Schedule,
-    State, Step, Try, partial_schedule, reschedule, run_outcomes, schedule, valid_intervals_at,
+    State, Step, StepTrace, Try, partial_schedule, reschedule, run_outcomes, schedule,
+    valid_intervals_at,
 };
 pub use timeline::{Interval, IntervalSet};
 pub use units::{

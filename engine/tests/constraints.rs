@@ -117,9 +117,10 @@ fn dependency_delays_and_meets() {
     );
     // The trace keeps intervals within the window span [0, 90], where the
     // dependency allows nothing; over the horizon it allows starts from 100.
-    let in_trace = e_step
+    let in_trace = s
+        .trace(e_step.step)
         .categories
-        .iter()
+        .into_iter()
         .find(|c| c.category == Category::Dependency)
         .expect("dep");
     assert!(in_trace.valid.is_empty());
@@ -465,9 +466,10 @@ fn groups_skip_and_expanding_takes_the_longest() {
     // intervals: the unit resource allows a start at 0 for 700 s.
     let drive = s.step_of(1).expect("step");
     assert_eq!(drive.duration, 700);
-    let res = drive
+    let res = s
+        .trace(drive.step)
         .categories
-        .iter()
+        .into_iter()
         .find(|c| c.category == Category::UnitResource)
         .expect("res");
     assert!(res.valid.contains(0));
@@ -495,4 +497,43 @@ fn state_after_replays_the_trace() {
     assert_eq!(after1, vec![(0, 100)]);
     assert_eq!(after2, vec![(0, 250)]);
     assert_eq!(s.steps[1].retired, vec![0]);
+}
+
+/// The run keeps no category intervals or tries (its phase 1 goes only as far
+/// as its search); `Schedule::trace` derives them per step and
+/// `Schedule::all_traces` for every step in one replay: the same sets, the
+/// tries of failed steps, and category intervals for every step that searched.
+#[test]
+fn all_traces_are_each_steps_trace() {
+    let plan = solscope_engine::generate_plan_with(solscope_engine::Profile::Realistic, 80, 2, 3);
+    let s = solscope_engine::schedule(&plan).expect("schedules");
+    let all = s.all_traces();
+    assert_eq!(all.len(), s.steps.len());
+    let mut searched = 0;
+    for (step, t) in s.steps.iter().zip(&all) {
+        let one = s.trace(step.step);
+        assert_eq!(
+            (&t.categories, &t.intersection),
+            (&one.categories, &one.intersection)
+        );
+        let failed = matches!(
+            step.outcome,
+            Outcome::Failed(FailurePhase::Placement | FailurePhase::ValidIntervals)
+        );
+        if failed {
+            assert_eq!(t.tries, one.tries);
+            let placement = step.outcome == Outcome::Failed(FailurePhase::Placement);
+            assert_eq!(!t.tries.is_empty(), placement, "step {}", step.step);
+        } else {
+            assert!(t.tries.is_empty());
+        }
+        if let Some((start, _)) = step.outcome.placement() {
+            let held = s.problem.acts[step.activity].held;
+            if !held {
+                searched += 1;
+                assert!(t.intersection.contains(start), "step {}", step.step);
+            }
+        }
+    }
+    assert!(searched > 20, "only {searched} placed steps searched");
 }

@@ -486,7 +486,8 @@ fn cycle_step_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Vec<Comm
     if step.step > m.exec.step {
         return;
     }
-    if !step.categories.is_empty() {
+    let trace = cr.traces.get(step.step - 1);
+    if let Some(trace) = trace.filter(|t| !t.categories.is_empty()) {
         ui.label(
             RichText::new(format!(
                 "Valid starts per constraint (within its windows, cycle {k} step {})",
@@ -495,13 +496,11 @@ fn cycle_step_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Vec<Comm
             .strong(),
         )
         .on_hover_text(crate::gui::help::VALID_STARTS);
-        inspector::intervals_ui(ui, m, &step.categories);
+        inspector::intervals_ui(ui, m, &trace.categories);
     }
-    let failing: Vec<ReasonRange> = cr
-        .tries
-        .get(step.step - 1)
+    let failing: Vec<ReasonRange> = trace
         .into_iter()
-        .flatten()
+        .flat_map(|t| &t.tries)
         .filter_map(|t| {
             Some(ReasonRange {
                 first: t.starts.lo,

@@ -28,7 +28,8 @@ pub use text::{
 use crate::error::Error;
 use crate::model::Plan;
 use crate::scheduler::{
-    Category, CategoryIntervals, FailurePhase, Outcome, Phase2Reason, Schedule, Step, Try,
+    Category, CategoryIntervals, FailurePhase, Outcome, Phase2Reason, Schedule, Step, StepTrace,
+    step_intervals,
 };
 use crate::timeline::IntervalSet;
 
@@ -236,10 +237,10 @@ pub fn explain_rendered<R: Send>(
     replay::failure_probes(
         sched,
         &targets,
-        |i, k, record, tries, state| {
+        |i, k, record, trace, state| {
             let a = targets[i];
             let step = &sched.steps[step_of[a] - 1];
-            let mut ex = from_probe(sched, a, step, k, record, &tries);
+            let mut ex = from_probe(sched, a, step, k, record, trace);
             ex.culprits = culprits::culprits(state, &ex, &rank);
             ex
         },
@@ -254,8 +255,8 @@ pub fn explain_rendered<R: Send>(
         let missing = found.borrow()[i].is_none();
         if missing {
             let step = &sched.steps[step_of[a] - 1];
-            let mut ex = from_step(a, step);
             let state = sched.state_after(step.step - 1);
+            let mut ex = from_step(a, step, step_intervals(&state, step));
             ex.culprits = culprits::culprits(&state, &ex, &rank);
             found.borrow_mut()[i] = Some(ex);
         }
@@ -320,8 +321,9 @@ pub fn verified_suggestions(plan: &Plan, sched: &Schedule, ex: &Explanation) -> 
         .single
 }
 
-/// The explanation skeleton of a scheduled activity (its own step's record).
-fn from_step(a: usize, step: &Step) -> Explanation {
+/// The explanation skeleton of a scheduled activity (its own step's record,
+/// and `trace`, the category intervals of the step run again).
+fn from_step(a: usize, step: &Step, trace: StepTrace) -> Explanation {
     Explanation {
         activity: a,
         step: step.step,
@@ -330,8 +332,8 @@ fn from_step(a: usize, step: &Step) -> Explanation {
         phase: None,
         blocked_by: None,
         duration: step.duration,
-        categories: step.categories.clone(),
-        intersection: step.intersection.clone(),
+        categories: trace.categories,
+        intersection: trace.intersection,
         conflicts: Vec::new(),
         relaxations: Vec::new(),
         reasons: Vec::new(),
@@ -349,7 +351,7 @@ fn from_probe(
     step: &Step,
     k: usize,
     record: Step,
-    tries: &[Try],
+    trace: StepTrace,
 ) -> Explanation {
     let (phase, blocked_by) = match record.outcome {
         Outcome::Skipped { by } => (Phase::Group, Some(by)),
@@ -365,12 +367,13 @@ fn from_probe(
             .windows
             .first()
             .map_or(problem.h0, |w| w.preferred);
-        minimal_conflicts(&record.categories, problem.h0, problem.h1, preferred)
+        minimal_conflicts(&trace.categories, problem.h0, problem.h1, preferred)
     } else {
         (Vec::new(), Vec::new())
     };
     // The trace already holds the tries grouped into ranges (`merge_tries`).
-    let reasons: Vec<ReasonRange> = tries
+    let reasons: Vec<ReasonRange> = trace
+        .tries
         .iter()
         .filter_map(|t| {
             t.reason.clone().map(|reason| ReasonRange {
@@ -390,8 +393,8 @@ fn from_probe(
         phase: Some(phase),
         blocked_by,
         duration: record.duration,
-        categories: record.categories,
-        intersection: record.intersection,
+        categories: trace.categories,
+        intersection: trace.intersection,
         conflicts,
         relaxations,
         reasons,

@@ -13,7 +13,8 @@ use super::floors::Floors;
 use super::spending::Spending;
 use crate::model::AwakeMode;
 use crate::scheduler::{
-    Detail, Evaluated, FailurePhase, Outcome, Problem, Schedule, Scope, State, Step, Try, run_step,
+    Detail, Evaluated, FailurePhase, Outcome, Problem, Schedule, Scope, State, Step, StepTrace,
+    run_step,
 };
 
 /// The inclusion rule precomputed: for each `(state, value)`, the steps of the
@@ -500,7 +501,7 @@ fn overlap(a: (i64, i64), b: (i64, i64)) -> i128 {
 pub(super) fn failure_probes<T: Send>(
     sched: &Schedule,
     targets: &[usize],
-    build: impl Fn(usize, usize, Step, Vec<Try>, &State<'_>) -> T + Sync,
+    build: impl Fn(usize, usize, Step, StepTrace, &State<'_>) -> T + Sync,
     mut on_failure: impl FnMut(usize, T),
     mut stepped: impl FnMut(usize),
 ) {
@@ -601,7 +602,7 @@ impl<'p> Lane<'p> {
         to: usize,
     ) -> Vec<(usize, usize, T)>
     where
-        B: Fn(usize, usize, Step, Vec<Try>, &State<'_>) -> T + Sync,
+        B: Fn(usize, usize, Step, StepTrace, &State<'_>) -> T + Sync,
     {
         use std::cmp::Reverse;
         let (sched, targets) = (ctx.sched, ctx.targets);
@@ -637,7 +638,7 @@ impl<'p> Lane<'p> {
                 let a = targets[i];
                 let probed = match probe_target(state, ctx.fx, &ctx.thresholds[i], a, w, k) {
                     Probed::Kept(w) => Ok(w),
-                    Probed::Failed(step, tries) => Err((ctx.build)(i, k, step, tries, state)),
+                    Probed::Failed(step, trace) => Err((ctx.build)(i, k, step, trace, state)),
                 };
                 (i, probed)
             };
@@ -669,8 +670,8 @@ enum Probed {
     /// It still fits: its witness, due again at `due` (`usize::MAX`: not
     /// before its own step).
     Kept(Witness),
-    /// It fails here: the failing probe's record and tries.
-    Failed(Step, Vec<Try>),
+    /// It fails here: the failing probe's record and trace.
+    Failed(Step, StepTrace),
 }
 
 /// Probes target activity `a` (thresholds `th`) against the state after step
@@ -727,9 +728,9 @@ fn probe_target(
             // placement needs no tries, and the outcome-only search skips what
             // a bound proves to fail; only the failing probe, once per target,
             // records its tries.
-            let probe = run_step(state, a, until, &scope, Detail::Outcome);
+            let probe = run_step(state, a, until, &scope, Detail::Intervals);
             match probe.found {
-                Some(ev) => (sturdier_witness(state, &scope, &probe.step, ev), None),
+                Some(ev) => (sturdier_witness(state, &scope, &probe.trace, ev), None),
                 None => {
                     let detail =
                         if probe.step.outcome == Outcome::Failed(FailurePhase::ValidIntervals) {
@@ -739,7 +740,7 @@ fn probe_target(
                         };
                     let failed = run_step(state, a, until, &scope, detail);
                     debug_assert!(failed.found.is_none(), "outcome-only probe");
-                    return Probed::Failed(failed.step, failed.tries);
+                    return Probed::Failed(failed.step, failed.trace);
                 }
             }
         }
@@ -759,12 +760,14 @@ fn probe_target(
 /// candidate starts of the probe (same duration), the one that fits with the
 /// largest energy margin. Any placement that fits answers the probe; a larger
 /// margin keeps the witness valid for more steps of the run (`next_check`).
-fn sturdier_witness(state: &State<'_>, scope: &Scope, record: &Step, ev: Evaluated) -> Evaluated {
+fn sturdier_witness(
+    state: &State<'_>,
+    scope: &Scope,
+    trace: &StepTrace,
+    ev: Evaluated,
+) -> Evaluated {
     let (a, d, chosen) = (ev.placement.act, ev.placement.duration, ev.placement.start);
-    let ends = [
-        record.intersection.first(),
-        record.intersection.intervals().last().map(|iv| iv.hi),
-    ];
+    let ends = [trace.intersection.first(), trace.intersection.last()];
     ends.into_iter()
         .flatten()
         .filter(|&s| s != chosen)

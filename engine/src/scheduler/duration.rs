@@ -109,6 +109,7 @@ pub(super) fn longest_split(
     let fits = |d: i64, only: (i64, i64)| {
         let part = Part {
             only: Some(only),
+            bare: true,
             ..Part::default()
         };
         try_duration(state, a, d, scope, span, part).found.is_some()
@@ -140,9 +141,11 @@ pub(super) fn longest_by_scan(
 
 /// Whether some start passes with duration `d` (an outcome-only search).
 fn fits(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, i64)) -> bool {
-    try_duration(state, a, d, scope, span, Part::default())
-        .found
-        .is_some()
+    let part = Part {
+        bare: true,
+        ..Part::default()
+    };
+    try_duration(state, a, d, scope, span, part).found.is_some()
 }
 
 /// The longest duration with a passing start, for an activity whose

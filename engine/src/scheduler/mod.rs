@@ -75,9 +75,43 @@ pub struct Schedule {
     pub generated: Vec<Generated>,
     /// The energy margin of each step's placement (derived on first use).
     margins: std::sync::OnceLock<Vec<Option<i128>>>,
+    /// Whether each step's data-volume category excluded no start of its
+    /// window span (derived on first use).
+    data_room: std::sync::OnceLock<Vec<bool>>,
+}
+
+/// What a step's record leaves out, derived by running the step again on the
+/// state before it ([`Schedule::trace`]): the run computes phase 1 only as far
+/// as its search needs, and keeps no tries.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct StepTrace {
+    /// Valid starts per category for the step's duration, within the span of
+    /// the activity's windows (empty for a step that did not search: held,
+    /// skipped, or failed on a dependency).
+    pub categories: Vec<CategoryIntervals>,
+    /// Their intersection, restricted per window.
+    pub intersection: IntervalSet,
+    /// The phase-2 tries merged into ranges: every start range searched, with
+    /// its reason or as passing.
+    pub tries: Vec<Try>,
 }
 
 impl Schedule {
+    /// A schedule of `problem` with these records.
+    pub(super) fn from_parts(
+        problem: Problem,
+        steps: Vec<Step>,
+        generated: Vec<Generated>,
+    ) -> Self {
+        Self {
+            problem,
+            steps,
+            generated,
+            margins: std::sync::OnceLock::new(),
+            data_room: std::sync::OnceLock::new(),
+        }
+    }
+
     /// Where activity `act` was placed, if it was.
     pub fn placement(&self, act: usize) -> Option<(i64, i64)> {
         self.step_of(act)?.outcome.placement()
@@ -113,32 +147,29 @@ impl Schedule {
         })
     }
 
-    /// The phase-2 tries of step `k` (1-based), merged into ranges: every start
-    /// range searched, with its reason or as passing. The run records outcomes
-    /// only, so they are derived here by running step `k` again on the state
-    /// before it (what the run did, at the cost of replaying `k - 1`
-    /// placements and one search). Empty for a step that did not search (held,
-    /// skipped, or failed on a dependency) and for `k` out of range.
-    pub fn tries(&self, k: usize) -> Vec<Try> {
+    /// What step `k`'s record (1-based) leaves out: its category intervals
+    /// and its tries, derived by running step `k` again on the state before
+    /// it (what the run did, at the cost of replaying `k - 1` placements and
+    /// one search). Empty for `k` out of range.
+    pub fn trace(&self, k: usize) -> StepTrace {
         let Some(step) = k.checked_sub(1).and_then(|i| self.steps.get(i)) else {
-            return Vec::new();
+            return StepTrace::default();
         };
         let state = self.state_after(k - 1);
-        let again = run_step(&state, step.activity, k, &Scope::default(), Detail::Trace);
-        debug_assert_eq!(
-            (&again.step.outcome, again.step.duration),
-            (&step.outcome, step.duration),
-            "a step run again differs from the run's"
-        );
-        again.tries
+        again(&state, step, Detail::Trace).trace
     }
 
-    /// The phase-2 tries of every step (`all_tries()[k - 1]` for step k): one
-    /// replay of the run that runs every failed step again as it recorded it,
-    /// the cost of one recorded run (what a view of a whole run's rejections
-    /// needs, where [`Schedule::tries`] per step would replay again each time).
-    /// Scheduled steps get none.
-    pub fn all_tries(&self) -> Vec<Vec<Try>> {
+    /// The phase-2 tries of step `k` ([`Schedule::trace`]'s).
+    pub fn tries(&self, k: usize) -> Vec<Try> {
+        self.trace(k).tries
+    }
+
+    /// [`Schedule::trace`] of every step (`all_traces()[k - 1]` for step k),
+    /// in one replay of the run, the cost of one run with every category
+    /// computed over each window span (what a view of a whole run needs, where
+    /// [`Schedule::trace`] per step would replay again each time). Only failed
+    /// steps get their tries.
+    pub fn all_traces(&self) -> Vec<StepTrace> {
         let mut state = State::new(&self.problem);
         self.steps
             .iter()
@@ -147,29 +178,79 @@ impl Schedule {
                     step.outcome,
                     Outcome::Failed(FailurePhase::Placement | FailurePhase::ValidIntervals)
                 );
-                let tries = if failed {
-                    let again = run_step(
-                        &state,
-                        step.activity,
-                        step.step,
-                        &Scope::default(),
-                        Detail::Trace,
-                    );
-                    debug_assert_eq!(again.step.outcome, step.outcome, "a failed step run again");
-                    again.tries
+                let detail = if failed {
+                    Detail::Trace
                 } else {
-                    Vec::new()
+                    Detail::Intervals
                 };
+                let trace = again(&state, step, detail).trace;
                 state.replay(step);
-                tries
+                trace
             })
             .collect()
+    }
+
+    /// Whether the data-volume category of step `k` (1-based) excluded no
+    /// start of its activity's window span, so that a looser data limit cannot
+    /// add one (derived for every step on first use, in one replay).
+    pub(crate) fn data_room(&self, k: usize) -> bool {
+        let room = self.data_room.get_or_init(|| {
+            let mut state = State::new(&self.problem);
+            self.steps
+                .iter()
+                .map(|step| {
+                    let problem = &self.problem;
+                    let act = &problem.acts[step.activity];
+                    // Only where a data limit can bind (`Relaxation::keeps`
+                    // asks no other), and for steps that searched.
+                    let binds = act.data > 0 || (!act.mandatory && problem.handover_data.is_some());
+                    let searched = !act.held
+                        && matches!(
+                            step.outcome,
+                            Outcome::Scheduled { .. }
+                                | Outcome::Failed(
+                                    FailurePhase::Placement | FailurePhase::ValidIntervals
+                                )
+                        );
+                    let (lo, hi) = window_span(problem, step.activity);
+                    let room = binds
+                        && searched
+                        && state
+                            .data_category(step.activity, step.duration, lo, hi)
+                            .intervals()
+                            == [crate::timeline::Interval::new(lo, hi)];
+                    state.replay(step);
+                    room
+                })
+                .collect()
+        });
+        k.checked_sub(1)
+            .and_then(|i| room.get(i))
+            .is_some_and(|&r| r)
     }
 
     /// The generated activities alive after step `k`.
     pub fn generated_after(&self, k: usize) -> impl Iterator<Item = &Generated> {
         self.generated.iter().filter(move |g| g.alive_after(k))
     }
+}
+
+/// Step `step` run again on `state` (the state before it) to `detail`: what
+/// the run did, checked in debug builds.
+fn again(state: &State<'_>, step: &Step, detail: Detail) -> StepRun {
+    let run = run_step(state, step.activity, step.step, &Scope::default(), detail);
+    debug_assert_eq!(
+        (&run.step.outcome, run.step.duration),
+        (&step.outcome, step.duration),
+        "a step run again differs from the run's"
+    );
+    run
+}
+
+/// The category intervals of `step` (within its window span), run again on
+/// `state`, the state before it: a record's [`StepTrace`] without tries.
+pub(crate) fn step_intervals(state: &State<'_>, step: &Step) -> StepTrace {
+    again(state, step, Detail::Intervals).trace
 }
 
 /// Schedules a validated plan.
@@ -325,22 +406,20 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>, until: usiz
             steps.push(record);
         }
     }
-    Schedule {
-        problem,
-        steps,
-        generated,
-        margins: std::sync::OnceLock::new(),
-    }
+    Schedule::from_parts(problem, steps, generated)
 }
 
 /// How much of a step's record [`run_step`] fills in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Detail {
-    /// The outcome, duration and category intervals, but no tries (runs that
-    /// only ask where activities land).
+    /// The outcome and duration only: no category intervals and no tries (runs
+    /// that only ask where activities land).
     Outcome,
-    /// The trace, with category intervals within the activity's window span
-    /// (what the scheduler keeps).
+    /// The outcome, duration and category intervals within the window span,
+    /// but no tries.
+    Intervals,
+    /// The category intervals within the activity's window span and the
+    /// tries ([`Schedule::trace`]).
     Trace,
     /// The trace, with category intervals over the whole horizon (the
     /// explainer's probes).
@@ -349,14 +428,14 @@ pub(crate) enum Detail {
 
 /// What [`run_step`] gives.
 pub(crate) struct StepRun {
-    /// The step's record, filled in to the detail asked for.
+    /// The step's record.
     pub step: Step,
-    /// Its phase-2 tries merged into ranges (`merge_tries`): of every duration
-    /// tried, except for an expanding activity searched in two parts (the
-    /// min_awake extension near the plan end), whose partial searches are not
-    /// recorded: only the tries of `step.duration` (the chosen one, or the
-    /// shortest). Empty for [`Detail::Outcome`].
-    pub tries: Vec<Try>,
+    /// What the record leaves out, filled in to the detail asked for. Its
+    /// tries are merged into ranges (`merge_tries`): of every duration tried,
+    /// except for an expanding activity searched in two parts (the min_awake
+    /// extension near the plan end), whose partial searches are not recorded:
+    /// only the tries of `step.duration` (the chosen one, or the shortest).
+    pub trace: StepTrace,
     /// The evaluation of the placement to apply, if the activity fits.
     pub found: Option<Evaluated>,
 }
@@ -376,8 +455,6 @@ pub(crate) fn run_step(
         activity: a,
         outcome: Outcome::Failed(FailurePhase::ValidIntervals),
         duration: act.dur_max,
-        categories: Vec::new(),
-        intersection: IntervalSet::empty(),
         rejected: Rejected::default(),
         added: Vec::new(),
         retired: Vec::new(),
@@ -391,13 +468,13 @@ pub(crate) fn run_step(
         };
         return StepRun {
             step,
-            tries: Vec::new(),
+            trace: StepTrace::default(),
             found: Some(ev),
         };
     }
     let no_search = |step: Step| StepRun {
         step,
-        tries: Vec::new(),
+        trace: StepTrace::default(),
         found: None,
     };
     if let Some(by) = act.group.and_then(|g| state.group_member[g]) {
@@ -414,29 +491,31 @@ pub(crate) fn run_step(
         return no_search(step);
     }
     let mut any_candidate = false;
-    // The trace keeps category intervals within the window span only, so phase 1
-    // need not look further; probes (`clip == false`) want the whole horizon.
+    // A trace holds category intervals within the window span only, so phase 1
+    // need not look further; probes (`Detail::Horizon`) want the whole horizon.
     let span = if detail == Detail::Horizon {
         (problem.h0, problem.h1)
     } else {
         window_span(problem, a)
     };
     let mut pending: Vec<(Try, Option<i64>)> = Vec::new();
-    let traced = detail != Detail::Outcome;
+    let traced = matches!(detail, Detail::Trace | Detail::Horizon);
     let mut rejected = Rejected::default();
+    let mut trace = StepTrace::default();
     let mut attempt = |d: i64, step: &mut Step, record: bool| {
         let part = Part {
             record: traced,
+            bare: detail == Detail::Outcome,
             ..Part::default()
         };
         let tried = try_duration(state, a, d, scope, span, part);
-        any_candidate |= !tried.union.is_empty();
+        any_candidate |= tried.any;
         pending.extend(tried.tries);
         rejected = rejected.join(tried.rejected);
         if record || tried.found.is_some() {
             step.duration = d;
-            step.categories = tried.categories;
-            step.intersection = tried.union;
+            trace.categories = tried.categories;
+            trace.intersection = tried.union;
         }
         tried.found
     };
@@ -519,13 +598,17 @@ pub(crate) fn run_step(
     } else {
         rejected
     };
-    StepRun { step, tries, found }
+    trace.tries = tries;
+    StepRun { step, trace, found }
 }
 
 /// What one duration gave.
 pub(super) struct Tried {
     categories: Vec<CategoryIntervals>,
     union: IntervalSet,
+    /// Whether some start passes phase 1 (`union` is not empty, or would not be
+    /// when it is left out).
+    any: bool,
     found: Option<Evaluated>,
     tries: Vec<(Try, Option<i64>)>,
     /// What an outcome-only search rejected (a recorded one: from its tries).
@@ -541,6 +624,10 @@ pub(super) struct Part {
     /// Keep the tries. Without it only the outcome counts, and the search may
     /// skip whole spans that a bound proves to fail (`State::search_outcome`).
     pub record: bool,
+    /// Only the outcome: no category intervals, so phase 1 covers each window
+    /// ring by ring outward from its preferred time, only as far as the search
+    /// needs ([`try_rings`]).
+    pub bare: bool,
 }
 
 /// Phase 1 over starts in `span` and the window-by-window phase-2 search for one
@@ -555,17 +642,35 @@ pub(super) fn try_duration(
 ) -> Tried {
     let problem = state.problem;
     let act = &problem.acts[a];
-    let Part { only, record } = part;
-    debug_assert!(!(record && (only.is_some() || scope.skip_end_effects)));
+    let Part { only, record, bare } = part;
+    debug_assert!(!(record && (only.is_some() || scope.skip_end_effects || bare)));
     let span = only.map_or(span, |(lo, hi)| (span.0.max(lo), span.1.min(hi)));
     if span.0 > span.1 {
         return Tried {
             categories: Vec::new(),
             union: IntervalSet::empty(),
+            any: false,
             found: None,
             tries: Vec::new(),
             rejected: Rejected::default(),
         };
+    }
+    if bare {
+        let tried = try_rings(state, a, d, scope, span);
+        #[cfg(debug_assertions)]
+        {
+            let full = Part {
+                bare: false,
+                ..part
+            };
+            let want = try_duration(state, a, d, scope, span, full);
+            debug_assert_eq!(
+                (tried.any, tried.found.as_ref().map(|ev| ev.placement.start)),
+                (want.any, want.found.as_ref().map(|ev| ev.placement.start)),
+                "the search ring by ring differs from the whole span's"
+            );
+        }
+        return tried;
     }
     let categories = state.phase1_in(a, d, scope, span.0, span.1);
     let others = outside_execution(&categories, span);
@@ -594,11 +699,87 @@ pub(super) fn try_duration(
     }
     Tried {
         categories,
+        any: !union.is_empty(),
         union,
         found,
         tries,
         rejected,
     }
+}
+
+/// [`try_duration`] without category intervals: each window's starts in `span`
+/// are searched in rings outward from its preferred time, phase 1 computed for
+/// one ring at a time, each ring twice as wide as the one before. Every start
+/// of a ring is nearer the preferred time than every start beyond it (a tie
+/// goes to the earlier start, which is in the ring), so the first ring with a
+/// passing start holds the search's choice over the whole window, and phase 1
+/// of a windowless activity that fits early never looks at the rest of the
+/// horizon. A window whose rings all fail costs its whole span, as before.
+fn try_rings(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, i64)) -> Tried {
+    let act = &state.problem.acts[a];
+    let mut any = false;
+    let mut rejected = Rejected::default();
+    let candidates = |lo: i64, hi: i64| state.phase1_others(a, d, scope, lo, hi);
+    for w in &act.windows {
+        let range = state.window_range(a, w, d);
+        let (lo, hi) = (range.lo.max(span.0), range.hi.min(span.1));
+        if lo > hi {
+            continue;
+        }
+        let centre = w.preferred.clamp(lo, hi);
+        // Explored so far: [from, to] (empty at first).
+        let (mut from, mut to) = (centre, centre - 1);
+        let mut width = first_ring(d);
+        while from > lo || to < hi {
+            let (next_from, next_to) = (
+                from.saturating_sub(width).max(lo),
+                to.saturating_add(width).min(hi),
+            );
+            let cand = if from > to {
+                // The first ring: one span.
+                candidates(next_from, next_to)
+            } else {
+                let left = (next_from < from).then(|| candidates(next_from, from - 1));
+                let right = (next_to > to).then(|| candidates(to + 1, next_to));
+                match (left, right) {
+                    (Some(l), Some(r)) => l.union(&r),
+                    (l, r) => l.or(r).unwrap_or_else(IntervalSet::empty),
+                }
+            };
+            (from, to) = (next_from, next_to);
+            width = width.saturating_mul(2);
+            if cand.is_empty() {
+                continue;
+            }
+            any = true;
+            let (chosen, r) = state.search_outcome(a, d, &cand, w.preferred);
+            rejected = rejected.join(r);
+            if chosen.is_some() {
+                return Tried {
+                    categories: Vec::new(),
+                    union: IntervalSet::empty(),
+                    any,
+                    found: chosen,
+                    tries: Vec::new(),
+                    rejected,
+                };
+            }
+        }
+    }
+    Tried {
+        categories: Vec::new(),
+        union: IntervalSet::empty(),
+        any,
+        found: None,
+        tries: Vec::new(),
+        rejected,
+    }
+}
+
+/// The width of the first ring [`try_rings`] searches for a duration `d`:
+/// wide enough that a short window is one ring, as before.
+fn first_ring(d: i64) -> i64 {
+    d.saturating_mul(4).max(4 * 3600)
 }
 
 /// The starts in `span` that pass every phase-1 category of `categories` (as

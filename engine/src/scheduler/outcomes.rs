@@ -99,15 +99,7 @@ fn run_to(
             );
         }
     }
-    Ok((
-        placed,
-        Schedule {
-            problem,
-            steps,
-            generated: Vec::new(),
-            margins: std::sync::OnceLock::new(),
-        },
-    ))
+    Ok((placed, Schedule::from_parts(problem, steps, Vec::new())))
 }
 
 /// Where each activity is placed in the run of the edited plan (compiled:
@@ -411,7 +403,8 @@ impl<'p> Run<'p> {
                 common
                     + prev.steps[common..until.min(prev.steps.len())]
                         .iter()
-                        .take_while(|before| r.keeps(problem, before))
+                        .enumerate()
+                        .take_while(|(i, _)| r.keeps(problem, prev, common + i))
                         .count()
             }
             None => common,
@@ -457,7 +450,7 @@ impl<'p> Run<'p> {
         let mut same_so_far = true;
         for (k, &j) in problem.order.iter().enumerate().take(until).skip(kept) {
             let before = &prev.steps[k];
-            if same_so_far && relaxed.is_some_and(|r| r.keeps(problem, before)) {
+            if same_so_far && relaxed.is_some_and(|r| r.keeps(problem, prev, k)) {
                 placements[j] = before.outcome.placement();
                 let ev = state.replay(before);
                 debug_assert_eq!(
@@ -562,8 +555,10 @@ impl Relaxation {
     /// recorded, so an expanding activity that failed or got less than its
     /// longest duration is not kept. Phase 1 does not look at energy or peak
     /// power; the data limits change it only where the record shows the data
-    /// category excluding some start of the window span.
-    fn keeps(self, problem: &super::Problem, step: &super::Step) -> bool {
+    /// category excluding some start of the window span. `k` is the step's
+    /// index in `prev`, the run it is recorded in.
+    fn keeps(self, problem: &super::Problem, prev: &Schedule, k: usize) -> bool {
+        let step = &prev.steps[k];
         let act = &problem.acts[step.activity];
         if act.dur_min != act.dur_max && step.duration != act.dur_max {
             return false;
@@ -583,21 +578,11 @@ impl Relaxation {
                 !r.soc_untrusted && r.soc.is_none_or(|soc| i128::from(soc) < min)
             }
             Self::MaxPeak(max) => step.rejected.peak.is_none_or(|peak| peak > max),
-            Self::DataCap => act.data <= 0 || data_unbound(problem, step),
+            Self::DataCap => act.data <= 0 || prev.data_room(k + 1),
             Self::HandoverSoc => !handover_binds,
-            Self::HandoverData => act.mandatory || data_unbound(problem, step),
+            Self::HandoverData => act.mandatory || prev.data_room(k + 1),
         }
     }
-}
-
-/// Whether the data-volume category of `step`'s record excluded no start of the
-/// activity's window span (so a looser data limit cannot add one).
-fn data_unbound(problem: &super::Problem, step: &super::Step) -> bool {
-    let (lo, hi) = super::window_span(problem, step.activity);
-    step.categories.iter().any(|c| {
-        c.category == super::Category::DataVolume
-            && c.valid.intervals() == [crate::timeline::Interval::new(lo, hi)]
-    })
 }
 
 /// The placement step `step_no` (activity `a`) makes in `state`: the ideal one
@@ -634,8 +619,6 @@ fn recorded_step(
                 activity: a,
                 outcome: super::Outcome::Scheduled { start, end },
                 duration: end - start,
-                categories: Vec::new(),
-                intersection: crate::timeline::IntervalSet::empty(),
                 rejected: super::Rejected::default(),
                 added: Vec::new(),
                 retired: Vec::new(),

@@ -38,7 +38,6 @@ impl State<'_> {
         let problem = self.problem;
         let act = &problem.acts[a];
         let e = s.saturating_add(d);
-        let overlaps = |x: i64, y: i64| x < e && s < y;
         // dependency
         let in_range = |x: &Dep| {
             self.dependency_range(x)
@@ -67,13 +66,17 @@ impl State<'_> {
             }
         }
         // uhf
-        if self.uhf_busy(a).any(|(x, y)| overlaps(x, y)) {
+        if self.uhf_busy(a, s, e).next().is_some() {
             return false;
         }
         // state_requirement, state_effect, data_volume: as phase 1 does them.
-        self.phase1_states_data(a, d, scope, s, s)
-            .iter()
-            .all(|c| c.1.contains(s))
+        [
+            Category::StateRequirement,
+            Category::StateEffect,
+            Category::DataVolume,
+        ]
+        .into_iter()
+        .all(|c| self.category_valid(c, a, d, scope, s, s).contains(s))
     }
 
     /// Phase 1 restricted to starts in `[lo, hi]`.
@@ -85,52 +88,149 @@ impl State<'_> {
         lo: i64,
         hi: i64,
     ) -> Vec<CategoryIntervals> {
+        Category::ALL
+            .iter()
+            .map(|&category| CategoryIntervals {
+                category,
+                valid: self.category_valid(category, a, d, scope, lo, hi),
+            })
+            .collect()
+    }
+
+    /// The starts in `[lo, hi]` that pass every phase-1 category but
+    /// execution (which each window's range stands for): the intersection of
+    /// [`State::phase1_in`]'s sets, which debug builds check it against. Each
+    /// category is asked only over the starts the ones before it left, from
+    /// their first to their last, and none once they leave nothing.
+    pub(super) fn phase1_others(
+        &self,
+        a: usize,
+        d: i64,
+        scope: &Scope,
+        lo: i64,
+        hi: i64,
+    ) -> IntervalSet {
+        let mut valid = IntervalSet::single(lo, hi);
+        for &category in &Category::ALL[1..] {
+            let (Some(first), Some(last)) = (valid.first(), valid.last()) else {
+                break;
+            };
+            valid = valid.intersect(&self.category_valid(category, a, d, scope, first, last));
+        }
+        #[cfg(debug_assertions)]
+        debug_assert_eq!(
+            valid,
+            super::outside_execution(&self.phase1_in(a, d, scope, lo, hi), (lo, hi)),
+            "phase 1 narrowed category by category differs from its sets"
+        );
+        valid
+    }
+
+    /// The data-volume category of activity `a` with duration `d` over starts
+    /// in `[lo, hi]`.
+    pub(super) fn data_category(&self, a: usize, d: i64, lo: i64, hi: i64) -> IntervalSet {
+        self.category_valid(Category::DataVolume, a, d, &Scope::default(), lo, hi)
+    }
+
+    /// The valid starts in `[lo, hi]` of one phase-1 category.
+    fn category_valid(
+        &self,
+        category: Category,
+        a: usize,
+        d: i64,
+        scope: &Scope,
+        lo: i64,
+        hi: i64,
+    ) -> IntervalSet {
         let problem = self.problem;
         let act = &problem.acts[a];
         let all = || IntervalSet::single(lo, hi);
-        let mut out = Vec::with_capacity(8);
-        // execution
-        let exec: IntervalSet = act
-            .windows
-            .iter()
-            .map(|w| self.window_range(a, w, d))
-            .collect();
-        out.push((Category::Execution, exec));
-        // dependency
-        let mut dep = all();
-        for (_, x) in act
-            .after
-            .iter()
-            .enumerate()
-            .filter(|(k, _)| !scope.skip_deps.contains(k))
-        {
-            match self.dependency_range(x) {
-                Some((lo, hi)) => dep = dep.clip(lo, hi),
-                None => dep = IntervalSet::empty(),
+        match category {
+            Category::Execution => act
+                .windows
+                .iter()
+                .map(|w| self.window_range(a, w, d))
+                .collect(),
+            Category::Dependency => {
+                let mut dep = all();
+                for (_, x) in act
+                    .after
+                    .iter()
+                    .enumerate()
+                    .filter(|(k, _)| !scope.skip_deps.contains(k))
+                {
+                    match self.dependency_range(x) {
+                        Some((lo, hi)) => dep = dep.clip(lo, hi),
+                        None => dep = IntervalSet::empty(),
+                    }
+                }
+                dep
+            }
+            Category::UnitResource => {
+                let mut res = all();
+                for &r in &act.resources {
+                    res = res.intersect(&self.busy[r].valid(d, lo, hi));
+                }
+                res
+            }
+            Category::SequenceEngines => match problem.engines {
+                Some(cap) if act.engines > 0 => {
+                    claimable_valid(&self.engines, cap - act.engines, d, lo, hi)
+                }
+                _ => all(),
+            },
+            Category::StateRequirement => {
+                let mut req = all();
+                for (_, r) in act
+                    .requires
+                    .iter()
+                    .enumerate()
+                    .filter(|(k, _)| !scope.skip_reqs.contains(k))
+                {
+                    req =
+                        req.intersect(&self.states[r.state].requirement_valid(r.value, d, lo, hi));
+                }
+                req
+            }
+            Category::StateEffect => {
+                let mut eff = all();
+                for (st, own) in effects_by_state(act, d, false) {
+                    let valid = if scope.skip_end_effects {
+                        self.states[st].start_effects_valid(&own, lo, hi)
+                    } else {
+                        self.states[st].effect_valid(&own, lo, hi)
+                    };
+                    eff = eff.intersect(&valid);
+                }
+                eff
+            }
+            Category::DataVolume => {
+                let mut data = all();
+                if let (true, Some(cap)) = (act.data > 0, problem.data_cap) {
+                    data = self.data_valid(act.data, d, cap, lo, hi);
+                }
+                // The handover limit binds every optional activity, even one producing
+                // nothing, once the placed activities have exceeded it.
+                if let (false, Some(ht), Some(max)) =
+                    (act.mandatory, problem.handover_time, problem.handover_data)
+                {
+                    let range = (problem.h0, ht);
+                    data = data.intersect(&cumulative_valid(
+                        self.produced,
+                        max,
+                        act.data,
+                        d,
+                        range,
+                        (lo, hi),
+                    ));
+                }
+                data
+            }
+            Category::Uhf => {
+                let busy: Vec<(i64, i64)> = self.uhf_busy(a, lo, hi.saturating_add(d)).collect();
+                atomic_valid(&busy, d, lo, hi)
             }
         }
-        out.push((Category::Dependency, dep));
-        // unit_resource
-        let mut res = all();
-        for &r in &act.resources {
-            res = res.intersect(&self.busy[r].valid(d, lo, hi));
-        }
-        out.push((Category::UnitResource, res));
-        // sequence_engines
-        let eng = match problem.engines {
-            Some(cap) if act.engines > 0 => {
-                claimable_valid(&self.engines, cap - act.engines, d, lo, hi)
-            }
-            _ => all(),
-        };
-        out.push((Category::SequenceEngines, eng));
-        out.extend(self.phase1_states_data(a, d, scope, lo, hi));
-        // uhf
-        let busy: Vec<(i64, i64)> = self.uhf_busy(a).collect();
-        out.push((Category::Uhf, atomic_valid(&busy, d, lo, hi)));
-        out.into_iter()
-            .map(|(category, valid)| CategoryIntervals { category, valid })
-            .collect()
     }
 
     /// The starts a dependency allows, `[target end + min_delay, target end +
@@ -142,84 +242,24 @@ impl State<'_> {
         Some((lo, hi))
     }
 
-    /// The placed intervals activity `a` may not overlap on UHF grounds: comm
-    /// activities of a kind it does not allow, and, for a comm activity, activities
-    /// that do not allow its kind.
-    fn uhf_busy(&self, a: usize) -> impl Iterator<Item = (i64, i64)> + '_ {
+    /// The placed intervals overlapping `[from, to)` that activity `a` may not
+    /// overlap on UHF grounds: comm activities of a kind it does not allow,
+    /// and, for a comm activity, activities that do not allow its kind.
+    fn uhf_busy(&self, a: usize, from: i64, to: i64) -> impl Iterator<Item = (i64, i64)> + '_ {
         let problem = self.problem;
         let act = &problem.acts[a];
         let comms = self
             .comms
-            .iter()
-            .filter(move |c| !act.allows(c.2))
+            .overlapping(from, to)
+            .filter(move |c| !act.allows(c.2.0))
             .map(|c| (c.0, c.1));
         let restricted = act.comm.into_iter().flat_map(move |kind| {
             self.restricted
-                .iter()
+                .overlapping(from, to)
                 .filter(move |r| !problem.acts[r.2].allows(kind))
                 .map(|r| (r.0, r.1))
         });
         comms.chain(restricted)
-    }
-
-    /// The state_requirement, state_effect and data_volume categories of phase 1
-    /// over starts in `[lo, hi]`.
-    fn phase1_states_data(
-        &self,
-        a: usize,
-        d: i64,
-        scope: &Scope,
-        lo: i64,
-        hi: i64,
-    ) -> [(Category, IntervalSet); 3] {
-        let problem = self.problem;
-        let act = &problem.acts[a];
-        let all = || IntervalSet::single(lo, hi);
-        // state_requirement
-        let mut req = all();
-        for (_, r) in act
-            .requires
-            .iter()
-            .enumerate()
-            .filter(|(k, _)| !scope.skip_reqs.contains(k))
-        {
-            req = req.intersect(&self.states[r.state].requirement_valid(r.value, d, lo, hi));
-        }
-        // state_effect
-        let mut eff = all();
-        for (st, own) in effects_by_state(act, d, false) {
-            let valid = if scope.skip_end_effects {
-                self.states[st].start_effects_valid(&own, lo, hi)
-            } else {
-                self.states[st].effect_valid(&own, lo, hi)
-            };
-            eff = eff.intersect(&valid);
-        }
-        // data_volume
-        let mut data = all();
-        if let (true, Some(cap)) = (act.data > 0, problem.data_cap) {
-            data = self.data_valid(act.data, d, cap, lo, hi);
-        }
-        // The handover limit binds every optional activity, even one producing
-        // nothing, once the placed activities have exceeded it.
-        if let (false, Some(ht), Some(max)) =
-            (act.mandatory, problem.handover_time, problem.handover_data)
-        {
-            let range = (problem.h0, ht);
-            data = data.intersect(&cumulative_valid(
-                self.produced,
-                max,
-                act.data,
-                d,
-                range,
-                (lo, hi),
-            ));
-        }
-        [
-            (Category::StateRequirement, req),
-            (Category::StateEffect, eff),
-            (Category::DataVolume, data),
-        ]
     }
 
     /// The times `t` in `[lo, hi]` at which activity `a`'s effects at its end break

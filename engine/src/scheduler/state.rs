@@ -4,7 +4,7 @@
 
 use super::problem::Problem;
 use crate::model::{AwakeMode, EffectAt};
-use crate::timeline::{RateTimeline, StateTimeline, StepFn, UnitTimeline};
+use crate::timeline::{RateTimeline, StateTimeline, StepFn, TaggedSpans, UnitTimeline};
 
 /// A decided placement with everything phase 2 generated for it.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -47,10 +47,10 @@ pub struct State<'p> {
     pub data: RateTimeline,
     /// Data produced in `[h0, handover)` (bit).
     pub produced: i128,
-    /// Placed comm activities `(start, end, kind, act)`.
-    pub comms: Vec<(i64, i64, usize, usize)>,
+    /// Placed comm activities `(start, end, (kind, act))`.
+    pub comms: TaggedSpans<(usize, usize)>,
     /// Placed activities with a restricted `uhf_interactions` `(start, end, act)`.
-    pub restricted: Vec<(i64, i64, usize)>,
+    pub restricted: TaggedSpans<usize>,
     /// Awake periods, sorted, disjoint.
     pub awake: Vec<(i64, i64)>,
     /// Manual sleeps `(start, end, act)`, sorted by start.
@@ -97,8 +97,8 @@ impl<'p> State<'p> {
                 0,
             ),
             produced: 0,
-            comms: Vec::new(),
-            restricted: Vec::new(),
+            comms: TaggedSpans::default(),
+            restricted: TaggedSpans::default(),
             awake: Vec::new(),
             sleeps: Vec::new(),
             sleep_reach: Vec::new(),
@@ -346,10 +346,10 @@ impl<'p> State<'p> {
             self.produced += i128::from(act.data.max(0)) * i128::from(overlap);
         }
         if let Some(k) = act.comm {
-            self.comms.push((s, e, k, p.act));
+            self.comms.add(s, e, (k, p.act));
         }
         if act.uhf.is_some() {
-            self.restricted.push((s, e, p.act));
+            self.restricted.add(s, e, p.act);
         }
         if act.awake == AwakeMode::Forbidden {
             let at = self.sleeps.partition_point(|x| x.0 <= s);

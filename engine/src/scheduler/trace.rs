@@ -357,15 +357,9 @@ pub struct Step {
     pub activity: usize,
     /// What happened.
     pub outcome: Outcome,
-    /// The duration the recorded intervals are for: the chosen one when scheduled,
-    /// else the longest one tried.
+    /// The duration the step settled on: the chosen one when scheduled, else
+    /// the longest one tried (what its trace, `Schedule::trace`, is for).
     pub duration: i64,
-    /// Valid starts per category for `duration`, within the span of the
-    /// activity's windows (empty for skipped and dependency-failed steps). The
-    /// explainer's probes compute the full sets.
-    pub categories: Vec<CategoryIntervals>,
-    /// Intersection of all categories for `duration`, restricted per window.
-    pub intersection: IntervalSet,
     /// How close the starts phase 2 rejected came to the energy and peak
     /// limits (the relaxation rule of outcome-only runs reads it).
     #[serde(skip)]
@@ -553,7 +547,8 @@ mod tests {
                 let failed = step.outcome == Outcome::Failed(FailurePhase::Placement);
                 if let (true, false, Some(bound)) = (failed, r.soc_untrusted, r.soc) {
                     let (a, d) = (step.activity, step.duration);
-                    for iv in step.intersection.intervals() {
+                    let trace = crate::scheduler::step_intervals(&state, step);
+                    for iv in trace.intersection.intervals() {
                         let n = (iv.hi - iv.lo).clamp(1, 40);
                         for i in 0..=n {
                             let s = iv.lo + (iv.hi - iv.lo) * i / n;

@@ -115,6 +115,11 @@ impl IntervalSet {
         self.items.first().map(|i| i.lo)
     }
 
+    /// Largest member.
+    pub fn last(&self) -> Option<i64> {
+        self.items.last().map(|i| i.hi)
+    }
+
     /// Members of both sets.
     pub fn intersect(&self, other: &IntervalSet) -> IntervalSet {
         // One interval (a span, a window's range): a slice of the other set.

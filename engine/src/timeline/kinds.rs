@@ -67,6 +67,44 @@ impl UnitTimeline {
     }
 }
 
+/// Intervals `[start, end)` with a tag each, sorted by start, so that a query
+/// near a range looks only at those that can overlap it, as [`UnitTimeline`]
+/// does (the placed UHF intervals: a windowless activity's phase 1 asked for
+/// every one of them, once per window).
+#[derive(Clone, Debug)]
+pub struct TaggedSpans<T> {
+    spans: Vec<(i64, i64, T)>,
+    /// The longest interval.
+    longest: i64,
+}
+
+impl<T> Default for TaggedSpans<T> {
+    fn default() -> Self {
+        Self {
+            spans: Vec::new(),
+            longest: 0,
+        }
+    }
+}
+
+impl<T: Copy> TaggedSpans<T> {
+    /// Adds `[s, e)` with `tag`, after those starting at or before `s`.
+    pub fn add(&mut self, s: i64, e: i64, tag: T) {
+        let i = self.spans.partition_point(|x| x.0 <= s);
+        self.spans.insert(i, (s, e, tag));
+        self.longest = self.longest.max(e - s);
+    }
+
+    /// The intervals that overlap `[from, to)`, by start.
+    pub fn overlapping(&self, from: i64, to: i64) -> impl Iterator<Item = (i64, i64, T)> + '_ {
+        let i = self
+            .spans
+            .partition_point(|x| x.0 < from.saturating_sub(self.longest));
+        let j = self.spans.partition_point(|x| x.0 < to).max(i);
+        self.spans[i..j].iter().copied().filter(move |x| x.1 > from)
+    }
+}
+
 /// Starts `s` in `[lo, hi]` for which `usage <= limit` at every second of
 /// `[s, s + d)`. The claimable timeline (sequence engines, peak power).
 pub fn claimable_valid(usage: &StepFn, limit: i64, d: i64, lo: i64, hi: i64) -> IntervalSet {

@@ -4,6 +4,7 @@
 //!
 //! - [`StateTimeline`]: a named state's value over time (requirements, effects).
 //! - [`UnitTimeline`] / [`atomic_valid`]: unit resources (no overlap).
+//! - [`TaggedSpans`]: placed intervals with a tag (UHF), sorted for range queries.
 //! - [`claimable_valid`]: sequence engines and peak power (usage under a cap).
 //! - [`cumulative_valid`]: a total over a time range (handover data produced).
 //! - [`RateTimeline`]: cumulative-rate levels (state of charge, data volume).
@@ -16,7 +17,9 @@ mod rate;
 mod step;
 
 pub use intervals::{Interval, IntervalSet};
-pub use kinds::{StateTimeline, UnitTimeline, atomic_valid, claimable_valid, cumulative_valid};
+pub use kinds::{
+    StateTimeline, TaggedSpans, UnitTimeline, atomic_valid, claimable_valid, cumulative_valid,
+};
 pub use rate::RateTimeline;
 pub use step::StepFn;
 
