@@ -688,6 +688,45 @@ fn the_cycle_slider_and_the_step_slider_inside_a_cycle() {
     assert!(h.query_by_label_contains("cycle 3, step 4:").is_some());
 }
 
+/// The inspector shows what a cycle's run saw at the selected activity's
+/// step: its valid starts per constraint, which the run itself no longer
+/// keeps (`Schedule::all_traces` derives them for the cycle view).
+#[test]
+fn a_cycle_step_shows_the_valid_starts_its_run_saw() {
+    let mut app = uncertain_drive();
+    app.apply(UiCommand::ShowExecution.into());
+    let sky = index(&app, "sky_survey");
+    app.apply(Command::Select(Some(sky)));
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    h.get_by_label("Cycle >").click();
+    h.run_steps(3);
+    for _ in 0..3 {
+        h.key_press(eframe::egui::Key::PageDown);
+        h.run_steps(2);
+    }
+    assert_eq!(h.state().ui.nav.cycle, 4);
+    assert!(
+        h.query_by_label_contains("cycle 4, step 3: sky_survey")
+            .is_some()
+    );
+    assert!(
+        h.query_by_label_contains(
+            "Valid starts per constraint (within its windows, cycle 4 step 3)"
+        )
+        .is_some()
+    );
+    let cr = h.state().cycle_run().unwrap();
+    let trace = &cr.traces[2];
+    assert!(!trace.categories.is_empty());
+    // Before its step, it is pending: no sets.
+    h.key_press(eframe::egui::Key::Home);
+    h.run_steps(3);
+    assert!(
+        h.query_by_label_contains("Valid starts per constraint (within its windows")
+            .is_none()
+    );
+}
+
 #[test]
 fn an_actuals_file_is_used_and_an_invalid_one_changes_nothing() {
     let mut app = uncertain_drive();
