@@ -714,12 +714,26 @@ pub(super) fn try_duration(
 /// goes to the earlier start, which is in the ring), so the first ring with a
 /// passing start holds the search's choice over the whole window, and phase 1
 /// of a windowless activity that fits early never looks at the rest of the
-/// horizon. A window whose rings all fail costs its whole span, as before.
+/// horizon. A part of a ring that the state-of-charge bound proves failing
+/// (`State::fails_on_energy`) holds no passing start whatever phase 1 says
+/// there, so its phase 1 is left out, unless no part has a candidate at all
+/// (the step then fails in phase 1, not phase 2).
 fn try_rings(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, i64)) -> Tried {
     let act = &state.problem.acts[a];
     let mut any = false;
     let mut rejected = Rejected::default();
-    let candidates = |lo: i64, hi: i64| state.phase1_others(a, d, scope, lo, hi);
+    // Parts a bound proved to fail on energy, whose phase 1 was left out:
+    // looked at only if no part had a candidate, to tell the two failure
+    // phases apart.
+    let mut skipped: Vec<(i64, i64)> = Vec::new();
+    let mut candidates = |lo: i64, hi: i64, rejected: &mut Rejected| {
+        if let Some(bound) = state.fails_on_energy(a, d, lo, hi) {
+            rejected.add_skipped(bound, lo);
+            skipped.push((lo, hi));
+            return IntervalSet::empty();
+        }
+        state.phase1_others(a, d, scope, lo, hi)
+    };
     for w in &act.windows {
         let range = state.window_range(a, w, d);
         let (lo, hi) = (range.lo.max(span.0), range.hi.min(span.1));
@@ -737,10 +751,11 @@ fn try_rings(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, i64
             );
             let cand = if from > to {
                 // The first ring: one span.
-                candidates(next_from, next_to)
+                candidates(next_from, next_to, &mut rejected)
             } else {
-                let left = (next_from < from).then(|| candidates(next_from, from - 1));
-                let right = (next_to > to).then(|| candidates(to + 1, next_to));
+                let left =
+                    (next_from < from).then(|| candidates(next_from, from - 1, &mut rejected));
+                let right = (next_to > to).then(|| candidates(to + 1, next_to, &mut rejected));
                 match (left, right) {
                     (Some(l), Some(r)) => l.union(&r),
                     (l, r) => l.or(r).unwrap_or_else(IntervalSet::empty),
@@ -765,6 +780,11 @@ fn try_rings(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, i64
                 };
             }
         }
+    }
+    if !any {
+        any = skipped
+            .iter()
+            .any(|&(lo, hi)| !state.phase1_others(a, d, scope, lo, hi).is_empty());
     }
     Tried {
         categories: Vec::new(),

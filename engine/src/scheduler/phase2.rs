@@ -760,6 +760,40 @@ impl State<'_> {
         (chosen, tries)
     }
 
+    /// The charge activity `a` drains over duration `d`, when a bound on the
+    /// state of charge applies: `None` for an activity that does not drain, or
+    /// when awake periods charge (as in `failing_soc_bound`).
+    fn drain_of_duration(&self, a: usize, d: i64) -> Option<i128> {
+        let problem = self.problem;
+        let act = &problem.acts[a];
+        (act.energy > 0 && problem.awake >= problem.asleep)
+            .then(|| i128::from(act.energy) * i128::from(d))
+    }
+
+    /// When a bound proves that every start in `[lo, hi]` of activity `a` with
+    /// duration `d` fails on energy, whatever else holds there (phase 1
+    /// included): `Some(Some(bound))`, the bound on the lowest state of charge,
+    /// when it is `min_soc`; `Some(None)` when it is the handover minimum (the
+    /// level at the handover time is bounded as the lowest level is)
+    /// (`RateTimeline::drain_bound` over the span: the activity drains
+    /// somewhere inside it, and its generated pieces only drain more).
+    pub(super) fn fails_on_energy(
+        &self,
+        a: usize,
+        d: i64,
+        lo: i64,
+        hi: i64,
+    ) -> Option<Option<i64>> {
+        let problem = self.problem;
+        let (energy, until) = (self.drain_of_duration(a, d)?, hi.saturating_add(d));
+        let bound = self.soc.drain_bound(lo, until, energy);
+        if bound < problem.min_soc {
+            return Some(Some(clamp_i64(bound)));
+        }
+        let (t, min) = problem.handover_soc_of(a)?;
+        (self.soc.level_bound(lo, until, energy, t) < min).then_some(None)
+    }
+
     /// [`State::search`]'s choice without its tries (a run that records
     /// outcomes only), found best-first over spans of `cand`, nearest
     /// `preferred` first. A span is skipped whole when the state-of-charge bound
@@ -780,42 +814,16 @@ impl State<'_> {
         preferred: i64,
     ) -> (Option<Evaluated>, Rejected) {
         let problem = self.problem;
-        let act = &problem.acts[a];
         let mut rejected = Rejected::default();
         let ivs = cand.intervals();
         let (Some(first), Some(last)) = (cand.first(), ivs.last().map(|iv| iv.hi)) else {
             return (None, rejected);
         };
-        // No bound applies to an activity that does not drain, or when awake
-        // periods charge (as in `failing_soc_bound`): one span, not split.
-        let energy = (act.energy > 0 && problem.awake >= problem.asleep)
-            .then(|| i128::from(act.energy) * i128::from(d));
+        let energy = self.drain_of_duration(a, d);
         let handover_gap = problem.handover_gap(a);
-        let handover = problem.handover_soc_of(a);
-        // When a bound proves that every start in `[lo, hi]` fails on energy:
-        // `Some(Some(bound))`, the bound on the lowest state of charge, when it
-        // is `min_soc`; `Some(None)` when it is the handover minimum (the level
-        // at the handover time is bounded as the lowest level is).
-        let fails = |lo: i64, hi: i64| {
-            let (energy, until) = (energy?, hi.saturating_add(d));
-            let bound = self.soc.drain_bound(lo, until, energy);
-            if bound < problem.min_soc {
-                return Some(Some(clamp_i64(bound)));
-            }
-            let (t, min) = handover?;
-            (self.soc.level_bound(lo, until, energy, t) < min).then_some(None)
-        };
-        // A start failing the handover minimum fails whatever `battery.min_soc`
-        // is, and `Rejected` bounds only the starts whose handover part passes:
-        // such a span adds nothing.
+        let fails = |lo: i64, hi: i64| self.fails_on_energy(a, d, lo, hi);
         let skipped = |rejected: &mut Rejected, bound: Option<i64>, lo: i64| {
-            if let Some(bound) = bound {
-                let reason = Phase2Reason::MinSoc {
-                    at: lo,
-                    soc_mj: bound,
-                };
-                rejected.add(Some(&reason), false, None);
-            }
+            rejected.add_skipped(bound, lo);
         };
         // The span's part of `cand`, as its first and last start.
         let clip = |lo: i64, hi: i64| {

@@ -452,6 +452,21 @@ impl Rejected {
         out
     }
 
+    /// Takes in a span of starts skipped because `fails_on_energy` proved
+    /// that they fail on energy, with its bound (`None`: on the handover
+    /// minimum). A start failing the handover minimum fails whatever
+    /// `battery.min_soc` is, and the summary bounds only the starts whose
+    /// handover part passes: such a span adds nothing.
+    pub(crate) fn add_skipped(&mut self, bound: Option<i64>, lo: i64) {
+        if let Some(bound) = bound {
+            let reason = Phase2Reason::MinSoc {
+                at: lo,
+                soc_mj: bound,
+            };
+            self.add(Some(&reason), false, None);
+        }
+    }
+
     /// Both summaries in one.
     pub(crate) fn join(self, other: Self) -> Self {
         let mut out = self;
