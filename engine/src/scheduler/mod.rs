@@ -55,6 +55,24 @@ pub struct Scope {
 }
 
 impl Scope {
+    /// The dependencies of `act` this scope includes.
+    fn deps<'a>(&'a self, act: &'a Act) -> impl Iterator<Item = &'a problem::Dep> + 'a {
+        act.after
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| !self.skip_deps.contains(k))
+            .map(|(_, x)| x)
+    }
+
+    /// The state requirements of `act` this scope includes.
+    fn reqs<'a>(&'a self, act: &'a Act) -> impl Iterator<Item = &'a problem::Requirement> + 'a {
+        act.requires
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| !self.skip_reqs.contains(k))
+            .map(|(_, x)| x)
+    }
+
     /// This scope without the checks of the activity's end effects.
     fn without_end_effects(&self) -> Scope {
         Scope {
@@ -481,12 +499,7 @@ pub(crate) fn run_step(
         step.outcome = Outcome::Skipped { by };
         return no_search(step);
     }
-    let included = |k: &usize| !scope.skip_deps.contains(k);
-    if let Some(dep) = (0..act.after.len())
-        .filter(included)
-        .map(|k| &act.after[k])
-        .find(|d| state.placed[d.target].is_none())
-    {
+    if let Some(dep) = scope.deps(act).find(|d| state.placed[d.target].is_none()) {
         step.outcome = Outcome::Failed(FailurePhase::Dependency { on: dep.target });
         return no_search(step);
     }

@@ -43,12 +43,7 @@ impl State<'_> {
             self.dependency_range(x)
                 .is_some_and(|(lo, hi)| lo <= s && s <= hi)
         };
-        if !act
-            .after
-            .iter()
-            .enumerate()
-            .all(|(k, x)| scope.skip_deps.contains(&k) || in_range(x))
-        {
+        if !scope.deps(act).all(in_range) {
             return false;
         }
         // unit_resource
@@ -153,12 +148,7 @@ impl State<'_> {
                 .collect(),
             Category::Dependency => {
                 let mut dep = all();
-                for (_, x) in act
-                    .after
-                    .iter()
-                    .enumerate()
-                    .filter(|(k, _)| !scope.skip_deps.contains(k))
-                {
+                for x in scope.deps(act) {
                     match self.dependency_range(x) {
                         Some((lo, hi)) => dep = dep.clip(lo, hi),
                         None => dep = IntervalSet::empty(),
@@ -181,12 +171,7 @@ impl State<'_> {
             },
             Category::StateRequirement => {
                 let mut req = all();
-                for (_, r) in act
-                    .requires
-                    .iter()
-                    .enumerate()
-                    .filter(|(k, _)| !scope.skip_reqs.contains(k))
-                {
+                for r in scope.reqs(act) {
                     req =
                         req.intersect(&self.states[r.state].requirement_valid(r.value, d, lo, hi));
                 }
