@@ -3011,6 +3011,37 @@ fn the_selected_activity_s_free_slack_is_computed_ahead_of_the_rest() {
     );
 }
 
+/// A failed expanding activity's note saying which duration its reasons are
+/// for comes above the reasons, with the sentence that says why it failed
+/// (`explanation_lead`); the notes that go through the reasons follow them.
+#[test]
+fn the_duration_note_of_a_failed_expanding_activity_leads_its_reasons() {
+    let plan = include_str!("plans/two-limits.json").replace(
+        r#""id": "X", "priority": 2, "duration": 600,"#,
+        r#""id": "X", "priority": 2, "duration": {"min": 600, "max": 900},"#,
+    );
+    let mut app = SolscopeApp::from_text(&plan, None).expect("two-limits plan");
+    let x = index(&app, "X");
+    app.apply(Command::Select(Some(x)));
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    h.run_steps(3);
+    // Where the labels containing `text` are (a label may be matched twice,
+    // by its node and its container's).
+    let span = |text: &str| {
+        h.get_all_by_label_contains(text)
+            .map(|n| n.rect())
+            .reduce(|a, b| a.union(b))
+            .expect("a label")
+    };
+    let note = span("may last from 10 min to 15 min, and no duration fits");
+    let why = span("Some start times pass every constraint");
+    let reason = span("min_soc for starts");
+    let prose = span("below the 300.0 Wh minimum");
+    assert!(why.top() < note.top(), "{why:?} {note:?}");
+    assert!(note.bottom() <= reason.top(), "{note:?} {reason:?}");
+    assert!(reason.bottom() <= prose.top(), "{reason:?} {prose:?}");
+}
+
 /// An expanding activity's valid starts are for one duration, and the header
 /// over them says which (the tutorial's drive may last 20 to 60 minutes).
 #[test]

@@ -5,8 +5,8 @@
 use eframe::egui::{self, Pos2, Rect, RichText, Sense, Stroke};
 use serde_json::{Map, Value};
 use solscope_engine::{
-    CategoryIntervals, Duration, Phase, explanation_notes, format_span, reason_line,
-    suggestion_line,
+    CategoryIntervals, Duration, Phase, explanation_lead, explanation_notes, format_span,
+    reason_line, suggestion_line,
 };
 
 use super::{Model, Status, TourAnchors, command_button, editor, execution, flex};
@@ -166,6 +166,14 @@ fn activity_ui(
                 cmds.push(Command::GoToFailureStep(a));
             }
         }
+        // Why, in a sentence (and the duration the rest is for), above the
+        // conflicts and reasons; the notes that go through them one by one below.
+        let problem = &m.analysis.schedule.problem;
+        let notes = explanation_notes(&m.doc.plan, problem, ex);
+        let lead = explanation_lead(&m.doc.plan, problem, ex).min(notes.len());
+        for note in &notes[..lead] {
+            ui.label(note);
+        }
         if ex.phase == Some(Phase::ValidIntervals) {
             for c in &ex.conflicts {
                 let names: Vec<&str> = c.iter().map(|x| x.name()).collect();
@@ -213,7 +221,7 @@ fn activity_ui(
             };
             ui.label(RichText::new(text).color(m.theme.muted));
         }
-        for note in explanation_notes(&m.doc.plan, &m.analysis.schedule.problem, ex) {
+        for note in &notes[lead..] {
             ui.label(note);
         }
         if !ex.culprits.is_empty() {

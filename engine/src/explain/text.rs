@@ -115,12 +115,26 @@ pub fn reason_line(plan: &Plan, problem: &Problem, r: &ReasonRange) -> String {
 
 /// The plain-language notes of an explanation.
 pub fn explanation_notes(plan: &Plan, problem: &Problem, ex: &Explanation) -> Vec<String> {
+    notes_and_lead(plan, problem, ex).0
+}
+
+/// How many of [`explanation_notes`] lead: why the activity failed in one
+/// sentence, and for an expanding activity the duration that what follows is
+/// for. The rest go through the conflicts or reasons one by one (the app's
+/// inspector shows the lead above its list of reasons, the rest below it).
+pub fn explanation_lead(plan: &Plan, problem: &Problem, ex: &Explanation) -> usize {
+    notes_and_lead(plan, problem, ex).1
+}
+
+/// [`explanation_notes`] and [`explanation_lead`].
+fn notes_and_lead(plan: &Plan, problem: &Problem, ex: &Explanation) -> (Vec<String>, usize) {
     let name = |a: usize| plan.activities[a].display_name().to_string();
     let me = name(ex.activity);
     let mut notes = Vec::new();
+    let mut lead = None;
     let Some(phase) = ex.phase else {
         notes.push(format!("{me} is scheduled (step {}).", ex.step));
-        return notes;
+        return (notes, 1);
     };
     let when = match ex.failure_step {
         Some(0) => "It cannot be scheduled even in an empty plan.".to_string(),
@@ -167,6 +181,7 @@ pub fn explanation_notes(plan: &Plan, problem: &Problem, ex: &Explanation) -> Ve
                 "No start time of {me} satisfies all its constraints at once. {when}"
             ));
             notes.extend(for_duration);
+            lead = Some(notes.len());
             for conflict in &ex.conflicts {
                 let parts: Vec<String> = conflict
                     .iter()
@@ -195,6 +210,7 @@ pub fn explanation_notes(plan: &Plan, problem: &Problem, ex: &Explanation) -> Ve
                 "Some start times pass every constraint on timing and resources, but each fails on power, sleep or heating. {when}"
             ));
             notes.extend(for_duration);
+            lead = Some(notes.len());
             for r in ex.reasons.iter().take(8) {
                 let range = if r.first == r.last {
                     format!("At {}", at(problem, r.first))
@@ -289,7 +305,8 @@ pub fn explanation_notes(plan: &Plan, problem: &Problem, ex: &Explanation) -> Ve
             .collect();
         notes.push(format!("Involved: {}.", names.join(", ")));
     }
-    notes
+    let lead = lead.unwrap_or(notes.len());
+    (notes, lead)
 }
 
 /// How many culprits a view for planners names.
