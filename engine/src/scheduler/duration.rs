@@ -9,7 +9,7 @@
 use super::problem::{Act, Problem};
 use super::state::State;
 use super::trace::Category;
-use super::{Part, Scope, outside_execution, try_duration};
+use super::{Part, Scope, try_duration};
 use crate::model::{AwakeMode, EffectAt};
 use crate::timeline::{Interval, IntervalSet};
 
@@ -185,8 +185,7 @@ pub(super) fn longest_scanned(
 fn shortest_starts(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64)) -> IntervalSet {
     let act = &state.problem.acts[a];
     let relaxed = scope.without_end_effects();
-    let categories = state.phase1_in(a, act.dur_min, &relaxed, span.0, span.1);
-    let others = outside_execution(&categories, span);
+    let others = state.phase1_others(a, act.dur_min, &relaxed, span.0, span.1);
     act.windows
         .iter()
         .map(|w| state.window_range(a, w, act.dur_min))

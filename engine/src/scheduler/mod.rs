@@ -628,6 +628,20 @@ pub(super) struct Tried {
     rejected: Rejected,
 }
 
+impl Tried {
+    /// An outcome without category intervals or tries.
+    fn bare(any: bool, found: Option<Evaluated>, rejected: Rejected) -> Self {
+        Self {
+            categories: Vec::new(),
+            union: IntervalSet::empty(),
+            any,
+            found,
+            tries: Vec::new(),
+            rejected,
+        }
+    }
+}
+
 /// How much of one duration's search [`try_duration`] does.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Part {
@@ -659,14 +673,7 @@ pub(super) fn try_duration(
     debug_assert!(!(record && (only.is_some() || scope.skip_end_effects || bare)));
     let span = only.map_or(span, |(lo, hi)| (span.0.max(lo), span.1.min(hi)));
     if span.0 > span.1 {
-        return Tried {
-            categories: Vec::new(),
-            union: IntervalSet::empty(),
-            any: false,
-            found: None,
-            tries: Vec::new(),
-            rejected: Rejected::default(),
-        };
+        return Tried::bare(false, None, Rejected::default());
     }
     if bare {
         let tried = try_rings(state, a, d, scope, span);
@@ -783,14 +790,7 @@ fn try_rings(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, i64
             let (chosen, r) = state.search_outcome(a, d, &cand, w.preferred);
             rejected = rejected.join(r);
             if chosen.is_some() {
-                return Tried {
-                    categories: Vec::new(),
-                    union: IntervalSet::empty(),
-                    any,
-                    found: chosen,
-                    tries: Vec::new(),
-                    rejected,
-                };
+                return Tried::bare(any, chosen, rejected);
             }
         }
     }
@@ -799,14 +799,7 @@ fn try_rings(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, i64
             .iter()
             .any(|&(lo, hi)| !state.phase1_others(a, d, scope, lo, hi).is_empty());
     }
-    Tried {
-        categories: Vec::new(),
-        union: IntervalSet::empty(),
-        any,
-        found: None,
-        tries: Vec::new(),
-        rejected,
-    }
+    Tried::bare(any, None, rejected)
 }
 
 /// The width of the first ring [`try_rings`] searches for a duration `d`:

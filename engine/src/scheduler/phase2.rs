@@ -762,7 +762,7 @@ impl State<'_> {
 
     /// The charge activity `a` drains over duration `d`, when a bound on the
     /// state of charge applies: `None` for an activity that does not drain, or
-    /// when awake periods charge (as in `failing_soc_bound`).
+    /// when awake periods charge.
     fn drain_of_duration(&self, a: usize, d: i64) -> Option<i128> {
         let problem = self.problem;
         let act = &problem.acts[a];
@@ -914,11 +914,7 @@ impl State<'_> {
     /// activity that does not drain, or awake periods that charge).
     fn failing_soc_bound(&self, a: usize, d: i64, cell_lo: i64, cell_hi: i64) -> Option<i128> {
         let problem = self.problem;
-        let act = &problem.acts[a];
-        if act.energy <= 0 || problem.awake < problem.asleep {
-            return None;
-        }
-        let energy = i128::from(act.energy) * i128::from(d);
+        let energy = self.drain_of_duration(a, d)?;
         let bound = self
             .soc
             .drain_bound(cell_lo, cell_hi.saturating_add(d), energy);
