@@ -211,10 +211,7 @@ impl State<'_> {
                 }
                 data
             }
-            Category::Uhf => {
-                let busy: Vec<(i64, i64)> = self.uhf_busy(a, lo, hi.saturating_add(d)).collect();
-                atomic_valid(&busy, d, lo, hi)
-            }
+            Category::Uhf => atomic_valid(self.uhf_busy(a, lo, hi.saturating_add(d)), d, lo, hi),
         }
     }
 

@@ -8,59 +8,48 @@ use super::{Interval, IntervalSet, StepFn};
 
 /// Starts `s` in `[lo, hi]` for which `[s, s + d)` overlaps none of `busy`
 /// (half-open intervals, any order). The atomic (unit resource) timeline.
-pub fn atomic_valid(busy: &[(i64, i64)], d: i64, lo: i64, hi: i64) -> IntervalSet {
+pub fn atomic_valid(
+    busy: impl IntoIterator<Item = (i64, i64)>,
+    d: i64,
+    lo: i64,
+    hi: i64,
+) -> IntervalSet {
     let forbidden: IntervalSet = busy
-        .iter()
-        .map(|&(a, b)| Interval::new(a.saturating_sub(d).saturating_add(1), b.saturating_sub(1)))
+        .into_iter()
+        .map(|(a, b)| Interval::new(a.saturating_sub(d).saturating_add(1), b.saturating_sub(1)))
         .filter(|iv| iv.lo <= hi && iv.hi >= lo)
         .collect();
     IntervalSet::single(lo, hi).subtract(&forbidden)
 }
 
-/// A unit resource's busy intervals (half-open `[start, end)`), sorted by start,
-/// so that a query looks only at the intervals near its range rather than at
-/// every placement on the resource (a windowless activity's query over 30 sols
-/// made phase 1 quadratic in the plan).
+/// A unit resource's busy intervals (half-open `[start, end)`), sorted by start
+/// ([`TaggedSpans`]), so that a query looks only at the intervals near its
+/// range rather than at every placement on the resource (a windowless
+/// activity's query over 30 sols made phase 1 quadratic in the plan).
 #[derive(Clone, Debug, Default)]
 pub struct UnitTimeline {
-    busy: Vec<(i64, i64)>,
-    /// The longest interval: one starting more than this before a time ends
-    /// before it.
-    longest: i64,
+    busy: TaggedSpans<()>,
 }
 
 impl UnitTimeline {
     /// Marks `[s, e)` busy.
     pub fn add(&mut self, s: i64, e: i64) {
-        let i = self.busy.partition_point(|&(a, b)| (a, b) <= (s, e));
-        self.busy.insert(i, (s, e));
-        self.longest = self.longest.max(e - s);
-    }
-
-    /// The busy intervals that can overlap `[from, to)`: those starting in
-    /// `[from - longest, to)`, a sorted slice (it may hold some that end by
-    /// `from`).
-    fn near(&self, from: i64, to: i64) -> &[(i64, i64)] {
-        let i = self
-            .busy
-            .partition_point(|&(a, _)| a < from.saturating_sub(self.longest));
-        let j = self.busy.partition_point(|&(a, _)| a < to);
-        &self.busy[i..j.max(i)]
+        self.busy.add(s, e, ());
     }
 
     /// Whether some busy interval overlaps `[from, to)`.
     pub fn overlaps(&self, from: i64, to: i64) -> bool {
-        self.near(from, to).iter().any(|&(a, b)| a < to && from < b)
+        self.busy.overlapping(from, to).next().is_some()
     }
 
     /// [`atomic_valid`] over these intervals.
     pub fn valid(&self, d: i64, lo: i64, hi: i64) -> IntervalSet {
-        let near = self.near(lo, hi.saturating_add(d));
-        let valid = atomic_valid(near, d, lo, hi);
+        let near = self.busy.overlapping(lo, hi.saturating_add(d));
+        let valid = atomic_valid(near.map(|(a, b, ())| (a, b)), d, lo, hi);
         #[cfg(debug_assertions)]
         debug_assert_eq!(
             valid,
-            atomic_valid(&self.busy, d, lo, hi),
+            atomic_valid(self.busy.spans.iter().map(|&(a, b, ())| (a, b)), d, lo, hi),
             "near {lo}..{hi}"
         );
         valid
@@ -68,9 +57,9 @@ impl UnitTimeline {
 }
 
 /// Intervals `[start, end)` with a tag each, sorted by start, so that a query
-/// near a range looks only at those that can overlap it, as [`UnitTimeline`]
-/// does (the placed UHF intervals: a windowless activity's phase 1 asked for
-/// every one of them, once per window).
+/// near a range looks only at those that can overlap it (a unit resource's
+/// busy intervals, and the placed UHF intervals: a windowless activity's
+/// phase 1 asked for every one of them, once per window).
 #[derive(Clone, Debug)]
 pub struct TaggedSpans<T> {
     spans: Vec<(i64, i64, T)>,
@@ -451,7 +440,10 @@ mod tests {
             for _ in 0..20 {
                 let (d, lo) = (1 + next(30), next(220) - 10);
                 let hi = lo + next(60);
-                assert_eq!(unit.valid(d, lo, hi), atomic_valid(&all, d, lo, hi));
+                assert_eq!(
+                    unit.valid(d, lo, hi),
+                    atomic_valid(all.iter().copied(), d, lo, hi)
+                );
                 let to = lo + 1 + next(40);
                 let want = all.iter().any(|&(a, b)| a < to && lo < b);
                 assert_eq!(unit.overlaps(lo, to), want, "{all:?} {lo}..{to}");
@@ -464,7 +456,7 @@ mod tests {
     fn atomic_matches_brute_force() {
         let busy = [(10, 20), (25, 26), (40, 60)];
         for d in 1..8 {
-            let v = atomic_valid(&busy, d, 0, 80);
+            let v = atomic_valid(busy, d, 0, 80);
             for s in 0..=80 {
                 let ok = busy.iter().all(|&(a, b)| s + d <= a || s >= b);
                 assert_eq!(v.contains(s), ok, "d={d} s={s}");
