@@ -3040,6 +3040,20 @@ fn the_duration_note_of_a_failed_expanding_activity_leads_its_reasons() {
     assert!(why.top() < note.top(), "{why:?} {note:?}");
     assert!(note.bottom() <= reason.top(), "{note:?} {reason:?}");
     assert!(reason.bottom() <= prose.top(), "{reason:?} {prose:?}");
+    // The reason lines for the note's duration come first and name none;
+    // those the duration search tried at longer ones name theirs.
+    let mut lines: Vec<(f32, String)> = h
+        .get_all_by_label_contains("min_soc for starts")
+        .chain(h.get_all_by_label_contains("max_peak_power for starts"))
+        .filter_map(|n| Some((n.rect().top(), n.accesskit_node().value()?)))
+        .collect();
+    lines.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let first = lines.first().map(|l| l.1.as_str()).unwrap_or_default();
+    assert!(!first.contains("lasting"), "{lines:#?}");
+    assert!(
+        lines.iter().any(|l| l.1.contains(", lasting 12 min 30 s:")),
+        "{lines:#?}"
+    );
 }
 
 /// An expanding activity's valid starts are for one duration, and the header

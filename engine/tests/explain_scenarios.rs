@@ -928,11 +928,33 @@ fn a_failed_expanding_activity_says_which_duration_it_explains() {
     assert_eq!(ex.phase, Some(Phase::Placement));
     assert_eq!(ex.duration, 120);
     let notes = solscope_engine::explanation_notes(&p, &s.problem, &ex);
-    assert!(
-        notes.iter().any(|n| n
-            == "y may last from 2 min to 10 min, and no duration fits; what follows is for its shortest, 2 min."),
+    // The binary search tried longer durations too; their reasons are kept,
+    // and each names its duration.
+    let others: Vec<_> = ex.reasons.iter().filter(|r| r.duration != 120).collect();
+    assert!(!others.is_empty(), "{:?}", ex.reasons);
+    let lead = solscope_engine::explanation_lead(&p, &s.problem, &ex);
+    assert_eq!(
+        notes[lead - 1],
+        "y may last from 2 min to 10 min, and no duration fits; what follows is for its \
+         shortest, 2 min, except where a line names the duration it was tried at.",
         "{notes:#?}"
     );
+    // The reasons for 2 min come first and name no duration; the others
+    // follow, each with its own.
+    let own = ex.reasons.len() - others.len();
+    let reasons = &notes[lead..lead + ex.reasons.len().min(8)];
+    for (i, n) in reasons.iter().enumerate() {
+        assert!(n.starts_with("For starts") || n.starts_with("At "), "{n}");
+        assert_eq!(i >= own, n.contains(", lasting "), "{i}: {n}");
+    }
+    for r in &others {
+        let line = solscope_engine::reason_line(&p, &s.problem, r, ex.duration);
+        let named = format!(", lasting {}:", solscope_engine::format_span(r.duration));
+        assert!(line.contains(&named), "{line}");
+    }
+    let first_own = ex.reasons.iter().find(|r| r.duration == 120).expect("one");
+    let line = solscope_engine::reason_line(&p, &s.problem, first_own, ex.duration);
+    assert!(!line.contains("lasting"), "{line}");
     // The same failure with a fixed duration gets no such note.
     let mut fixed = p.clone();
     fixed.activities[1].duration = solscope_engine::Duration::Fixed(120);

@@ -514,7 +514,7 @@ fn cycle_step_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Vec<Comm
     if !failing.is_empty() && step.outcome.placement().is_none() {
         ui.label(RichText::new("Rejected starts").strong());
         for r in failing.iter().take(REASONS_SHOWN) {
-            ui.label(reason_line(plan, &sched.problem, r));
+            ui.label(reason_line(plan, &sched.problem, r, step.duration));
         }
         if failing.len() > REASONS_SHOWN {
             ui.label(format!("and {} more ranges", failing.len() - REASONS_SHOWN));

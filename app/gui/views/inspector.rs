@@ -6,7 +6,7 @@ use eframe::egui::{self, Pos2, Rect, RichText, Sense, Stroke};
 use serde_json::{Map, Value};
 use solscope_engine::{
     CategoryIntervals, Duration, Phase, explanation_lead, explanation_notes, format_span,
-    reason_line, suggestion_line,
+    reason_line, reasons_in_reading_order, suggestion_line,
 };
 
 use super::{Model, Status, TourAnchors, command_button, editor, execution, flex};
@@ -180,8 +180,12 @@ fn activity_ui(
                 ui.label(format!("Conflict: {}", names.join(" + ")));
             }
         }
-        for (i, r) in ex.reasons.iter().enumerate().take(4) {
-            let line = reason_line(&m.doc.plan, &m.analysis.schedule.problem, r);
+        for (i, r) in reasons_in_reading_order(ex)
+            .into_iter()
+            .take(4)
+            .map(|i| (i, &ex.reasons[i]))
+        {
+            let line = reason_line(&m.doc.plan, &m.analysis.schedule.problem, r, ex.duration);
             // An energy or peak-power reason can be drawn over its plot (when
             // there is more than one to choose from).
             let overlay = m.would_cause.filter(|w| w.reasons.len() > 1).and_then(|w| {

@@ -70,7 +70,11 @@ pub fn suggestion_line(plan: &Plan, s: &super::Suggestion) -> String {
 
 /// One range of failing starts in short form, with its numbers:
 /// `min_soc for starts 100–200: SOC 633.2 Wh at 1500 (10:25:00)`.
-pub fn reason_line(plan: &Plan, problem: &Problem, r: &ReasonRange) -> String {
+///
+/// `shown` is the duration the text around the line is for (an explanation's,
+/// or a step's): a range tried at another duration of an expanding activity
+/// names its own (`min_soc for starts 100–200, lasting 15 min: …`).
+pub fn reason_line(plan: &Plan, problem: &Problem, r: &ReasonRange, shown: i64) -> String {
     let detail = match &r.reason {
         Phase2Reason::MinSoc { at: t, soc_mj } => {
             format!(
@@ -106,11 +110,32 @@ pub fn reason_line(plan: &Plan, problem: &Problem, r: &ReasonRange) -> String {
         Phase2Reason::MinAwake { sleep: None } => "the plan bounds".to_string(),
     };
     format!(
-        "{} for starts {}–{}: {detail}",
+        "{} for starts {}–{}{}: {detail}",
         r.reason.kind().name(),
         at(problem, r.first),
-        at(problem, r.last)
+        at(problem, r.last),
+        lasting(r, shown)
     )
+}
+
+/// The indices of `ex.reasons` in the order a planner reads them: those for
+/// the explanation's own duration (the one its lead note names) first, then
+/// those the duration search tried at other durations, each group in its
+/// recorded order.
+pub fn reasons_in_reading_order(ex: &Explanation) -> Vec<usize> {
+    let (mut own, other): (Vec<usize>, Vec<usize>) =
+        (0..ex.reasons.len()).partition(|&i| ex.reasons[i].duration == ex.duration);
+    own.extend(other);
+    own
+}
+
+/// `, lasting 15 min` when `r` was tried at another duration than `shown`.
+fn lasting(r: &ReasonRange, shown: i64) -> String {
+    if r.duration == shown {
+        String::new()
+    } else {
+        format!(", lasting {}", format_span(r.duration))
+    }
 }
 
 /// The plain-language notes of an explanation.
@@ -157,8 +182,15 @@ fn notes_and_lead(plan: &Plan, problem: &Problem, ex: &Explanation) -> (Vec<Stri
         } else {
             format!("a duration of {}", format_span(ex.duration))
         };
+        // The search's tries at other durations are listed too, each
+        // naming its own.
+        let except = if ex.reasons.iter().any(|r| r.duration != ex.duration) {
+            ", except where a line names the duration it was tried at"
+        } else {
+            ""
+        };
         format!(
-            "{me} may last from {} to {}, and no duration fits; what follows is for {which}.",
+            "{me} may last from {} to {}, and no duration fits; what follows is for {which}{except}.",
             format_span(min),
             format_span(max)
         )
@@ -211,14 +243,19 @@ fn notes_and_lead(plan: &Plan, problem: &Problem, ex: &Explanation) -> (Vec<Stri
             ));
             notes.extend(for_duration);
             lead = Some(notes.len());
-            for r in ex.reasons.iter().take(8) {
+            for r in reasons_in_reading_order(ex)
+                .into_iter()
+                .take(8)
+                .map(|i| &ex.reasons[i])
+            {
                 let range = if r.first == r.last {
-                    format!("At {}", at(problem, r.first))
+                    format!("At {}{}", at(problem, r.first), lasting(r, ex.duration))
                 } else {
                     format!(
-                        "For starts {}–{}",
+                        "For starts {}–{}{}",
                         at(problem, r.first),
-                        at(problem, r.last)
+                        at(problem, r.last),
+                        lasting(r, ex.duration)
                     )
                 };
                 let why = match &r.reason {
