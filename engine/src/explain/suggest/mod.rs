@@ -73,6 +73,14 @@ impl Candidate {
     }
 }
 
+impl Candidate {
+    /// Whether `other` edits the same fields of the same target to the same
+    /// values.
+    fn same_edit(&self, other: &Candidate) -> bool {
+        self.target == other.target && self.set == other.set
+    }
+}
+
 fn set1(key: &str, value: Value) -> Map<String, Value> {
     let mut m = Map::new();
     m.insert(key.to_string(), value);
@@ -100,18 +108,36 @@ pub(crate) struct Fixes {
 pub(crate) fn suggestions(plan: &Plan, sched: &Schedule, exs: &[Explanation]) -> Vec<Fixes> {
     let failing = exs.iter().filter(|ex| ex.failure_step.is_some()).count();
     let runs = verify::Runs::new(plan, sched, failing > 1);
-    let (failures, pairings): (Vec<Failure>, Vec<Vec<Pairing>>) = exs
-        .par_iter()
-        .map(|ex| {
-            let (candidates, pairings) = if ex.failure_step.is_some() {
-                candidates(&runs, ex)
+    let (failures, pairings, singles) = if failing > 1 {
+        let (failures, pairings): (Vec<Failure>, Vec<Vec<Pairing>>) = exs
+            .par_iter()
+            .map(|ex| {
+                let (candidates, pairings) = if ex.failure_step.is_some() {
+                    candidates(&runs, ex)
+                } else {
+                    (Vec::new(), Vec::new())
+                };
+                ((ex.activity, candidates), pairings)
+            })
+            .unzip();
+        let singles = verify::verified(&runs, &failures);
+        (failures, pairings, singles)
+    } else {
+        let mut failures = Vec::with_capacity(exs.len());
+        let mut pairings = Vec::with_capacity(exs.len());
+        let mut singles = Vec::with_capacity(exs.len());
+        for ex in exs {
+            let (candidates, pairs, single) = if ex.failure_step.is_some() {
+                verified_alone(&runs, ex)
             } else {
-                (Vec::new(), Vec::new())
+                (Vec::new(), Vec::new(), Vec::new())
             };
-            ((ex.activity, candidates), pairings)
-        })
-        .unzip();
-    let singles = verify::verified(&runs, &failures);
+            failures.push((ex.activity, candidates));
+            pairings.push(pairs);
+            singles.push(single);
+        }
+        (failures, pairings, singles)
+    };
     // The pairs each failure without a single fix may try, within the budgets.
     let mut budget = PAIRS_PER_RUN;
     let asked: Vec<Option<Vec<(&Candidate, &Candidate)>>> = failures
@@ -170,31 +196,72 @@ pub(crate) fn suggestions(plan: &Plan, sched: &Schedule, exs: &[Explanation]) ->
 /// The candidates for one failure, each edit once (the first keeps its place),
 /// and the pairings of two categories that only together block it.
 fn candidates(runs: &verify::Runs<'_>, ex: &Explanation) -> (Vec<Candidate>, Vec<Pairing>) {
+    let (mut candidates, pairings) = own_candidates(runs, ex);
+    candidates.extend(reprioritise(runs.plan, ex));
+    (distinct(candidates), pairings)
+}
+
+/// The candidates of a failure's own kind (its phase), and its pairings. The
+/// least-relaxation searches among them reschedule the edited plan.
+fn own_candidates(runs: &verify::Runs<'_>, ex: &Explanation) -> (Vec<Candidate>, Vec<Pairing>) {
     let plan = runs.plan;
     let activity = &plan.activities[ex.activity];
-    let mut pairings = Vec::new();
-    let mut candidates = match ex.phase {
-        Some(Phase::Group) => vec![leave_group(activity)],
-        Some(Phase::Dependency) => drop_failed_dependency(plan, ex).into_iter().collect(),
-        Some(Phase::ValidIntervals) => {
-            let (c, p) = intervals::candidates(runs, ex);
-            pairings = p;
-            c
-        }
-        Some(Phase::Placement) => placement::candidates(runs, ex),
-        None => Vec::new(),
-    };
-    candidates.extend(reprioritise(plan, ex));
+    match ex.phase {
+        Some(Phase::Group) => (vec![leave_group(activity)], Vec::new()),
+        Some(Phase::Dependency) => (
+            drop_failed_dependency(plan, ex).into_iter().collect(),
+            Vec::new(),
+        ),
+        Some(Phase::ValidIntervals) => intervals::candidates(runs, ex),
+        Some(Phase::Placement) => (placement::candidates(runs, ex), Vec::new()),
+        None => (Vec::new(), Vec::new()),
+    }
+}
+
+/// Each edit once, the first keeping its place.
+fn distinct(candidates: Vec<Candidate>) -> Vec<Candidate> {
     let mut unique: Vec<Candidate> = Vec::with_capacity(candidates.len());
     for c in candidates {
-        if !unique
-            .iter()
-            .any(|u| u.target == c.target && u.set == c.set)
-        {
+        if !unique.iter().any(|u| u.same_edit(&c)) {
             unique.push(c);
         }
     }
-    (unique, pairings)
+    unique
+}
+
+/// [`candidates`] and [`verify::verified`] for the one failure explained
+/// (nothing to share with other failures): the re-prioritising candidates need
+/// no run to be built, so they are verified while the least-relaxation
+/// searches of the failure's own candidates run, on the other threads. The
+/// candidates, their order and what is kept are those of the two steps one
+/// after the other.
+fn verified_alone(
+    runs: &verify::Runs<'_>,
+    ex: &Explanation,
+) -> (Vec<Candidate>, Vec<Pairing>, Vec<Suggestion>) {
+    let a = ex.activity;
+    let ((own, pairings), (moves, moved)) = rayon::join(
+        || {
+            let (own, pairings) = own_candidates(runs, ex);
+            (distinct(own), pairings)
+        },
+        || {
+            let moves = distinct(reprioritise(runs.plan, ex));
+            let moved = verify::verified_each(runs, a, &moves);
+            (moves, moved)
+        },
+    );
+    let checked = verify::verified_each(runs, a, &own);
+    let mut candidates = own;
+    let mut results = checked;
+    for (c, r) in moves.into_iter().zip(moved) {
+        if !candidates.iter().any(|u| u.same_edit(&c)) {
+            candidates.push(c);
+            results.push(r);
+        }
+    }
+    let single = verify::suggestions_of(&candidates, &results);
+    (candidates, pairings, single)
 }
 
 /// Phase `group`: leave the group.

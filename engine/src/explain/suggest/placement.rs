@@ -2,6 +2,7 @@
 //! a plan limit or a field can relax, from the numbers of the start that came
 //! closest to passing.
 
+use rayon::prelude::*;
 use serde_json::{Value, json};
 
 use super::verify::{Runs, tune_limit, tune_seconds};
@@ -86,37 +87,67 @@ impl Closest {
 }
 
 /// The candidates of every reason kind present, in a fixed order: state of
-/// charge, handover state of charge, peak power, operability.
+/// charge, handover state of charge, peak power, operability. The builders
+/// that search a limit by rescheduling run in parallel (each is answered by
+/// its own runs, so the order of the result does not depend on the threads).
 pub(super) fn candidates(runs: &Runs<'_>, ex: &Explanation) -> Vec<Candidate> {
     let (plan, sched) = (runs.plan, runs.sched);
+    let a = ex.activity;
     let closest = Closest::of(ex);
-    let mut out = Vec::new();
+    type Builder<'b> = Box<dyn Fn() -> Vec<Candidate> + Send + Sync + 'b>;
+    let mut builders: Vec<Builder<'_>> = Vec::new();
     if let Some(mj) = closest.soc {
-        out.extend(lower_min_soc(runs, ex.activity, mj));
+        builders.push(Box::new(move || {
+            lower_min_soc(runs, a, mj).into_iter().collect()
+        }));
     }
     if let Some(mj) = closest.handover_soc {
-        out.extend(handover_soc(runs, ex.activity, mj));
+        builders.push(Box::new(move || handover_soc(runs, a, mj)));
     }
     if let Some(mw) = closest.peak {
-        out.extend(raise_max_peak(runs, ex.activity, mw));
+        builders.push(Box::new(move || {
+            raise_max_peak(runs, a, mw).into_iter().collect()
+        }));
     }
+    if closest.min_sleep {
+        builders.push(Box::new(move || {
+            tune_sleep(runs, a, "min_sleep").into_iter().collect()
+        }));
+    }
+    if closest.min_awake_sleep {
+        builders.push(Box::new(move || {
+            tune_sleep(runs, a, "min_awake").into_iter().collect()
+        }));
+    }
+    let mut tuned = builders
+        .par_iter()
+        .map(|build| build())
+        .collect::<Vec<Vec<Candidate>>>()
+        .into_iter();
+    let mut next = |present: bool| -> Vec<Candidate> {
+        if present {
+            tuned.next().unwrap_or_default()
+        } else {
+            Vec::new()
+        }
+    };
+    let mut out = Vec::new();
+    out.extend(next(closest.soc.is_some()));
+    out.extend(next(closest.handover_soc.is_some()));
+    out.extend(next(closest.peak.is_some()));
     if let Some((zone, preheat_start)) = closest.operability {
         out.extend(extend_operable(plan, sched, zone, preheat_start));
     }
     if let Some(length) = closest.before_plan {
-        out.extend(start_after_preheat(plan, ex.activity, length));
+        out.extend(start_after_preheat(plan, a, length));
     }
     if let Some(first) = closest.no_room_awake {
         out.extend(shorten_min_awake(plan, first));
     }
-    if closest.min_sleep {
-        out.extend(tune_sleep(runs, ex.activity, "min_sleep"));
-    }
-    if closest.min_awake_sleep {
-        out.extend(tune_sleep(runs, ex.activity, "min_awake"));
-    }
+    out.extend(next(closest.min_sleep));
+    out.extend(next(closest.min_awake_sleep));
     if closest.forced_sleep || closest.min_sleep || closest.min_awake_sleep {
-        out.extend(any_awake(&plan.activities[ex.activity]));
+        out.extend(any_awake(&plan.activities[a]));
         // A manual sleep in the way may run awake instead.
         for &f in closest.sleeps.iter().take(3) {
             out.extend(any_awake(&plan.activities[f]));

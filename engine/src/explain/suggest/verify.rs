@@ -437,23 +437,49 @@ pub(super) fn verified(
         .iter()
         .zip(slots)
         .map(|((_, candidates), mine)| {
-            let mut out: Vec<Suggestion> = candidates
-                .iter()
-                .zip(mine)
-                .filter_map(|(c, (e, slot))| {
-                    let side_effects = results[e][slot].clone()?;
-                    Some(Suggestion {
-                        description: c.description.clone(),
-                        target: c.target.clone(),
-                        set: c.set.clone(),
-                        side_effects,
-                    })
-                })
+            let mine: Vec<Option<Vec<usize>>> = mine
+                .into_iter()
+                .map(|(e, slot)| results[e][slot].clone())
                 .collect();
-            out.sort_by_key(|s| s.side_effects.len());
-            out
+            suggestions_of(candidates, &mine)
         })
         .collect()
+}
+
+/// [`verified`] for one failure, activity `a`, whose candidates are distinct:
+/// per candidate, in order, the side effects when it places `a`.
+pub(super) fn verified_each(
+    runs: &Runs<'_>,
+    a: usize,
+    candidates: &[Candidate],
+) -> Vec<Option<Vec<usize>>> {
+    candidates
+        .par_iter()
+        .map(|c| runs.verify(c, &[a]).pop().flatten())
+        .collect()
+}
+
+/// The candidates kept (`results[i]`: `candidates[i]`'s side effects when it
+/// places the activity) as suggestions, fewest side effects first (stable:
+/// candidate order breaks ties).
+pub(super) fn suggestions_of(
+    candidates: &[Candidate],
+    results: &[Option<Vec<usize>>],
+) -> Vec<Suggestion> {
+    let mut out: Vec<Suggestion> = candidates
+        .iter()
+        .zip(results)
+        .filter_map(|(c, side_effects)| {
+            Some(Suggestion {
+                description: c.description.clone(),
+                target: c.target.clone(),
+                set: c.set.clone(),
+                side_effects: side_effects.clone()?,
+            })
+        })
+        .collect();
+    out.sort_by_key(|s| s.side_effects.len());
+    out
 }
 
 /// If activity `a` is placed in the run of the edited plan (compiled:
