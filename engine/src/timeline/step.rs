@@ -47,40 +47,51 @@ impl StepFn {
         self.points[self.index(t)].1
     }
 
-    /// Makes `t` a breakpoint (no-op outside the open domain) and returns its index.
-    fn split(&mut self, t: i64) -> usize {
-        let i = self.index(t);
-        if self.points[i].0 == t || t <= self.start || t >= self.end {
-            return if t >= self.end { self.points.len() } else { i };
-        }
-        let v = self.points[i].1;
-        self.points.insert(i + 1, (t, v));
-        i + 1
-    }
-
     /// Adds `delta` on `[a, b)` (clipped to the domain).
+    ///
+    /// The points from the one before `a`'s segment to the one at `b` are
+    /// rewritten in one splice (breakpoints at `a` and `b` added, equal
+    /// neighbours merged): one move of the points after them, where inserting
+    /// and removing one at a time moved them up to four times (a placement on
+    /// a long plan's rate timeline moves every later breakpoint).
     pub fn add(&mut self, a: i64, b: i64, delta: i64) {
         let (a, b) = (a.max(self.start), b.min(self.end));
         if a >= b || delta == 0 {
             return;
         }
-        let i = self.split(a);
-        let j = self.split(b);
-        for p in &mut self.points[i..j] {
-            p.1 = p.1.saturating_add(delta);
-        }
-        self.coalesce(i.saturating_sub(1), (j + 1).min(self.points.len()));
-    }
-
-    /// Merges equal neighbours among `points[from..to]`.
-    fn coalesce(&mut self, from: usize, to: usize) {
-        let mut k = to.min(self.points.len()).saturating_sub(1);
-        while k > from {
-            if self.points[k].1 == self.points[k - 1].1 {
-                self.points.remove(k);
+        let pts = &self.points;
+        // `a`'s segment, and the first point at or after `b`.
+        let lo = self.index(a);
+        let hi = pts.partition_point(|p| p.0 < b);
+        let from = lo.saturating_sub(1);
+        let mut new: Vec<(i64, i64)> = Vec::with_capacity(hi - from + 3);
+        let mut push = |p: (i64, i64)| {
+            if new.last().is_none_or(|q| q.1 != p.1) {
+                new.push(p);
             }
-            k -= 1;
+        };
+        if from < lo {
+            push(pts[from]);
         }
+        if pts[lo].0 < a {
+            push(pts[lo]);
+        }
+        push((a, pts[lo].1.saturating_add(delta)));
+        for &(t, v) in &pts[lo + 1..hi] {
+            push((t, v.saturating_add(delta)));
+        }
+        // From `b` on, the value is as it was (`b < end`, so a point is there
+        // or one is added with the value of the segment it splits).
+        let to = if pts.get(hi).is_some_and(|p| p.0 == b) {
+            push(pts[hi]);
+            hi + 1
+        } else {
+            if b < self.end {
+                push((b, pts[hi - 1].1));
+            }
+            hi
+        };
+        self.points.splice(from..to, new);
     }
 
     /// The segments overlapping `[a, b)`, clipped: `(lo, hi, value)`.
@@ -130,6 +141,36 @@ mod tests {
         assert_eq!(f.points(), &[(0, 6), (90, 7)]);
         assert_eq!(f.value_at(89), 6);
         assert_eq!(f.value_at(90), 7);
+    }
+
+    proptest::proptest! {
+        /// Random additions agree with a per-second model, and the points stay
+        /// sorted, start at the domain start and never repeat a value.
+        #[test]
+        fn add_matches_a_per_second_model(
+            start in -5i64..5,
+            len in 1i64..40,
+            adds in proptest::collection::vec((-10i64..50, 0i64..30, -3i64..4), 0..30),
+        ) {
+            let end = start + len;
+            let mut f = StepFn::constant(start, end, 1);
+            let mut model = vec![1i64; len as usize];
+            for (a, w, delta) in adds {
+                f.add(a, a + w, delta);
+                for t in a.max(start)..(a + w).min(end) {
+                    model[(t - start) as usize] += delta;
+                }
+                let pts = f.points();
+                proptest::prop_assert_eq!(pts[0].0, start);
+                for p in pts.windows(2) {
+                    proptest::prop_assert!(p[0].0 < p[1].0 && p[0].1 != p[1].1, "{:?}", pts);
+                }
+                proptest::prop_assert!(pts.last().is_some_and(|p| p.0 < end));
+                for t in start..end {
+                    proptest::prop_assert_eq!(f.value_at(t), model[(t - start) as usize]);
+                }
+            }
+        }
     }
 
     #[test]
