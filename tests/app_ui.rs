@@ -3054,6 +3054,15 @@ fn the_duration_note_of_a_failed_expanding_activity_leads_its_reasons() {
         lines.iter().any(|l| l.1.contains(", lasting 12 min 30 s:")),
         "{lines:#?}"
     );
+    // The plots draw the first of them first.
+    let first = h.state().would_cause().map(|w| w.reasons[w.shown].reason);
+    let ex = h
+        .state_mut()
+        .explanation_for(x)
+        .cloned()
+        .expect("explained");
+    let first = first.map(|i| ex.reasons[i].duration);
+    assert_eq!(first, Some(ex.duration), "{:?}", ex.reasons);
 }
 
 /// An expanding activity's valid starts are for one duration, and the header

@@ -306,11 +306,11 @@ pub fn would_cause(
         return None;
     }
     let k = ex.failure_step?;
-    let reasons: Vec<OverlayReason> = ex
-        .reasons
-        .iter()
-        .enumerate()
-        .filter_map(|(i, r)| overlay_reason(plan, i, r))
+    // In the order the inspector lists them: the explanation's own duration
+    // first (an expanding activity's search tried others too).
+    let reasons: Vec<OverlayReason> = solscope_engine::reasons_in_reading_order(ex)
+        .into_iter()
+        .filter_map(|i| overlay_reason(plan, i, &ex.reasons[i]))
         .collect();
     let shown = shown.min(reasons.len().checked_sub(1)?);
     let r = &reasons[shown];

@@ -228,8 +228,8 @@ pub struct OverlayReason {
 pub struct WouldCause {
     /// The failed activity.
     pub activity: usize,
-    /// Its energy and peak-power reasons, in the explanation's order (never
-    /// empty).
+    /// Its energy and peak-power reasons, in the order the inspector lists
+    /// them (`reasons_in_reading_order`; never empty).
     pub reasons: Vec<OverlayReason>,
     /// The index in `reasons` of the one drawn with its profile.
     pub shown: usize,
