@@ -66,13 +66,22 @@ pub(crate) struct Prepared {
 
 impl Prepared {
     pub(crate) fn new(plan: &Plan, policy: Policy) -> Result<Self, Error> {
-        let outcomes = run_outcomes(plan)?;
-        let flex = if policy == Policy::Dispatch {
-            let sched = schedule(plan)?;
-            Some(flex_with(plan, &sched, FlexOptions { free_slack: false }))
-        } else {
-            None
-        };
+        if policy != Policy::Dispatch {
+            return Ok(Self {
+                outcomes: run_outcomes(plan)?,
+                flex: None,
+            });
+        }
+        // Dispatch needs the schedule for its flexible form: its outcomes are
+        // the recorded run's, replayed, not a second run.
+        let sched = schedule(plan)?;
+        let outcomes = RunOutcomes::of(&sched);
+        debug_assert_eq!(
+            Some(&outcomes),
+            run_outcomes(plan).ok().as_ref(),
+            "the outcomes replayed from the schedule differ from a run's"
+        );
+        let flex = Some(flex_with(plan, &sched, FlexOptions { free_slack: false }));
         Ok(Self { outcomes, flex })
     }
 }

@@ -275,6 +275,34 @@ pub struct RunOutcomes {
     pub step_of: Vec<usize>,
 }
 
+impl RunOutcomes {
+    /// The outcomes of the run `sched` records, its steps replayed (what
+    /// [`run_outcomes`] gives for its plan, without searching again).
+    pub fn of(sched: &Schedule) -> Self {
+        let problem = &sched.problem;
+        let mut state = State::new(problem);
+        let mut placements = vec![None; problem.acts.len()];
+        let mut preheats = Vec::new();
+        for step in &sched.steps {
+            if let Some(ev) = state.replay(step) {
+                placements[step.activity] = Some(span(&ev.placement));
+                preheats.extend(
+                    ev.placement
+                        .preheats
+                        .iter()
+                        .map(|&(z, s, e)| (z, s, e, step.activity)),
+                );
+            }
+        }
+        Self {
+            placements,
+            awake: state.awake,
+            preheats,
+            step_of: problem.step_of.clone(),
+        }
+    }
+}
+
 /// Schedules `plan` for its outcomes only: the same placements as [`schedule`]
 /// (debug builds check it), without the trace.
 ///
