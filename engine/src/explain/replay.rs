@@ -135,9 +135,15 @@ struct RunEffects {
 }
 
 impl RunEffects {
-    fn new(sched: &Schedule) -> Self {
+    /// The effects of the run's first `upto` steps: a probe asks about the
+    /// steps before its target's own only (a witness is due again before
+    /// that step or not at all), so the steps after the last target's are
+    /// never read. Explaining one early failure (the app's inspector, `explain
+    /// --activity`) then replays the run only that far.
+    fn new(sched: &Schedule, upto: usize) -> Self {
         let problem = &sched.problem;
-        let n = sched.steps.len();
+        let steps = &sched.steps[..upto.min(sched.steps.len())];
+        let n = steps.len();
         let mut out = RunEffects {
             applied: Vec::with_capacity(n + 1),
             energy: Vec::with_capacity(n + 1),
@@ -170,14 +176,13 @@ impl RunEffects {
         out.data.push(0);
         out.handover.push(0);
         let mut state = State::new(problem);
-        let placing = sched
-            .steps
+        let placing = steps
             .iter()
             .filter(|s| s.outcome.placement().is_some())
             .count();
         out.floors = Floors::grid(&state, placing);
         let mut spent = Vec::new();
-        for step in &sched.steps {
+        for step in steps {
             let (mut e, mut d, mut h) = (0, 0, 0);
             let mut applied = None;
             if let Some(ev) = state.replay(step) {
@@ -506,7 +511,13 @@ pub(super) fn failure_probes<T: Send>(
     mut stepped: impl FnMut(usize),
 ) {
     let problem = &sched.problem;
-    let fx = RunEffects::new(sched);
+    // Steps are 1-based: the last target's own step is `steps[upto - 1]`.
+    let upto = targets
+        .iter()
+        .filter_map(|&a| problem.step_of.get(a).copied())
+        .max()
+        .unwrap_or(0);
+    let fx = RunEffects::new(sched, upto);
     let inclusion = Inclusion::new(problem);
     let thresholds: Vec<Thresholds> = targets.iter().map(|&a| inclusion.thresholds(a)).collect();
     let open: Vec<usize> = (0..targets.len())
