@@ -54,23 +54,24 @@ pub struct Scope {
     pub skip_end_effects: bool,
 }
 
+/// The entries of `items` whose index `skip` does not list.
+fn included<'a, T>(items: &'a [T], skip: &'a [usize]) -> impl Iterator<Item = &'a T> + 'a {
+    items
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| !skip.contains(k))
+        .map(|(_, x)| x)
+}
+
 impl Scope {
     /// The dependencies of `act` this scope includes.
     fn deps<'a>(&'a self, act: &'a Act) -> impl Iterator<Item = &'a problem::Dep> + 'a {
-        act.after
-            .iter()
-            .enumerate()
-            .filter(|(k, _)| !self.skip_deps.contains(k))
-            .map(|(_, x)| x)
+        included(&act.after, &self.skip_deps)
     }
 
     /// The state requirements of `act` this scope includes.
     fn reqs<'a>(&'a self, act: &'a Act) -> impl Iterator<Item = &'a problem::Requirement> + 'a {
-        act.requires
-            .iter()
-            .enumerate()
-            .filter(|(k, _)| !self.skip_reqs.contains(k))
-            .map(|(_, x)| x)
+        included(&act.requires, &self.skip_reqs)
     }
 
     /// This scope without the checks of the activity's end effects.
