@@ -87,65 +87,46 @@ impl Closest {
 }
 
 /// The candidates of every reason kind present, in a fixed order: state of
-/// charge, handover state of charge, peak power, operability. The builders
-/// that search a limit by rescheduling run in parallel (each is answered by
-/// its own runs, so the order of the result does not depend on the threads).
+/// charge, handover state of charge, peak power, operability. Each kind's
+/// builder is one entry of an ordered list run in parallel (the ones that
+/// search a limit reschedule; each is answered by its own runs), collected in
+/// list order, so the result does not depend on the threads.
 pub(super) fn candidates(runs: &Runs<'_>, ex: &Explanation) -> Vec<Candidate> {
     let (plan, sched) = (runs.plan, runs.sched);
     let a = ex.activity;
     let closest = Closest::of(ex);
     type Builder<'b> = Box<dyn Fn() -> Vec<Candidate> + Send + Sync + 'b>;
+    fn one<'b>(f: impl Fn() -> Option<Candidate> + Send + Sync + 'b) -> Builder<'b> {
+        Box::new(move || f().into_iter().collect())
+    }
     let mut builders: Vec<Builder<'_>> = Vec::new();
     if let Some(mj) = closest.soc {
-        builders.push(Box::new(move || {
-            lower_min_soc(runs, a, mj).into_iter().collect()
-        }));
+        builders.push(one(move || lower_min_soc(runs, a, mj)));
     }
     if let Some(mj) = closest.handover_soc {
         builders.push(Box::new(move || handover_soc(runs, a, mj)));
     }
     if let Some(mw) = closest.peak {
-        builders.push(Box::new(move || {
-            raise_max_peak(runs, a, mw).into_iter().collect()
-        }));
+        builders.push(one(move || raise_max_peak(runs, a, mw)));
     }
-    if closest.min_sleep {
-        builders.push(Box::new(move || {
-            tune_sleep(runs, a, "min_sleep").into_iter().collect()
-        }));
-    }
-    if closest.min_awake_sleep {
-        builders.push(Box::new(move || {
-            tune_sleep(runs, a, "min_awake").into_iter().collect()
-        }));
-    }
-    let mut tuned = builders
-        .par_iter()
-        .map(|build| build())
-        .collect::<Vec<Vec<Candidate>>>()
-        .into_iter();
-    let mut next = |present: bool| -> Vec<Candidate> {
-        if present {
-            tuned.next().unwrap_or_default()
-        } else {
-            Vec::new()
-        }
-    };
-    let mut out = Vec::new();
-    out.extend(next(closest.soc.is_some()));
-    out.extend(next(closest.handover_soc.is_some()));
-    out.extend(next(closest.peak.is_some()));
     if let Some((zone, preheat_start)) = closest.operability {
-        out.extend(extend_operable(plan, sched, zone, preheat_start));
+        builders.push(one(move || {
+            extend_operable(plan, sched, zone, preheat_start)
+        }));
     }
     if let Some(length) = closest.before_plan {
-        out.extend(start_after_preheat(plan, a, length));
+        builders.push(one(move || start_after_preheat(plan, a, length)));
     }
     if let Some(first) = closest.no_room_awake {
-        out.extend(shorten_min_awake(plan, first));
+        builders.push(one(move || shorten_min_awake(plan, first)));
     }
-    out.extend(next(closest.min_sleep));
-    out.extend(next(closest.min_awake_sleep));
+    if closest.min_sleep {
+        builders.push(one(move || tune_sleep(runs, a, "min_sleep")));
+    }
+    if closest.min_awake_sleep {
+        builders.push(one(move || tune_sleep(runs, a, "min_awake")));
+    }
+    let mut out: Vec<Candidate> = builders.par_iter().flat_map_iter(|build| build()).collect();
     if closest.forced_sleep || closest.min_sleep || closest.min_awake_sleep {
         out.extend(any_awake(&plan.activities[a]));
         // A manual sleep in the way may run awake instead.
