@@ -279,19 +279,23 @@ impl RunOutcomes {
     /// The outcomes of the run `sched` records, its steps replayed (what
     /// [`run_outcomes`] gives for its plan, without searching again).
     pub fn of(sched: &Schedule) -> Self {
-        let problem = &sched.problem;
+        Self::collect(&sched.problem, |state, k, _| state.replay(&sched.steps[k]))
+    }
+
+    /// The outcomes of the run of `problem` in which step `k + 1` (activity
+    /// `a`) places what `step(state, k, a)` returns, leaving it applied to
+    /// `state`.
+    fn collect(
+        problem: &super::Problem,
+        mut step: impl FnMut(&mut State<'_>, usize, usize) -> Option<Evaluated>,
+    ) -> Self {
         let mut state = State::new(problem);
         let mut placements = vec![None; problem.acts.len()];
         let mut preheats = Vec::new();
-        for step in &sched.steps {
-            if let Some(ev) = state.replay(step) {
-                placements[step.activity] = Some(span(&ev.placement));
-                preheats.extend(
-                    ev.placement
-                        .preheats
-                        .iter()
-                        .map(|&(z, s, e)| (z, s, e, step.activity)),
-                );
+        for (k, &a) in problem.order.iter().enumerate() {
+            if let Some(ev) = step(&mut state, k, a) {
+                placements[a] = Some(span(&ev.placement));
+                preheats.extend(ev.placement.preheats.iter().map(|&(z, s, e)| (z, s, e, a)));
             }
         }
         Self {
@@ -309,29 +313,19 @@ impl RunOutcomes {
 /// [`schedule`]: super::schedule
 pub fn run_outcomes(plan: &Plan) -> Result<RunOutcomes, Error> {
     let problem = super::Problem::compile(plan)?;
-    let mut state = State::new(&problem);
-    let mut placements = vec![None; problem.acts.len()];
-    let mut preheats = Vec::new();
-    for (k, &a) in problem.order.iter().enumerate() {
-        if let Some(ev) = outcome_step(&state, a, k + 1) {
-            placements[a] = Some(span(&ev.placement));
-            preheats.extend(ev.placement.preheats.iter().map(|&(z, s, e)| (z, s, e, a)));
-            state.apply(k + 1, &ev.placement);
-        }
-    }
+    let out = RunOutcomes::collect(&problem, |state, k, a| {
+        let ev = outcome_step(state, a, k + 1)?;
+        state.apply(k + 1, &ev.placement);
+        Some(ev)
+    });
     #[cfg(debug_assertions)]
     {
         let full = super::schedule_compiled(problem.clone());
         let want: Vec<Option<(i64, i64)>> =
             (0..problem.acts.len()).map(|x| full.placement(x)).collect();
-        debug_assert_eq!(placements, want, "the outcome-only run disagrees");
+        debug_assert_eq!(out.placements, want, "the outcome-only run disagrees");
     }
-    Ok(RunOutcomes {
-        placements,
-        awake: state.awake,
-        preheats,
-        step_of: problem.step_of.clone(),
-    })
+    Ok(out)
 }
 
 /// The states of a run after every `every` steps: reruns of edits of its
