@@ -3013,7 +3013,7 @@ fn the_selected_activity_s_free_slack_is_computed_ahead_of_the_rest() {
 
 /// A failed expanding activity's note saying which duration its reasons are
 /// for comes above the reasons, with the sentence that says why it failed
-/// (`explanation_lead`); the notes that go through the reasons follow them.
+/// (`explanation_notes_and_lead`); the notes that go through the reasons follow them.
 #[test]
 fn the_duration_note_of_a_failed_expanding_activity_leads_its_reasons() {
     let plan = include_str!("plans/two-limits.json").replace(

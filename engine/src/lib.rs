@@ -37,8 +37,8 @@ pub use execute::{
 pub use explain::{
     Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,
     Suggestion, energy_consumers, explain, explain_each, explain_rendered, explain_text,
-    explanation_lead, explanation_notes, explanation_text, involved, minimal_conflicts, peak_users,
-    reason_line, reasons_in_reading_order, suggestion_line, verified_suggestions,
+    explanation_notes, explanation_notes_and_lead, explanation_text, involved, minimal_conflicts,
+    peak_users, reason_line, reasons_in_reading_order, suggestion_line, verified_suggestions,
 };
 pub use flex::{
     Bound, Constraint, Controllability, DispatchEdge, EventBounds, Flex, FlexActivity, FlexOptions,

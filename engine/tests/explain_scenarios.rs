@@ -927,12 +927,11 @@ fn a_failed_expanding_activity_says_which_duration_it_explains() {
     let (s, ex) = explain_one(&p, "y");
     assert_eq!(ex.phase, Some(Phase::Placement));
     assert_eq!(ex.duration, 120);
-    let notes = solscope_engine::explanation_notes(&p, &s.problem, &ex);
+    let (notes, lead) = solscope_engine::explanation_notes_and_lead(&p, &s.problem, &ex);
     // The binary search tried longer durations too; their reasons are kept,
     // and each names its duration.
     let others: Vec<_> = ex.reasons.iter().filter(|r| r.duration != 120).collect();
     assert!(!others.is_empty(), "{:?}", ex.reasons);
-    let lead = solscope_engine::explanation_lead(&p, &s.problem, &ex);
     assert_eq!(
         notes[lead - 1],
         "y may last from 2 min to 10 min, and no duration fits; what follows is for its \

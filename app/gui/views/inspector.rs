@@ -5,8 +5,8 @@
 use eframe::egui::{self, Pos2, Rect, RichText, Sense, Stroke};
 use serde_json::{Map, Value};
 use solscope_engine::{
-    CategoryIntervals, Duration, Phase, explanation_lead, explanation_notes, format_span,
-    reason_line, reasons_in_reading_order, suggestion_line,
+    CategoryIntervals, Duration, Phase, explanation_notes_and_lead, format_span, reason_line,
+    reasons_in_reading_order, suggestion_line,
 };
 
 use super::{Model, Status, TourAnchors, command_button, editor, execution, flex};
@@ -169,8 +169,8 @@ fn activity_ui(
         // Why, in a sentence (and the duration the rest is for), above the
         // conflicts and reasons; the notes that go through them one by one below.
         let problem = &m.analysis.schedule.problem;
-        let notes = explanation_notes(&m.doc.plan, problem, ex);
-        let lead = explanation_lead(&m.doc.plan, problem, ex).min(notes.len());
+        let (notes, lead) = explanation_notes_and_lead(&m.doc.plan, problem, ex);
+        let lead = lead.min(notes.len());
         for note in &notes[..lead] {
             ui.label(note);
         }

@@ -140,19 +140,19 @@ fn lasting(r: &ReasonRange, shown: i64) -> String {
 
 /// The plain-language notes of an explanation.
 pub fn explanation_notes(plan: &Plan, problem: &Problem, ex: &Explanation) -> Vec<String> {
-    notes_and_lead(plan, problem, ex).0
+    explanation_notes_and_lead(plan, problem, ex).0
 }
 
-/// How many of [`explanation_notes`] lead: why the activity failed in one
-/// sentence, and for an expanding activity the duration that what follows is
-/// for. The rest go through the conflicts or reasons one by one (the app's
-/// inspector shows the lead above its list of reasons, the rest below it).
-pub fn explanation_lead(plan: &Plan, problem: &Problem, ex: &Explanation) -> usize {
-    notes_and_lead(plan, problem, ex).1
-}
-
-/// [`explanation_notes`] and [`explanation_lead`].
-fn notes_and_lead(plan: &Plan, problem: &Problem, ex: &Explanation) -> (Vec<String>, usize) {
+/// [`explanation_notes`], and how many of them lead: why the activity failed
+/// in one sentence, and for an expanding activity the duration that what
+/// follows is for. The rest go through the conflicts or reasons one by one
+/// (the app's inspector shows the lead above its list of reasons, the rest
+/// below it).
+pub fn explanation_notes_and_lead(
+    plan: &Plan,
+    problem: &Problem,
+    ex: &Explanation,
+) -> (Vec<String>, usize) {
     let name = |a: usize| plan.activities[a].display_name().to_string();
     let me = name(ex.activity);
     let mut notes = Vec::new();
