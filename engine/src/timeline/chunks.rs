@@ -46,8 +46,16 @@ pub(super) fn advance(level: i128, rate: i64, dt: i64, cap: i128) -> i128 {
 /// `(minimum, first index)`, the earlier index winning ties.
 type Min = (i128, usize);
 
+/// A chunk's summaries hold local indices, not values: a point's index in
+/// one byte (a chunk holds fewer than `2 * CHUNK <= 256` points), its value
+/// read back from the chunk. A summary is rewritten with every chunk
+/// rewrite (at least one per placement), so its size is what it costs.
+type Local = u8;
+const _: () = assert!(2 * CHUNK <= Local::MAX as usize + 1);
+
 /// A run of consecutive points. `level` and `waste` are stored less the chunk's
-/// offsets; the minima are over the stored values (a shift moves them all).
+/// offsets; the minima are over the stored values (a shift moves them all), and
+/// are kept as the local index of the first point attaining them.
 #[derive(Clone, Debug)]
 struct Chunk {
     /// Each point's time.
@@ -62,13 +70,13 @@ struct Chunk {
     off_level: i128,
     /// What every stored waste lacks.
     off_waste: i128,
-    /// `(min of levels[..=o], first local index)`.
-    prefix: Vec<Min>,
-    /// `(min of levels[o..], first local index)`.
-    suffix: Vec<Min>,
+    /// The first local index of the min of `levels[..=o]`.
+    prefix: Vec<Local>,
+    /// The first local index of the min of `levels[o..]`.
+    suffix: Vec<Local>,
     /// The same over `level + waste` (the uncapped trajectory).
-    unc_prefix: Vec<Min>,
-    unc_suffix: Vec<Min>,
+    unc_prefix: Vec<Local>,
+    unc_suffix: Vec<Local>,
 }
 
 impl Chunk {
@@ -116,8 +124,8 @@ impl Chunk {
     fn summarise(&mut self) {
         /// `(prefix, suffix)` minima of `value(0..n)`, first index on ties.
         fn fill(
-            prefix: &mut Vec<Min>,
-            suffix: &mut Vec<Min>,
+            prefix: &mut Vec<Local>,
+            suffix: &mut Vec<Local>,
             n: usize,
             value: impl Fn(usize) -> i128,
         ) {
@@ -126,19 +134,19 @@ impl Chunk {
             for o in 0..n {
                 let v = value(o);
                 if v < best.0 {
-                    best = (v, o);
+                    best = (v, o as Local);
                 }
-                prefix.push(best);
+                prefix.push(best.1);
             }
             suffix.clear();
-            suffix.resize(n, (i128::MAX, 0));
+            suffix.resize(n, 0);
             let mut best = (i128::MAX, 0);
             for o in (0..n).rev() {
                 let v = value(o);
                 if v <= best.0 {
-                    best = (v, o);
+                    best = (v, o as Local);
                 }
-                suffix[o] = best;
+                suffix[o] = best.1;
             }
         }
         let n = self.len();
@@ -183,16 +191,26 @@ impl Chunk {
         self.summarise();
     }
 
+    /// `(level, o)` of the point at local index `at` (a summary's entry).
+    fn level_of(&self, at: Local) -> Min {
+        let o = usize::from(at);
+        (self.level(o), o)
+    }
+
+    /// `(level + waste, o)` of the point at local index `at`.
+    fn unc_of(&self, at: Local) -> Min {
+        let o = usize::from(at);
+        (self.level(o) + self.waste(o), o)
+    }
+
     /// `(lowest level, first local index)`.
-    fn min_level(&self) -> (i128, usize) {
-        let (v, o) = self.suffix[0];
-        (v + self.off_level, o)
+    fn min_level(&self) -> Min {
+        self.level_of(self.suffix[0])
     }
 
     /// `(lowest level + waste, first local index)`.
-    fn min_unc(&self) -> (i128, usize) {
-        let (v, o) = self.unc_suffix[0];
-        (v + self.off_level + self.off_waste, o)
+    fn min_unc(&self) -> Min {
+        self.unc_of(self.unc_suffix[0])
     }
 }
 
@@ -594,8 +612,8 @@ impl Points {
     pub(super) fn prefix_min(&self, i: usize) -> Min {
         let (c, o) = self.locate(i);
         let ch = &self.chunks[c];
-        let (v, at) = ch.prefix[o];
-        let here = (v + ch.off_level, self.starts[c] + at);
+        let (v, at) = ch.level_of(ch.prefix[o]);
+        let here = (v, self.starts[c] + at);
         match c.checked_sub(1).map(|b| self.pre[b]) {
             Some(before) if before.0 <= here.0 => before,
             _ => here,
@@ -606,8 +624,8 @@ impl Points {
     pub(super) fn suffix_min(&self, i: usize) -> Min {
         let (c, o) = self.locate(i);
         let ch = &self.chunks[c];
-        let (v, at) = ch.suffix[o];
-        let here = (v + ch.off_level, self.starts[c] + at);
+        let (v, at) = ch.level_of(ch.suffix[o]);
+        let here = (v, self.starts[c] + at);
         match self.suf.get(c + 1) {
             Some(&after) if after.0 < here.0 => after,
             _ => here,
@@ -628,23 +646,22 @@ impl Points {
                 best = Some(x);
             }
         };
-        let off = |c: &Chunk| c.off_level + c.off_waste;
         if cl == cr {
             let ch = &self.chunks[cl];
             for o in ol..=or {
-                take((ch.levels[o] + ch.wastes[o] + off(ch), self.starts[cl] + o));
+                take((ch.level(o) + ch.waste(o), self.starts[cl] + o));
             }
             return best;
         }
         let left = &self.chunks[cl];
-        let (v, at) = left.unc_suffix[ol];
-        take((v + off(left), self.starts[cl] + at));
+        let (v, at) = left.unc_of(left.unc_suffix[ol]);
+        take((v, self.starts[cl] + at));
         if let Some((v, c)) = self.unc.query(cl + 1, cr) {
             take((v, self.starts[c] + self.chunks[c].min_unc().1));
         }
         let right = &self.chunks[cr];
-        let (v, at) = right.unc_prefix[or];
-        take((v + off(right), self.starts[cr] + at));
+        let (v, at) = right.unc_of(right.unc_prefix[or]);
+        take((v, self.starts[cr] + at));
         best
     }
 
@@ -669,7 +686,9 @@ impl Points {
         let c = self.pre.partition_point(|m| pred(m.0));
         match self.chunks.get(c) {
             None => self.len,
-            Some(ch) => self.starts[c] + ch.prefix.partition_point(|m| pred(m.0 + ch.off_level)),
+            Some(ch) => {
+                self.starts[c] + ch.prefix.partition_point(|&at| pred(ch.level_of(at).0))
+            }
         }
     }
 
@@ -681,7 +700,7 @@ impl Points {
             return 0;
         }
         let ch = &self.chunks[c - 1];
-        self.starts[c - 1] + ch.suffix.partition_point(|m| !ok(m.0 + ch.off_level))
+        self.starts[c - 1] + ch.suffix.partition_point(|&at| !ok(ch.level_of(at).0))
     }
 
     /// The times of the points in `[lo, hi]`.
