@@ -324,6 +324,19 @@ pub(super) struct Points {
     suf: Vec<Min>,
     /// The chunks' minima of the uncapped trajectory (leaf `c`: chunk `c`).
     unc: MinTree,
+    /// Storage [`Self::update`] reuses (empty between updates).
+    scratch: Scratch,
+}
+
+/// The buffers of an update, kept so that a placement allocates nothing.
+#[derive(Clone, Debug, Default)]
+struct Scratch {
+    /// The points integrated afresh.
+    new: Flat,
+    /// The rewritten group's times and chunk numbers, before they are spliced
+    /// into the flat arrays.
+    times: Vec<i64>,
+    chunk_of: Vec<u32>,
 }
 
 impl Points {
@@ -346,6 +359,7 @@ impl Points {
             pre: Vec::new(),
             suf: Vec::new(),
             unc: MinTree::default(),
+            scratch: Scratch::default(),
         };
         out.times = flat.times.clone();
         out.chunks = flat.into_chunks();
@@ -388,7 +402,7 @@ impl Points {
         let (kl, ql) = (k - g0, q - g0);
         // The group's points from q on (the first of the tail, if q is in it).
         let in_group_tail = flat.times.len() - ql;
-        let mut new = Flat::default();
+        let mut new = std::mem::take(&mut self.scratch.new);
         let until = old_q.map_or(rate.end(), |p| p.0);
         let (level, waste) = new.integrate(
             rate,
@@ -403,7 +417,8 @@ impl Points {
             None => new.push(rate.end(), 0, level, waste),
             Some((t, r, l, w)) => tail = Some(Tail::new(t, r, (level, waste), (l, w))),
         }
-        flat.splice(kl, ql, new);
+        flat.splice(kl, ql, &mut new);
+        self.scratch.new = new;
         let after = c1 + 1;
         if let Some(tail) = tail.as_mut() {
             for i in flat.times.len() - in_group_tail..flat.times.len() {
@@ -450,19 +465,19 @@ impl Points {
         };
         // The flat arrays: the group's entries replaced, the later chunks'
         // numbers moved by the change in the number of chunks.
+        // (Gathered first: a splice moves the entries after it once when it
+        // knows how many come in.)
         let group = &self.chunks[c0..c0 + m_new];
         let group_end = g0 + group_old;
-        self.times.splice(
-            g0..group_end,
-            group.iter().flat_map(|c| c.times.iter().copied()),
-        );
-        self.chunk_of.splice(
-            g0..group_end,
-            group
-                .iter()
-                .enumerate()
-                .flat_map(|(j, c)| std::iter::repeat_n((c0 + j) as u32, c.len())),
-        );
+        let Scratch {
+            times, chunk_of, ..
+        } = &mut self.scratch;
+        for (j, c) in group.iter().enumerate() {
+            times.extend_from_slice(&c.times);
+            chunk_of.extend(std::iter::repeat_n((c0 + j) as u32, c.len()));
+        }
+        self.times.splice(g0..group_end, times.drain(..));
+        self.chunk_of.splice(g0..group_end, chunk_of.drain(..));
         if m_new != m_old {
             let from = g0 + group.iter().map(Chunk::len).sum::<usize>();
             for c in &mut self.chunk_of[from..] {
@@ -711,7 +726,7 @@ impl Points {
 }
 
 /// Points in flat vectors, while a span is rewritten.
-#[derive(Default)]
+#[derive(Clone, Debug, Default)]
 struct Flat {
     times: Vec<i64>,
     rates: Vec<i64>,
@@ -756,12 +771,12 @@ impl Flat {
         (level, waste)
     }
 
-    /// Replaces points `[a, b)` with `new`.
-    fn splice(&mut self, a: usize, b: usize, new: Flat) {
-        self.times.splice(a..b, new.times);
-        self.rates.splice(a..b, new.rates);
-        self.levels.splice(a..b, new.levels);
-        self.wastes.splice(a..b, new.wastes);
+    /// Replaces points `[a, b)` with `new`'s, leaving `new` empty.
+    fn splice(&mut self, a: usize, b: usize, new: &mut Flat) {
+        self.times.splice(a..b, new.times.drain(..));
+        self.rates.splice(a..b, new.rates.drain(..));
+        self.levels.splice(a..b, new.levels.drain(..));
+        self.wastes.splice(a..b, new.wastes.drain(..));
     }
 
     /// Cut into chunks of `CHUNK..2 * CHUNK` points (one smaller chunk only when
