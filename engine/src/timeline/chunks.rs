@@ -685,6 +685,25 @@ impl Points {
         self.times.partition_point(|&t| pred(t))
     }
 
+    /// [`Self::time_pp`], searched forward from point `i` when `pred` holds
+    /// there (galloping: a boundary near `i`, such as the end of a short span
+    /// that starts there, is found reading a few nearby entries); else the
+    /// plain search.
+    pub(super) fn time_pp_from(&self, i: usize, pred: impl Fn(i64) -> bool) -> usize {
+        if self.times.get(i).is_none_or(|&t| !pred(t)) {
+            return self.time_pp(pred);
+        }
+        // pred(times[i]) holds: find the end of the prefix past `i`.
+        let mut lo = i + 1;
+        let mut step = 1;
+        while lo + step <= self.times.len() && pred(self.times[lo + step - 1]) {
+            lo += step;
+            step *= 2;
+        }
+        let hi = (lo + step).min(self.times.len());
+        lo + self.times[lo..hi].partition_point(|&t| pred(t))
+    }
+
     /// The first point whose waste fails `pred` (`pred` holds on a prefix: the
     /// waste never falls).
     pub(super) fn waste_pp(&self, pred: impl Fn(i128) -> bool) -> usize {
@@ -701,9 +720,7 @@ impl Points {
         let c = self.pre.partition_point(|m| pred(m.0));
         match self.chunks.get(c) {
             None => self.len,
-            Some(ch) => {
-                self.starts[c] + ch.prefix.partition_point(|&at| pred(ch.level_of(at).0))
-            }
+            Some(ch) => self.starts[c] + ch.prefix.partition_point(|&at| pred(ch.level_of(at).0)),
         }
     }
 

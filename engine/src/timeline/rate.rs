@@ -418,13 +418,14 @@ impl Levels {
     /// level from `until` on.
     fn drain_bound(&self, from: i64, until: i64, energy: i128) -> i128 {
         let n = self.n();
-        let before = self.points.prefix_min(self.index(from)).0;
-        let i = self.points.time_pp(|x| x < until);
+        let (f, at_from) = self.points.segment_at(from);
+        let before = self.points.prefix_min(f).0;
+        let i = self.points.time_pp_from(f, |x| x < until);
         if i > n || from < self.points.first_time() {
             return before;
         }
         let (m, idx) = self.points.suffix_min(i);
-        let absorbed = self.points.waste(idx) - self.level_and_waste_at(from).1;
+        let absorbed = self.points.waste(idx) - self.level_and_waste_on(at_from, from).1;
         before.min(m - (energy - absorbed).max(0))
     }
 
@@ -860,6 +861,27 @@ mod tests {
                 .find(|&&(x, l)| x <= t && l >= 60)
                 .map(|p| p.0);
             assert_eq!(tl.last_at_cap(t), want, "t={t}");
+        }
+    }
+
+    /// The galloping search from a point finds what the plain search finds,
+    /// from every point and for every boundary (inside the points and past
+    /// either end).
+    #[test]
+    fn time_search_from_a_point_matches_the_plain_search() {
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
+        for _ in 0..100 {
+            let (_, _, _, tl) = random_timeline(&mut next);
+            let points = &tl.levels().points;
+            for i in 0..=points.len() {
+                for until in -1..=122 {
+                    assert_eq!(
+                        points.time_pp_from(i, |x| x < until),
+                        points.time_pp(|x| x < until),
+                        "from point {i}, boundary {until}"
+                    );
+                }
+            }
         }
     }
 
