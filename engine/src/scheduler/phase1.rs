@@ -284,6 +284,17 @@ impl State<'_> {
     /// Starts where adding `rate` bit/s over `[s, s + d)` keeps the volume <= `cap`.
     fn data_valid(&self, rate: i64, d: i64, cap: i128, lo: i64, hi: i64) -> IntervalSet {
         let margin = |s: i64| self.data.check(&[(s, s + d, rate)], None).min + cap;
+        // While everything stored so far and this activity's volume fit in
+        // the store together, every start fits: no levels needed (until the
+        // store can fill, a placement derives no data levels at all).
+        let energy = i128::from(rate) * i128::from(d);
+        if self.data.lowest_bound() - energy >= -cap {
+            #[cfg(debug_assertions)]
+            for s in [lo, lo + (hi - lo) / 2, hi] {
+                debug_assert!(margin(s) >= 0, "data volume bound wrong at {s}");
+            }
+            return IntervalSet::single(lo, hi);
+        }
         if lo == hi {
             return if margin(lo) >= 0 {
                 IntervalSet::single(lo, lo)
@@ -293,7 +304,6 @@ impl State<'_> {
         }
         // Starts the added volume cannot push over the cap even in the worst case
         // need no search; debug builds check them exactly.
-        let energy = i128::from(rate) * i128::from(d);
         let sure = self
             .data
             .surely_at_least(lo, hi, energy, -cap)

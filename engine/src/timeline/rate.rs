@@ -40,6 +40,9 @@ pub struct RateTimeline {
     cap: i128,
     initial: i128,
     rate: StepFn,
+    /// A lower bound on every level, kept without the levels: see
+    /// [`Self::lowest_bound`].
+    floor: i128,
     levels: std::sync::OnceLock<Levels>,
     /// The levels before the latest changes, and the span `[from, to)` the
     /// changes touched the rate in: the next derivation updates them in place
@@ -53,6 +56,7 @@ impl Clone for RateTimeline {
             cap: self.cap,
             initial: self.initial,
             rate: self.rate.clone(),
+            floor: self.floor,
             levels: self.levels.clone(),
             stale: std::sync::Mutex::new(self.stale_levels().clone()),
         }
@@ -77,10 +81,16 @@ struct Levels {
 impl RateTimeline {
     /// Integrates `rate` from `initial` (at most `cap`), capped at `cap`.
     pub fn new(rate: StepFn, initial: i128, cap: i128) -> Self {
+        let floor = initial
+            + rate
+                .segments(rate.start(), rate.end())
+                .map(|(a, b, r)| i128::from(r.min(0)) * i128::from(b - a))
+                .sum::<i128>();
         Self {
             cap,
             initial,
             rate,
+            floor,
             levels: std::sync::OnceLock::new(),
             stale: std::sync::Mutex::new(None),
         }
@@ -99,6 +109,10 @@ impl RateTimeline {
         if a >= b || delta == 0 {
             return;
         }
+        if delta < 0 {
+            let (a, b) = (a.max(self.rate.start()), b.min(self.rate.end()));
+            self.floor += i128::from(delta) * i128::from((b - a).max(0));
+        }
         self.rate.add(a, b, delta);
         let stale = self
             .stale
@@ -110,6 +124,18 @@ impl RateTimeline {
             *from = (*from).min(a);
             *to = (*to).max(b);
         }
+    }
+
+    /// A lower bound on every level, in O(1) and without deriving the levels:
+    /// the initial level plus the negative parts of the rate integrated over
+    /// the domain, each change to the rate counted on its own. A capped
+    /// integrator falls by at most `-min(rate, 0)` per second (the cap only
+    /// holds it down when it rises), and the negative part of a sum of rates
+    /// is at least the sum of their negative parts; a change undone later
+    /// still counts, which only loosens the bound. So for data volume (its
+    /// levels negated) `-lowest_bound()` bounds the most ever stored.
+    pub fn lowest_bound(&self) -> i128 {
+        self.floor
     }
 
     /// The rate.
@@ -862,6 +888,37 @@ mod tests {
                 .map(|p| p.0);
             assert_eq!(tl.last_at_cap(t), want, "t={t}");
         }
+    }
+
+    /// The level-free lower bound stays at or below every level through any
+    /// changes to the rate, undone ones too, and is exact for a rate that
+    /// never rises above zero.
+    #[test]
+    fn lowest_bound_bounds_every_level() {
+        let mut next = xorshift(0x2f1d_3c5b_7a69_4e83);
+        for _ in 0..300 {
+            let (_, _, _, mut tl) = random_timeline(&mut next);
+            for _ in 0..next(8) {
+                let (a, len, delta) = (next(140) - 10, next(40), next(21) - 10);
+                tl.add_rate(a, a + len, delta);
+                if next(3) == 0 {
+                    tl.add_rate(a, a + len, -delta);
+                }
+                let lowest = tl.profile().iter().map(|p| p.1).min().unwrap();
+                assert!(
+                    tl.lowest_bound() <= lowest,
+                    "{} > {lowest}",
+                    tl.lowest_bound()
+                );
+            }
+        }
+        let mut rate = StepFn::constant(0, 100, -2);
+        rate.add(10, 30, -3);
+        rate.add(40, 50, 2);
+        let mut tl = RateTimeline::new(rate, 500, 600);
+        tl.add_rate(60, 70, -1);
+        assert_eq!(tl.lowest_bound(), 500 - 200 - 60 + 20 - 10);
+        assert_eq!(tl.lowest_bound(), tl.lowest_from(0));
     }
 
     /// The galloping search from a point finds what the plain search finds,
