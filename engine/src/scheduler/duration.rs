@@ -110,6 +110,7 @@ pub(super) fn longest_split(
         let part = Part {
             only: Some(only),
             bare: true,
+            found_only: true,
             ..Part::default()
         };
         try_duration(state, a, d, scope, span, part).found.is_some()
@@ -143,6 +144,7 @@ pub(super) fn longest_by_scan(
 fn fits(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, i64)) -> bool {
     let part = Part {
         bare: true,
+        found_only: true,
         ..Part::default()
     };
     try_duration(state, a, d, scope, span, part).found.is_some()

@@ -431,8 +431,13 @@ fn run(problem: Problem, done: Vec<Step>, generated: Vec<Generated>, until: usiz
 /// How much of a step's record [`run_step`] fills in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Detail {
+    /// Where the activity lands, and nothing else: the record's outcome of a
+    /// failure may name phase 1 where phase 2 failed (a part of a window that
+    /// the state-of-charge bound proves failing is not looked at again to
+    /// tell the two apart). Reruns that ask only for placements.
+    Placement,
     /// The outcome and duration only: no category intervals and no tries (runs
-    /// that only ask where activities land).
+    /// that only ask where activities land, and why a step failed).
     Outcome,
     /// The outcome, duration and category intervals within the window span,
     /// but no tries.
@@ -519,7 +524,8 @@ pub(crate) fn run_step(
     let mut attempt = |d: i64, step: &mut Step, record: bool| {
         let part = Part {
             record: traced,
-            bare: detail == Detail::Outcome,
+            bare: matches!(detail, Detail::Outcome | Detail::Placement),
+            found_only: detail == Detail::Placement,
             ..Part::default()
         };
         let tried = try_duration(state, a, d, scope, span, part);
@@ -656,6 +662,9 @@ pub(super) struct Part {
     /// ring by ring outward from its preferred time, only as far as the search
     /// needs ([`try_rings`]).
     pub bare: bool,
+    /// With `bare`, only `found` counts: [`Tried::any`] may be false where a
+    /// part the state-of-charge bound skipped had starts passing phase 1.
+    pub found_only: bool,
 }
 
 /// Phase 1 over starts in `span` and the window-by-window phase-2 search for one
@@ -670,23 +679,32 @@ pub(super) fn try_duration(
 ) -> Tried {
     let problem = state.problem;
     let act = &problem.acts[a];
-    let Part { only, record, bare } = part;
+    let Part {
+        only,
+        record,
+        bare,
+        found_only,
+    } = part;
     debug_assert!(!(record && (only.is_some() || scope.skip_end_effects || bare)));
     let span = only.map_or(span, |(lo, hi)| (span.0.max(lo), span.1.min(hi)));
     if span.0 > span.1 {
         return Tried::bare(false, None, Rejected::default());
     }
     if bare {
-        let tried = try_rings(state, a, d, scope, span);
+        let tried = try_rings(state, a, d, scope, span, found_only);
         #[cfg(debug_assertions)]
         {
             let full = Part {
                 bare: false,
+                found_only: false,
                 ..part
             };
             let want = try_duration(state, a, d, scope, span, full);
             debug_assert_eq!(
-                (tried.any, tried.found.as_ref().map(|ev| ev.placement.start)),
+                (
+                    tried.any || (found_only && want.any),
+                    tried.found.as_ref().map(|ev| ev.placement.start)
+                ),
                 (want.any, want.found.as_ref().map(|ev| ev.placement.start)),
                 "the search ring by ring differs from the whole span's"
             );
@@ -738,8 +756,16 @@ pub(super) fn try_duration(
 /// horizon. A part of a ring that the state-of-charge bound proves failing
 /// (`State::fails_on_energy`) holds no passing start whatever phase 1 says
 /// there, so its phase 1 is left out, unless no part has a candidate at all
-/// (the step then fails in phase 1, not phase 2).
-fn try_rings(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, i64)) -> Tried {
+/// (the step then fails in phase 1, not phase 2) and the caller asks which
+/// (not `found_only`).
+fn try_rings(
+    state: &State<'_>,
+    a: usize,
+    d: i64,
+    scope: &Scope,
+    span: (i64, i64),
+    found_only: bool,
+) -> Tried {
     let act = &state.problem.acts[a];
     let mut any = false;
     let mut rejected = Rejected::default();
@@ -795,7 +821,7 @@ fn try_rings(state: &State<'_>, a: usize, d: i64, scope: &Scope, span: (i64, i64
             }
         }
     }
-    if !any {
+    if !any && !found_only {
         any = skipped
             .iter()
             .any(|&(lo, hi)| !state.phase1_others(a, d, scope, lo, hi).is_empty());

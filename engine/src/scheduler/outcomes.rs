@@ -667,7 +667,13 @@ fn recorded_step(
         });
         return (Some(ev), step);
     }
-    let run = run_step(state, a, step_no, &Scope::default(), Detail::Outcome);
+    // Without the record, only where `a` lands counts.
+    let detail = if record {
+        Detail::Outcome
+    } else {
+        Detail::Placement
+    };
+    let run = run_step(state, a, step_no, &Scope::default(), detail);
     (run.found, record.then_some(run.step))
 }
 
