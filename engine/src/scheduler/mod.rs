@@ -730,7 +730,7 @@ pub(super) fn try_duration(
                 tries.extend(t);
                 chosen
             } else {
-                let (chosen, r) = state.search_outcome(a, d, &cand, w.preferred);
+                let (chosen, r) = state.search_outcome(a, d, &cand, w.preferred, found_only);
                 rejected = rejected.join(r);
                 chosen
             };
@@ -814,7 +814,7 @@ fn try_rings(
                 continue;
             }
             any = true;
-            let (chosen, r) = state.search_outcome(a, d, &cand, w.preferred);
+            let (chosen, r) = state.search_outcome(a, d, &cand, w.preferred, found_only);
             rejected = rejected.join(r);
             if chosen.is_some() {
                 return Tried::bare(any, chosen, rejected);

@@ -284,6 +284,38 @@ impl State<'_> {
         d: i64,
         soc: bool,
     ) -> Result<Evaluated, Phase2Reason> {
+        self.evaluate_with(a, s, d, soc, true)
+    }
+
+    /// The margin of activity `a` at start `s` with duration `d` in a cell
+    /// whose structural and peak checks are known to pass (they are constant
+    /// within a cell, and another start of it passed them): the peak check is
+    /// left out. `i128::MIN` for a structural failure (it cannot happen, as
+    /// debug builds check, with the peak check, against the full evaluation).
+    fn margin_in_cell(&self, a: usize, s: i64, d: i64) -> (i128, Option<Phase2Reason>) {
+        let got = self
+            .evaluate_with(a, s, d, true, false)
+            .map_or((i128::MIN, None), |ev| (ev.margin, ev.soc_reason));
+        debug_assert_eq!(
+            Ok(&got),
+            self.evaluate(a, s, d)
+                .map(|ev| (ev.margin, ev.soc_reason))
+                .as_ref(),
+            "a cell's structural or peak check is not constant"
+        );
+        got
+    }
+
+    /// [`State::evaluate_inner`]; without `peak`, the peak-power check is left
+    /// out (the caller knows it passes).
+    fn evaluate_with(
+        &self,
+        a: usize,
+        s: i64,
+        d: i64,
+        soc: bool,
+        peak: bool,
+    ) -> Result<Evaluated, Phase2Reason> {
         let problem = self.problem;
         let Generated {
             retire,
@@ -292,7 +324,7 @@ impl State<'_> {
         } = self.structure(a, s, d)?;
         let pieces = self.load_pieces(a, s, d, &retire, new_awake, &preheats);
         // Peak power.
-        if let Some(max) = problem.max_peak {
+        if let Some(max) = problem.max_peak.filter(|_| peak) {
             if let Some((v, at)) = self.peak_max.filter(|(v, _)| *v > max) {
                 return Err(Phase2Reason::MaxPeakPower { at, peak_mw: v });
             }
@@ -806,12 +838,18 @@ impl State<'_> {
     /// `search` searches them.
     /// An activity that fails everywhere then costs about the number of places
     /// where it could have fit, not the number of cells in its windows.
+    ///
+    /// With `found_only` the rejected starts' record is not kept (it comes
+    /// back empty), and a cell is searched only for its passing start nearest
+    /// `preferred` ([`State::cell_nearest`]), not for the numbers of every
+    /// part that fails.
     pub(crate) fn search_outcome(
         &self,
         a: usize,
         d: i64,
         cand: &IntervalSet,
         preferred: i64,
+        found_only: bool,
     ) -> (Option<Evaluated>, Rejected) {
         let problem = self.problem;
         let mut rejected = Rejected::default();
@@ -864,6 +902,15 @@ impl State<'_> {
                     skipped(&mut rejected, bound, cell_lo);
                     continue;
                 }
+                if found_only {
+                    if let Some(s) = self.cell_nearest(a, d, cell_lo, cell_hi, preferred) {
+                        let key = ((s - preferred).abs(), s);
+                        if best.is_none_or(|b| key < b) {
+                            best = Some(key);
+                        }
+                    }
+                    continue;
+                }
                 let tries = self.cell_tries(a, d, cell_lo, cell_hi);
                 rejected = rejected.join(Rejected::of_tries(tries.iter(), handover_gap));
                 for t in tries.iter().filter(|t| t.reason.is_none()) {
@@ -876,6 +923,9 @@ impl State<'_> {
             }
         }
         let chosen = best.and_then(|(_, s)| self.evaluate(a, s, d).ok());
+        if found_only {
+            rejected = Rejected::default();
+        }
         #[cfg(debug_assertions)]
         debug_assert_eq!(
             chosen.as_ref().map(|ev| ev.placement.start),
@@ -923,6 +973,106 @@ impl State<'_> {
         (bound < problem.min_soc && self.structurally_ok(a, cell_lo, d)).then_some(bound)
     }
 
+    /// The start in the cell `[cell_lo, cell_hi]` nearest `preferred` at which
+    /// activity `a` with duration `d` passes phase 2, if any: the passing start
+    /// [`State::cell_tries`] offers there, with as few evaluations as the
+    /// margin's concavity on a cell allows. A structural or peak failure holds
+    /// for the whole cell; otherwise the passing starts are one interval. The
+    /// nearest start is tried first (it passes: it is the answer); if it fails,
+    /// the margin rises on at most one side of it, where the answer is the
+    /// interval's near end, found past the side's maximum. Debug builds compare
+    /// with the cell's tries.
+    fn cell_nearest(
+        &self,
+        a: usize,
+        d: i64,
+        cell_lo: i64,
+        cell_hi: i64,
+        preferred: i64,
+    ) -> Option<i64> {
+        let p = preferred.clamp(cell_lo, cell_hi);
+        let memo = std::cell::RefCell::new(Vec::with_capacity(8));
+        let g = |s: i64| -> i128 {
+            if let Some(&(_, m)) = memo.borrow().iter().find(|x: &&(i64, i128)| x.0 == s) {
+                return m;
+            }
+            // (Asked only once `p` passed its structural and peak checks.)
+            let m = self.margin_in_cell(a, s, d).0;
+            memo.borrow_mut().push((s, m));
+            m
+        };
+        // The first `s` in `[l, r]` with g(s + 1) <= g(s) (the maximum), `r`
+        // when none (concave on `[l, r + 1]`).
+        let peak = |mut l: i64, mut r: i64| {
+            while l < r {
+                let mid = l + (r - l) / 2;
+                if g(mid + 1) > g(mid) {
+                    l = mid + 1;
+                } else {
+                    r = mid;
+                }
+            }
+            l
+        };
+        let gp = match self.evaluate(a, p, d) {
+            Err(_) => None,
+            Ok(ev) => Some(ev.margin),
+        };
+        let found = match gp {
+            // A structural or peak reason: the whole cell fails.
+            None => None,
+            Some(gp) if gp >= 0 => Some(p),
+            Some(gp) => {
+                memo.borrow_mut().push((p, gp));
+                if p < cell_hi && g(p + 1) > gp {
+                    // Rising to the right: the first passing start after `p`.
+                    let top = peak(p + 1, cell_hi);
+                    (g(top) >= 0).then(|| {
+                        let (mut bad, mut ok) = (p, top);
+                        while ok - bad > 1 {
+                            let mid = bad + (ok - bad) / 2;
+                            if g(mid) >= 0 {
+                                ok = mid;
+                            } else {
+                                bad = mid;
+                            }
+                        }
+                        ok
+                    })
+                } else if p > cell_lo && g(p - 1) > gp {
+                    // Rising to the left: the last passing start before `p`.
+                    let top = peak(cell_lo, p - 1);
+                    (g(top) >= 0).then(|| {
+                        let (mut ok, mut bad) = (top, p);
+                        while bad - ok > 1 {
+                            let mid = ok + (bad - ok) / 2;
+                            if g(mid) >= 0 {
+                                ok = mid;
+                            } else {
+                                bad = mid;
+                            }
+                        }
+                        ok
+                    })
+                } else {
+                    // `p` is the maximum, and fails.
+                    None
+                }
+            }
+        };
+        #[cfg(debug_assertions)]
+        {
+            let want = self
+                .cell_tries(a, d, cell_lo, cell_hi)
+                .iter()
+                .filter(|t| t.reason.is_none())
+                .map(|t| preferred.clamp(t.starts.lo, t.starts.hi))
+                .min_by_key(|&s| ((s - preferred).abs(), s));
+            debug_assert_eq!(found, want, "the nearest passing start of a cell");
+        }
+        found
+    }
+
     /// The tries of one cell: its structural or peak reason, or the exact
     /// state-of-charge search (the part that passes, and the numbers of the start
     /// that came closest on either side).
@@ -947,9 +1097,8 @@ impl State<'_> {
             if let Some(x) = memo.borrow().iter().find(|x| x.0 == s) {
                 return (x.1, x.2.clone());
             }
-            let (m, r) = self
-                .evaluate(a, s, d)
-                .map_or((i128::MIN, None), |ev| (ev.margin, ev.soc_reason));
+            // (The cell's first start passed its structural and peak checks.)
+            let (m, r) = self.margin_in_cell(a, s, d);
             memo.borrow_mut().push((s, m, r.clone()));
             (m, r)
         };
