@@ -1,5 +1,6 @@
 //! The search's numeric building blocks: cells between critical points, and the
-//! feasible part of a concave function on a cell.
+//! feasible part of a concave function on a cell (whole, or its point nearest
+//! a preferred one).
 
 use crate::timeline::{Interval, IntervalSet};
 
@@ -30,24 +31,8 @@ pub(super) fn cells(set: &IntervalSet, mut points: Vec<i64>) -> Vec<(i64, i64)> 
 /// (if any), and the start of the highest value (a probe for reporting).
 pub(super) fn concave_feasible(a: i64, b: i64, g: &dyn Fn(i64) -> i128) -> (Option<Interval>, i64) {
     let (ga, gb) = (g(a), g(b));
-    // Largest x in [from, to] with g(x) >= 0, given g(from) >= 0 and the feasible set
-    // an interval.
-    let last_ok = |from: i64, to: i64| {
-        let (mut ok, mut bad) = (from, to + 1);
-        while bad - ok > 1 {
-            let mid = ok + (bad - ok) / 2;
-            if g(mid) >= 0 { ok = mid } else { bad = mid }
-        }
-        ok
-    };
-    let first_ok = |from: i64, to: i64| {
-        let (mut bad, mut ok) = (from - 1, to);
-        while ok - bad > 1 {
-            let mid = bad + (ok - bad) / 2;
-            if g(mid) >= 0 { ok = mid } else { bad = mid }
-        }
-        ok
-    };
+    let last_ok = |from: i64, to: i64| last_ok(from, to, g);
+    let first_ok = |from: i64, to: i64| first_ok(from, to, g);
     if ga >= 0 && gb >= 0 {
         return (Some(Interval::new(a, b)), a);
     }
@@ -65,16 +50,8 @@ pub(super) fn concave_feasible(a: i64, b: i64, g: &dyn Fn(i64) -> i128) -> (Opti
     if g(b - 1) <= gb {
         return (None, b);
     }
-    // Otherwise find the maximum (first s with g(s + 1) <= g(s)).
-    let (mut l, mut r) = (a, b);
-    while l < r {
-        let mid = l + (r - l) / 2;
-        if g(mid + 1) > g(mid) {
-            l = mid + 1
-        } else {
-            r = mid
-        }
-    }
+    // Otherwise find the maximum.
+    let l = peak(a, b, g);
     if g(l) < 0 {
         return (None, l);
     }
@@ -82,6 +59,77 @@ pub(super) fn concave_feasible(a: i64, b: i64, g: &dyn Fn(i64) -> i128) -> (Opti
         Some(Interval::new(first_ok(a + 1, l), last_ok(l, b - 1))),
         l,
     )
+}
+
+/// For a concave integer function `g` on `[a, b]` and `p` in it, with
+/// `gp = g(p)`: the `x` with `g(x) >= 0` nearest `p` (`None` when there is
+/// none). The feasible set is an interval: `p` itself when it passes; else
+/// the interval lies on the one side where `g` rises from `p`, and the answer
+/// is its near end, found past that side's maximum. `p` as the maximum (`g`
+/// rising on neither side) fails, and so does everything.
+pub(super) fn concave_nearest(
+    a: i64,
+    b: i64,
+    p: i64,
+    gp: i128,
+    g: &dyn Fn(i64) -> i128,
+) -> Option<i64> {
+    if gp >= 0 {
+        return Some(p);
+    }
+    if p < b && g(p + 1) > gp {
+        let top = peak(p + 1, b, g);
+        (g(top) >= 0).then(|| first_ok(p + 1, top, g))
+    } else if p > a && g(p - 1) > gp {
+        let top = peak(a, p - 1, g);
+        (g(top) >= 0).then(|| last_ok(top, p - 1, g))
+    } else {
+        None
+    }
+}
+
+/// The largest `x` in `[from, to]` with `g(x) >= 0`, given `g(from) >= 0`
+/// and the passing set an interval.
+fn last_ok(from: i64, to: i64, g: &dyn Fn(i64) -> i128) -> i64 {
+    let (mut ok, mut bad) = (from, to + 1);
+    while bad - ok > 1 {
+        let mid = ok + (bad - ok) / 2;
+        if g(mid) >= 0 {
+            ok = mid;
+        } else {
+            bad = mid;
+        }
+    }
+    ok
+}
+
+/// The smallest `x` in `[from, to]` with `g(x) >= 0`, given `g(to) >= 0` and
+/// the passing set an interval.
+fn first_ok(from: i64, to: i64, g: &dyn Fn(i64) -> i128) -> i64 {
+    let (mut bad, mut ok) = (from - 1, to);
+    while ok - bad > 1 {
+        let mid = bad + (ok - bad) / 2;
+        if g(mid) >= 0 {
+            ok = mid;
+        } else {
+            bad = mid;
+        }
+    }
+    ok
+}
+
+/// The first `s` in `[l, r]` with `g(s + 1) <= g(s)` (`r` when none), for
+/// `g` concave on `[l, r + 1]`: where it stops rising, its maximum.
+fn peak(mut l: i64, mut r: i64, g: &dyn Fn(i64) -> i128) -> i64 {
+    while l < r {
+        let mid = l + (r - l) / 2;
+        if g(mid + 1) > g(mid) {
+            l = mid + 1;
+        } else {
+            r = mid;
+        }
+    }
+    l
 }
 
 #[cfg(test)]
@@ -110,6 +158,46 @@ mod tests {
         let g = |s: i64| i128::from((s.min(60) - s.max(30)).min(0) + 1 - i64::from(s > 90) * 100);
         let (iv, _) = concave_feasible(0, 100, &g);
         assert!(iv.is_some());
+    }
+
+    /// The nearest passing point is the brute-force nearest (the earlier on a
+    /// tie cannot arise: the passing set is one interval, and `p` is outside
+    /// it or the answer), for tents, plateaus and lines, from every `p`.
+    #[test]
+    fn concave_nearest_is_the_nearest_passing_point() {
+        let tent = |peak: i64, width: i64| move |s: i64| i128::from(width - (s - peak).abs());
+        let mut shapes: Vec<Box<dyn Fn(i64) -> i128>> = Vec::new();
+        for (peak, width) in [
+            (40i64, 5i64),
+            (40, 0),
+            (0, 3),
+            (20, 200),
+            (40, -1),
+            (100, 7),
+        ] {
+            shapes.push(Box::new(tent(peak, width)));
+        }
+        shapes.push(Box::new(|s: i64| {
+            i128::from((s.min(60) - s.max(30)).min(0) + 1)
+        }));
+        shapes.push(Box::new(|s: i64| {
+            i128::from((s.min(60) - s.max(30)).min(0) - 1)
+        }));
+        shapes.push(Box::new(|s: i64| i128::from(50 - s)));
+        shapes.push(Box::new(|s: i64| i128::from(s - 70)));
+        for g in &shapes {
+            let (a, b) = (10, 100);
+            for p in a..=b {
+                let brute = (a..=b)
+                    .filter(|&x| g(x) >= 0)
+                    .min_by_key(|&x| ((x - p).abs(), x));
+                assert_eq!(
+                    concave_nearest(a, b, p, g(p), g.as_ref()),
+                    brute,
+                    "from {p}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -17,7 +17,7 @@
 //! boundaries of the feasible part.
 
 use super::Scope;
-use super::cells::{cells, concave_feasible};
+use super::cells::{cells, concave_feasible, concave_nearest};
 use super::problem::Problem;
 use super::state::{Placement, State, uncovered};
 use super::trace::{Phase2Reason, Rejected, Try};
@@ -976,12 +976,9 @@ impl State<'_> {
     /// The start in the cell `[cell_lo, cell_hi]` nearest `preferred` at which
     /// activity `a` with duration `d` passes phase 2, if any: the passing start
     /// [`State::cell_tries`] offers there, with as few evaluations as the
-    /// margin's concavity on a cell allows. A structural or peak failure holds
-    /// for the whole cell; otherwise the passing starts are one interval. The
-    /// nearest start is tried first (it passes: it is the answer); if it fails,
-    /// the margin rises on at most one side of it, where the answer is the
-    /// interval's near end, found past the side's maximum. Debug builds compare
-    /// with the cell's tries.
+    /// margin's concavity on a cell allows ([`concave_nearest`], from the
+    /// cell's start nearest `preferred`). A structural or peak failure there
+    /// holds for the whole cell. Debug builds compare with the cell's tries.
     fn cell_nearest(
         &self,
         a: usize,
@@ -1001,63 +998,12 @@ impl State<'_> {
             memo.borrow_mut().push((s, m));
             m
         };
-        // The first `s` in `[l, r]` with g(s + 1) <= g(s) (the maximum), `r`
-        // when none (concave on `[l, r + 1]`).
-        let peak = |mut l: i64, mut r: i64| {
-            while l < r {
-                let mid = l + (r - l) / 2;
-                if g(mid + 1) > g(mid) {
-                    l = mid + 1;
-                } else {
-                    r = mid;
-                }
-            }
-            l
-        };
-        let gp = match self.evaluate(a, p, d) {
-            Err(_) => None,
-            Ok(ev) => Some(ev.margin),
-        };
-        let found = match gp {
+        let found = match self.evaluate(a, p, d) {
             // A structural or peak reason: the whole cell fails.
-            None => None,
-            Some(gp) if gp >= 0 => Some(p),
-            Some(gp) => {
-                memo.borrow_mut().push((p, gp));
-                if p < cell_hi && g(p + 1) > gp {
-                    // Rising to the right: the first passing start after `p`.
-                    let top = peak(p + 1, cell_hi);
-                    (g(top) >= 0).then(|| {
-                        let (mut bad, mut ok) = (p, top);
-                        while ok - bad > 1 {
-                            let mid = bad + (ok - bad) / 2;
-                            if g(mid) >= 0 {
-                                ok = mid;
-                            } else {
-                                bad = mid;
-                            }
-                        }
-                        ok
-                    })
-                } else if p > cell_lo && g(p - 1) > gp {
-                    // Rising to the left: the last passing start before `p`.
-                    let top = peak(cell_lo, p - 1);
-                    (g(top) >= 0).then(|| {
-                        let (mut ok, mut bad) = (top, p);
-                        while bad - ok > 1 {
-                            let mid = ok + (bad - ok) / 2;
-                            if g(mid) >= 0 {
-                                ok = mid;
-                            } else {
-                                bad = mid;
-                            }
-                        }
-                        ok
-                    })
-                } else {
-                    // `p` is the maximum, and fails.
-                    None
-                }
+            Err(_) => None,
+            Ok(ev) => {
+                memo.borrow_mut().push((p, ev.margin));
+                concave_nearest(cell_lo, cell_hi, p, ev.margin, &g)
             }
         };
         #[cfg(debug_assertions)]
