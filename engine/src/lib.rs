@@ -4,7 +4,7 @@
 //! Data flow: JSON text → [`load_plan`] (strict serde + semantic validation, with
 //! warnings) → [`Plan`] → [`schedule`] (compiles the plan to fixed-point
 //! [`Problem`] and runs the greedy scheduler) → [`Schedule`] (step trace) →
-//! [`explain`] ([`Explanation`]s, failures as data) → the documents
+//! [`explain()`] ([`Explanation`]s, failures as data) → the documents
 //! ([`schedule_document`], [`explain_document`]) and the text
 //! ([`explain_text`]). Units and times read the same everywhere through the
 //! `units` functions re-exported here ([`format_wh`], [`format_plan_time`], ...).

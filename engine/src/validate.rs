@@ -1,7 +1,7 @@
 //! Semantic validation of plans (beyond what serde checks), with JSON paths.
 //!
 //! [`validate`] walks the plan in document order (the field order of
-//! [`Plan`](crate::model::Plan) and [`Activity`]) and stops at the first error, an
+//! [`Plan`] and [`Activity`]) and stops at the first error, an
 //! [`Error::Invalid`] whose `path` names the offending value exactly as
 //! `serde_path_to_error` would (`activities[3].windows[0].end`) and whose `reason`
 //! quotes the offending numbers (`must be >= start (got 120 < 300)`).

@@ -7,7 +7,7 @@
 //! ordinary scheduler on a plan of its own ([`cycle`]): the activities not yet
 //! started, from the state the rover is really in, so the step trace and the
 //! explainer work on any cycle unchanged. Between cycles activities start at the
-//! latest cycle's start times when the dispatch guard lets them ([`dispatch`]),
+//! latest cycle's start times when the dispatch guard lets them (`policy::dispatch`),
 //! and run for their actual durations; the executed profiles are integrated from
 //! what really ran ([`record`]).
 
@@ -215,7 +215,7 @@ pub fn execute_with(
 }
 
 /// The state of an execution between cycles (cloned to resume a run from a
-/// shared prefix: [`Sim::diverges`]).
+/// shared prefix: [`Prefix::execute`]).
 #[derive(Clone, Debug)]
 struct Sim {
     /// Actual duration by activity (`None`: its `duration`).
