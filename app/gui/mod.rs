@@ -1,7 +1,7 @@
 //! The desktop app: a step-through schedule inspector hosting the engine in-process.
 //!
 //! Data flow per frame: the views (`views/*`, functions named `*_ui`) read a
-//! read-only [`views::Model`] of the [`Document`], its [`Analysis`] and the UI
+//! read-only `views::Model` of the [`Document`], its [`Analysis`] and the UI
 //! state, and push [`Command`]s; after the frame [`SolscopeApp::apply`] carries
 //! them out (edit → reschedule → explain → diff), so the model never changes
 //! mid-draw. The only state the views write is their widget state (text buffers,

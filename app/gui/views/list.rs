@@ -331,7 +331,7 @@ fn filters_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &mu
     }
 }
 
-/// One row of the filters: `name`'s label and a menu of "Any <name>" and
+/// One row of the filters: `name`'s label and a menu of `Any <name>` and
 /// each `(value, text)` of `options`, `current` marked, `shown` on the closed
 /// menu. The choice picked this frame, if any (`Some(None)`: any).
 fn choice_ui<T: PartialEq>(
