@@ -71,9 +71,7 @@ impl Candidate {
             set: set1(key, value),
         }
     }
-}
 
-impl Candidate {
     /// Whether `other` edits the same fields of the same target to the same
     /// values.
     fn same_edit(&self, other: &Candidate) -> bool {

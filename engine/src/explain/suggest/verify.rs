@@ -521,7 +521,7 @@ pub(super) fn tune_seconds(
     let loose = make(0);
     let works = |v: i64| {
         let c = make(v);
-        let shared = c.target == loose.target && c.set == loose.set;
+        let shared = c.same_edit(&loose);
         runs.places(&c, a, shared, None)
     };
     if !works(0) {
@@ -561,7 +561,7 @@ pub(super) fn tune_limit(
     let mut chain = None;
     let mut works = |v: f64| {
         let c = make(v);
-        let shared = c.target == loose.target && c.set == loose.set;
+        let shared = c.same_edit(&loose);
         runs.places(&c, a, shared, Some(&mut chain))
     };
     let (mut bad, mut good) = if works(needed) {
