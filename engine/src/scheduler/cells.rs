@@ -31,16 +31,14 @@ pub(super) fn cells(set: &IntervalSet, mut points: Vec<i64>) -> Vec<(i64, i64)> 
 /// (if any), and the start of the highest value (a probe for reporting).
 pub(super) fn concave_feasible(a: i64, b: i64, g: &dyn Fn(i64) -> i128) -> (Option<Interval>, i64) {
     let (ga, gb) = (g(a), g(b));
-    let last_ok = |from: i64, to: i64| last_ok(from, to, g);
-    let first_ok = |from: i64, to: i64| first_ok(from, to, g);
     if ga >= 0 && gb >= 0 {
         return (Some(Interval::new(a, b)), a);
     }
     if ga >= 0 {
-        return (Some(Interval::new(a, last_ok(a, b - 1))), a);
+        return (Some(Interval::new(a, last_ok(a, b - 1, g))), a);
     }
     if gb >= 0 {
-        return (Some(Interval::new(first_ok(a + 1, b), b)), b);
+        return (Some(Interval::new(first_ok(a + 1, b, g), b)), b);
     }
     // Both ends fail. If g does not rise right after a (or does not fall right
     // before b), concavity puts the maximum at that end: nothing passes.
@@ -56,7 +54,7 @@ pub(super) fn concave_feasible(a: i64, b: i64, g: &dyn Fn(i64) -> i128) -> (Opti
         return (None, l);
     }
     (
-        Some(Interval::new(first_ok(a + 1, l), last_ok(l, b - 1))),
+        Some(Interval::new(first_ok(a + 1, l, g), last_ok(l, b - 1, g))),
         l,
     )
 }
@@ -91,24 +89,21 @@ pub(super) fn concave_nearest(
 /// The largest `x` in `[from, to]` with `g(x) >= 0`, given `g(from) >= 0`
 /// and the passing set an interval.
 fn last_ok(from: i64, to: i64, g: &dyn Fn(i64) -> i128) -> i64 {
-    let (mut ok, mut bad) = (from, to + 1);
-    while bad - ok > 1 {
-        let mid = ok + (bad - ok) / 2;
-        if g(mid) >= 0 {
-            ok = mid;
-        } else {
-            bad = mid;
-        }
-    }
-    ok
+    nearest_ok(to + 1, from, g)
 }
 
 /// The smallest `x` in `[from, to]` with `g(x) >= 0`, given `g(to) >= 0` and
 /// the passing set an interval.
 fn first_ok(from: i64, to: i64, g: &dyn Fn(i64) -> i128) -> i64 {
-    let (mut bad, mut ok) = (from - 1, to);
-    while ok - bad > 1 {
-        let mid = bad + (ok - bad) / 2;
+    nearest_ok(from - 1, to, g)
+}
+
+/// The passing `x` nearest `bad` between `bad` (taken to fail) and `ok`
+/// (which passes), either way round, bisecting: the passing starts in
+/// between are the ones on `ok`'s side of one boundary.
+fn nearest_ok(mut bad: i64, mut ok: i64, g: &dyn Fn(i64) -> i128) -> i64 {
+    while bad.abs_diff(ok) > 1 {
+        let mid = bad.min(ok) + (bad.max(ok) - bad.min(ok)) / 2;
         if g(mid) >= 0 {
             ok = mid;
         } else {
