@@ -988,22 +988,14 @@ impl State<'_> {
         preferred: i64,
     ) -> Option<i64> {
         let p = preferred.clamp(cell_lo, cell_hi);
-        let memo = std::cell::RefCell::new(Vec::with_capacity(8));
-        let g = |s: i64| -> i128 {
-            if let Some(&(_, m)) = memo.borrow().iter().find(|x: &&(i64, i128)| x.0 == s) {
-                return m;
-            }
-            // (Asked only once `p` passed its structural and peak checks.)
-            let m = self.margin_in_cell(a, s, d).0;
-            memo.borrow_mut().push((s, m));
-            m
-        };
         let found = match self.evaluate(a, p, d) {
             // A structural or peak reason: the whole cell fails.
             Err(_) => None,
             Ok(ev) => {
-                memo.borrow_mut().push((p, ev.margin));
-                concave_nearest(cell_lo, cell_hi, p, ev.margin, &g)
+                let margins = CellMargins::new(self, a, d, p, ev);
+                concave_nearest(cell_lo, cell_hi, p, margins.margin(p), &|s| {
+                    margins.margin(s)
+                })
             }
         };
         #[cfg(debug_assertions)]
@@ -1036,21 +1028,10 @@ impl State<'_> {
             }
             Ok(ev) => ev,
         };
-        // The cell's evaluations, so that reporting a probe's reason does not
-        // evaluate it again (a handful per cell: a linear scan is fastest).
-        let memo = std::cell::RefCell::new(vec![(cell_lo, first.margin, first.soc_reason)]);
-        let look = |s: i64| -> (i128, Option<Phase2Reason>) {
-            if let Some(x) = memo.borrow().iter().find(|x| x.0 == s) {
-                return (x.1, x.2.clone());
-            }
-            // (The cell's first start passed its structural and peak checks.)
-            let (m, r) = self.margin_in_cell(a, s, d);
-            memo.borrow_mut().push((s, m, r.clone()));
-            (m, r)
-        };
-        let margin = |s: i64| look(s).0;
-        let (feasible, probe) = concave_feasible(cell_lo, cell_hi, &margin);
-        let reason_at = |s: i64| look(s).1;
+        // (Reporting a probe's reason does not evaluate it again.)
+        let margins = CellMargins::new(self, a, d, cell_lo, first);
+        let (feasible, probe) = concave_feasible(cell_lo, cell_hi, &|s| margins.margin(s));
+        let reason_at = |s: i64| margins.at(s).1;
         match feasible {
             None => tries.push(Try {
                 starts: Interval::new(cell_lo, cell_hi),
@@ -1084,6 +1065,55 @@ impl State<'_> {
             }
         }
         tries
+    }
+}
+
+/// A cell's margins and energy reasons by start, each evaluated once (a
+/// handful per cell: a linear scan is fastest), for the searches of
+/// [`State::cell_tries`] and [`State::cell_nearest`]. Built from a start of
+/// the cell that passed the structural and peak checks, which hold for the
+/// whole cell, so the others are evaluated without them
+/// ([`State::margin_in_cell`]).
+struct CellMargins<'s, 'p> {
+    state: &'s State<'p>,
+    a: usize,
+    d: i64,
+    seen: std::cell::RefCell<Vec<(i64, i128, Option<Phase2Reason>)>>,
+}
+
+impl<'s, 'p> CellMargins<'s, 'p> {
+    /// The margins of activity `a` with duration `d` in a cell, with `ev` its
+    /// full evaluation at start `s`.
+    fn new(state: &'s State<'p>, a: usize, d: i64, s: i64, ev: Evaluated) -> Self {
+        Self {
+            state,
+            a,
+            d,
+            seen: std::cell::RefCell::new(vec![(s, ev.margin, ev.soc_reason)]),
+        }
+    }
+
+    /// The margin at start `s`.
+    fn margin(&self, s: i64) -> i128 {
+        if let Some(x) = self.seen.borrow().iter().find(|x| x.0 == s) {
+            return x.1;
+        }
+        self.evaluated(s).0
+    }
+
+    /// The margin and energy reason at start `s`.
+    fn at(&self, s: i64) -> (i128, Option<Phase2Reason>) {
+        if let Some(x) = self.seen.borrow().iter().find(|x| x.0 == s) {
+            return (x.1, x.2.clone());
+        }
+        self.evaluated(s)
+    }
+
+    /// Start `s` evaluated and kept.
+    fn evaluated(&self, s: i64) -> (i128, Option<Phase2Reason>) {
+        let (m, r) = self.state.margin_in_cell(self.a, s, self.d);
+        self.seen.borrow_mut().push((s, m, r.clone()));
+        (m, r)
     }
 }
 
