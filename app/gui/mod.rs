@@ -28,5 +28,4 @@ mod views;
 pub use app::SolscopeApp;
 pub use host::{SolscopeHost, run, save_color_image};
 pub use theme::Theme;
-pub use time_axis::TimeAxis;
 pub use views::Look;

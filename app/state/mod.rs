@@ -3,9 +3,9 @@
 //! what survives restarts ([`Persisted`]), the commands ([`UiCommand`] with
 //! their labels and shortcuts as data, [`Command`]), the reducer
 //! ([`AppState::apply`], by area in `reduce/`), and the values derived from
-//! them on worker threads ([`Job`](job::Job)). Every change of state can be
-//! driven and checked without a window; the gui (`crate::gui`) draws it and
-//! turns input into commands.
+//! them on worker threads (each one `Job`, `job.rs`). Every change of state
+//! can be driven and checked without a window; the gui (`crate::gui`) draws it
+//! and turns input into commands.
 //!
 //! Modules, lowest first (each uses only those before it): `axis`, `job`
 //! → `document`, `repair`, `export` → `persisted`, `ui` → `commands`,
