@@ -36,7 +36,8 @@ use std::time::{Duration, Instant};
 
 use eframe::egui;
 use serde_json::json;
-use solscope::gui::{Command, SolscopeApp};
+use solscope::gui::SolscopeApp;
+use solscope::state::Command;
 use solscope_engine::{
     ExplainOptions, Outcome, Plan, Profile, explain, generate_plan_with, schedule,
 };
@@ -384,7 +385,7 @@ fn desktop_app(profile: Profile, n: usize, sols: usize) -> (Plan, SolscopeApp) {
 /// standing and the frame after a change, as the desktop app runs (workers
 /// settled first).
 fn navigation(profiles: &[(&str, Profile)], quick: bool) {
-    use solscope::gui::{ListFilter, StatusFilter, UiCommand};
+    use solscope::state::{ListFilter, StatusFilter, UiCommand};
     let sizes: &[(usize, usize)] = if quick {
         &[(1000, 3)]
     } else {
@@ -487,7 +488,7 @@ fn median_max(times: &mut [Duration]) -> (Duration, Duration) {
 /// desktop app does (workers on), the flexibility layer shown once its network
 /// is in; nothing selected.
 fn drag(profiles: &[(&str, Profile)], quick: bool) {
-    use solscope::gui::TimeAxis;
+    use solscope::state::TimeAxis;
     let sizes: &[(usize, usize)] = if quick {
         &[(1000, 3)]
     } else {

@@ -3,10 +3,9 @@
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
 use egui_kittest::kittest::{NodeT, Queryable};
-use solscope::gui::{
-    Command, Dialog, ListFilter, Look, Mode, SolscopeApp, StatusFilter, UiCommand,
-};
+use solscope::gui::{Look, SolscopeApp};
 use solscope::screenshot::{SNAPSHOT_SIZE, View, harness};
+use solscope::state::{Command, Dialog, ListFilter, Mode, StatusFilter, UiCommand};
 
 fn tutorial() -> SolscopeApp {
     let text = std::fs::read_to_string(concat!(
@@ -1019,7 +1018,7 @@ fn opening_a_run_that_lost_the_activity_executes_that_run() {
     h.run_steps(3);
     assert_eq!(
         h.state().actuals,
-        solscope::gui::ActualsSource::Sampled { seed: 1, run }
+        solscope::state::ActualsSource::Sampled { seed: 1, run }
     );
     assert!(
         h.query_by_label(&format!("sampled, seed 1, run {run}"))
@@ -1072,7 +1071,7 @@ fn a_campaign_runs_off_the_frame_and_cancel_keeps_nothing() {
     });
     h.run_steps(2);
     let stopped = h.state().campaign_stopped().expect("stopped");
-    assert_eq!(stopped.why, solscope::gui::StopReason::Cancelled);
+    assert_eq!(stopped.why, solscope::state::StopReason::Cancelled);
     assert!(stopped.done < stopped.runs);
     assert!(h.state().campaign_result().is_none(), "nothing kept");
     assert!(h.query_by_label_contains("Cancelled after").is_some());
@@ -1306,7 +1305,7 @@ fn an_edit_while_a_campaign_runs_stops_it() {
     // Its summary would be of the plan before the edit: it is stopped at once.
     assert!(h.state().campaign_progress().is_none());
     let stopped = h.state().campaign_stopped().expect("stopped");
-    assert_eq!(stopped.why, solscope::gui::StopReason::PlanEdited);
+    assert_eq!(stopped.why, solscope::state::StopReason::PlanEdited);
     assert!(stopped.done < stopped.runs);
     assert!(h.state().campaign_result().is_none());
     assert!(
@@ -1330,7 +1329,7 @@ fn a_plan_without_duration_models_cannot_run_a_campaign() {
 /// The default plan in a harness, its Gantt zoomed to `[from, to]`.
 fn default_plan_over(from: f64, to: f64) -> egui_kittest::Harness<'static, SolscopeApp> {
     let mut app = SolscopeApp::with_default_plan().unwrap();
-    app.apply(Command::SetAxis(solscope::gui::TimeAxis::new(from, to)));
+    app.apply(Command::SetAxis(solscope::state::TimeAxis::new(from, to)));
     harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap()
 }
 
@@ -2017,7 +2016,7 @@ fn a_plan_opened_from_the_command_line_is_in_recent() {
     let pitfall = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/examples/pitfall.json");
     let mut app = SolscopeApp::open_or_default(Some(std::path::Path::new(pitfall))).unwrap();
     // What the host does at start-up with the settings it restored.
-    let older = solscope::gui::Persisted {
+    let older = solscope::state::Persisted {
         recent: vec!["/elsewhere/older.json".into()],
         ..Default::default()
     };
@@ -2509,7 +2508,7 @@ fn an_energy_failure_draws_what_it_would_have_caused() {
         let r = w.shown().unwrap();
         (r.plot, r.at, r.value, r.label.clone(), w.culprits.clone())
     };
-    assert_eq!(plot, solscope::gui::OverlayPlot::Soc);
+    assert_eq!(plot, solscope::state::OverlayPlot::Soc);
     // The explanation's numbers: lowest 921.5 Wh at t=164050, below min_soc.
     assert_eq!(at, 164_050);
     assert!((value - 921.541_666).abs() < 1e-3, "{value}");
@@ -2545,7 +2544,7 @@ fn a_peak_power_failure_draws_on_the_peak_plot() {
         .would_cause()
         .expect("an overlay for a max_peak failure");
     let r = w.shown().unwrap();
-    assert_eq!(r.plot, solscope::gui::OverlayPlot::Peak);
+    assert_eq!(r.plot, solscope::state::OverlayPlot::Peak);
     assert_eq!(r.at, 149_350);
     assert!((r.value - 923.0).abs() < 1e-9);
     assert_eq!(r.label, "would reach 923.0 W > max_peak 750.0 W");
@@ -2565,7 +2564,7 @@ const TWO_LIMITS: &str = include_str!("plans/two-limits.json");
 
 #[test]
 fn every_energy_and_peak_reason_is_marked_and_each_can_be_drawn() {
-    use solscope::gui::OverlayPlot;
+    use solscope::state::OverlayPlot;
     let app = SolscopeApp::from_text(TWO_LIMITS, None).unwrap();
     let view = View {
         select: Some("X".into()),
@@ -2639,7 +2638,7 @@ const TUTORIAL_PATH: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/tutoria
 /// in a harness.
 fn started_on(
     plan: &str,
-    persisted: solscope::gui::Persisted,
+    persisted: solscope::state::Persisted,
 ) -> egui_kittest::Harness<'static, SolscopeApp> {
     let mut app = SolscopeApp::open_or_default(Some(std::path::Path::new(plan))).unwrap();
     app.restore_persisted(persisted);
@@ -2781,7 +2780,7 @@ fn ending_the_tour_is_remembered_and_the_help_menu_restarts_and_resets_it() {
 
 #[test]
 fn the_help_menu_opens_the_tutorial_for_the_tour_from_another_plan() {
-    let dismissed = solscope::gui::Persisted {
+    let dismissed = solscope::state::Persisted {
         tour_dismissed: true,
         ..Default::default()
     };
@@ -2812,7 +2811,7 @@ fn the_help_menu_opens_the_tutorial_for_the_tour_from_another_plan() {
     );
     h.get_by_label("Discard changes").click();
     h.run_steps(3);
-    assert!(solscope::gui::tour::is_tutorial(&h.state().doc.plan));
+    assert!(solscope::state::tour::is_tutorial(&h.state().doc.plan));
     assert_eq!(h.state().doc.path, None, "the bundled plan, not a file");
     assert_eq!(
         tour_page(&h),

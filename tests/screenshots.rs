@@ -5,8 +5,9 @@
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
 use serde_json::json;
-use solscope::gui::{Command, SolscopeApp, TimeAxis, UiCommand};
+use solscope::gui::SolscopeApp;
 use solscope::screenshot::{SNAPSHOT_SIZE, View, harness, snapshot_options};
+use solscope::state::{Command, TimeAxis, UiCommand};
 
 fn app() -> SolscopeApp {
     SolscopeApp::with_default_plan().expect("default plan")
@@ -352,7 +353,7 @@ fn structured_editor_with_a_bad_window() {
 fn repair_view_of_a_broken_plan() {
     use egui_kittest::kittest::Queryable;
     let mut v: serde_json::Value =
-        serde_json::from_str(solscope::gui::DEFAULT_PLAN).expect("default plan");
+        serde_json::from_str(solscope::state::DEFAULT_PLAN).expect("default plan");
     v["battery"]["initial"] = json!(2600.0);
     v["activities"][0]["windows"] = json!([{ "start": 5000, "end": 4000 }]);
     v["activities"][1]["energy_rate"] = json!(-3.0);

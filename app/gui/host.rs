@@ -7,9 +7,8 @@ use std::sync::mpsc::{self, Receiver, Sender};
 
 use eframe::egui;
 
-use super::app::{Dialog, SolscopeApp};
-use super::commands::{Command, UiCommand};
-use super::state::Persisted;
+use super::app::SolscopeApp;
+use crate::state::{Command, Dialog, Persisted, UiCommand};
 
 /// The eframe host: persistence, window close guard, file dialogs, PNG export.
 #[derive(Debug)]

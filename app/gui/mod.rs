@@ -1,43 +1,31 @@
-//! The desktop app: a step-through schedule inspector hosting the engine in-process.
+//! The desktop app's egui side: the frame around the state, the eframe host,
+//! the keyboard shortcuts, the palette, the time↔pixel mapping, the hover
+//! help, the headless screenshot harness, and the views.
 //!
-//! Data flow per frame: the views (`views/*`, functions named `*_ui`) read a
-//! read-only `views::Model` of the [`Document`], its [`Analysis`] and the UI
-//! state, and push [`Command`]s; after the frame [`SolscopeApp::apply`] carries
-//! them out (edit → reschedule → explain → diff), so the model never changes
-//! mid-draw. The only state the views write is their widget state (text buffers,
-//! built rows). What survives restarts (recent files, theme) is [`Persisted`],
-//! saved by the eframe host ([`SolscopeHost`]).
+//! Data flow per frame ([`SolscopeApp::frame_ui`]): the state prepares what
+//! the frame shows ([`AppState::prepare`](crate::state::AppState::prepare)),
+//! the keys become commands ([`shortcuts`]), the views (`views/*`, functions
+//! named `*_ui`) read a read-only `views::Model` of the state and push
+//! [`Command`](crate::state::Command)s, and after the frame
+//! [`AppState::apply`](crate::state::AppState::apply) carries them out, so the
+//! model never changes mid-draw. The only state the views write is their
+//! widget state (text buffers, built rows). What survives restarts is
+//! [`Persisted`](crate::state::Persisted), saved by the eframe host
+//! ([`SolscopeHost`]).
 //!
-//! Modules, lowest first (each uses only those before it):
-//! `time_axis`, `theme`, `help` → `document`, `repair` → `state`, `commands` → `tour`,
-//! `execution`, `export` → `montecarlo` → `derived` → `views` → `app` → `host`.
+//! Modules, lowest first (each uses only those before it, and `crate::state`):
+//! `time_axis`, `theme`, `help`, `shortcuts` → `views` → `app` → `host`, `screenshot`.
 
 pub mod app;
-pub mod commands;
-mod derived;
-pub mod document;
-pub mod execution;
-pub mod export;
 pub mod help;
 pub mod host;
-pub mod montecarlo;
-pub mod repair;
-pub mod state;
+pub mod screenshot;
+pub mod shortcuts;
 pub mod theme;
 pub mod time_axis;
-pub mod tour;
 mod views;
 
-pub use app::{DEFAULT_PLAN, Dialog, SolscopeApp};
-pub use commands::{Command, UiCommand};
-pub use document::{Analysis, Document, OutcomeDiff};
-pub use execution::{ActualsSource, CycleRun, ExecutionRun};
+pub use app::SolscopeApp;
 pub use host::{SolscopeHost, run, save_color_image};
-pub use montecarlo::{CampaignResult, Progress, StopReason, Stopped};
-pub use state::{
-    History, LAST_STEP, ListFilter, Mode, OverlayPlot, OverlayReason, PathPrompt, Pending,
-    Persisted, Place, StatusFilter, StepView, StepWindow, Tour, UiState, WouldCause,
-};
 pub use theme::Theme;
-pub use time_axis::TimeAxis;
 pub use views::Look;

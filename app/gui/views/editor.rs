@@ -17,11 +17,10 @@ use solscope_engine::{
 };
 
 use super::{Model, command_button};
-use crate::gui::commands::{Command, UiCommand};
-use crate::gui::state::TextBuffers;
 use crate::gui::theme::{
     COMBO_WIDTH, FIELD_WIDTH, NUMBER_FIELD_WIDTH, PICKER_HEIGHT, PICKER_WIDTH, TIME_FIELD_WIDTH,
 };
+use crate::state::{Command, TextBuffers, UiCommand};
 
 /// Most options a picker lists (the search narrows them).
 const PICK_LIMIT: usize = 60;

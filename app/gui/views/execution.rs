@@ -11,9 +11,9 @@ use solscope_engine::{
 };
 
 use super::{Model, inspector, step_row_ui};
-use crate::gui::commands::{Command, UiCommand};
-use crate::gui::execution::ExecutionRun;
 use crate::gui::theme::{CYCLE_SLIDER_WIDTH, SEED_FIELD_WIDTH};
+use crate::state::execution::ExecutionRun;
+use crate::state::{Command, UiCommand};
 
 /// How many of a failed step's reasons the inspector lists.
 const REASONS_SHOWN: usize = 4;

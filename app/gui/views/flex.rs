@@ -9,10 +9,9 @@ use solscope_engine::{
 };
 
 use super::Model;
-use crate::gui::commands::Command;
-use crate::gui::state::FreeSlackProgress;
 use crate::gui::theme::{WHISKER_MIN_REACH, WHISKER_STROKE, WHISKER_TICK};
 use crate::gui::time_axis::TimeAxis;
+use crate::state::{Command, FreeSlackProgress};
 
 /// A bound as read: `10 min after zcam_tau_412 starts`, `when drive ends`.
 pub fn bound_line(m: &Model<'_>, b: &Bound) -> String {

@@ -14,11 +14,7 @@ use solscope_engine::{FailurePhase, GeneratedKind, Outcome, RunOutcome, Schedule
 
 use super::execution::{trigger_text, violation_text};
 use super::flex::{self, Slack};
-use super::{Look, Model, Status, ViewCache, status_at};
-use crate::gui::commands::Command;
-use crate::gui::document::Analysis;
-use crate::gui::execution::{CycleRun, ExecutionRun};
-use crate::gui::state::Mode;
+use super::{Look, Model, Status, ViewCache};
 use crate::gui::theme::{
     BAR_FONT_SIZE, BAR_ROUNDING, BASELINE_HEIGHT, CULPRIT_STROKE, CURRENT_STROKE,
     CYCLE_LINE_STROKE, DIMMED, GHOST_STROKE, HATCH_GAP, HATCH_STROKE, LABEL_MIN_WIDTH, LABEL_WIDTH,
@@ -27,6 +23,8 @@ use crate::gui::theme::{
     WINDOW_HATCH,
 };
 use crate::gui::time_axis::ticks;
+use crate::state::execution::{CycleRun, ExecutionRun};
+use crate::state::{Command, Mode, window_spans};
 
 /// One bar.
 #[derive(Clone, Debug)]
@@ -257,57 +255,6 @@ fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
     rows.extend(pack(failed, "Failed / skipped", 8));
     rows.extend(pack(pending, "Pending (windows)", 8));
     rows
-}
-
-/// Where an activity that is not placed is drawn: each window, from its start to
-/// its end plus the longest duration (clipped to the horizon), or the whole
-/// horizon without windows.
-pub(super) fn window_spans(
-    plan: &solscope_engine::Plan,
-    act: &solscope_engine::Activity,
-) -> Vec<(i64, i64)> {
-    let clip = |(lo, hi): (i64, i64)| (lo.max(plan.horizon.start), hi.min(plan.horizon.end));
-    match &act.windows {
-        Some(windows) => windows
-            .iter()
-            .map(|w| clip((w.start, w.end.saturating_add(act.duration.max()))))
-            .filter(|(lo, hi)| lo < hi)
-            .collect(),
-        None => vec![(plan.horizon.start, plan.horizon.end)],
-    }
-}
-
-/// Where the Gantt draws an activity.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Extent {
-    /// As a bar `[start, end]`: placed, or in execution mode run (or
-    /// predicted).
-    Bar(i64, i64),
-    /// As its windows (not placed, or never run): see [`window_spans`].
-    Windows(Vec<(i64, i64)>),
-}
-
-/// Where the Gantt draws activity `a`: in schedule mode (`run` none) as of step
-/// `k`, in execution mode where it ran, else where it was predicted.
-pub fn extent(
-    plan: &solscope_engine::Plan,
-    analysis: &Analysis,
-    run: Option<&ExecutionRun>,
-    k: usize,
-    a: usize,
-) -> Option<Extent> {
-    let act = plan.activities.get(a)?;
-    let bar = match run {
-        None => match status_at(analysis, a, k) {
-            Status::Scheduled(s, e) => Some((s, e)),
-            _ => None,
-        },
-        Some(run) => run.activity(a).and_then(|r| r.actual.or(r.predicted)),
-    };
-    Some(match bar {
-        Some((s, e)) => Extent::Bar(s, e),
-        None => Extent::Windows(window_spans(plan, act)),
-    })
 }
 
 /// Scheduled bars in one row per unit resource (resource names in order; an
@@ -1398,7 +1345,7 @@ mod tests {
         app.apply(Command::GroupByResource(true));
         check(&mut app);
         app.apply(Command::GroupByResource(false));
-        app.apply(crate::gui::UiCommand::ToggleFlex.into());
+        app.apply(crate::state::UiCommand::ToggleFlex.into());
         let mut out = ctx.run_ui(egui::RawInput::default(), |ui| app.frame_ui(ui));
         out.textures_delta.clear();
         let (m, _) = app.model_and_widgets();
@@ -1408,7 +1355,7 @@ mod tests {
             shape(&app.view_cache.gantt.clone().expect("kept").rows),
             plain
         );
-        app.apply(crate::gui::UiCommand::ToggleFlex.into());
+        app.apply(crate::state::UiCommand::ToggleFlex.into());
         check(&mut app);
         let mut set = serde_json::Map::new();
         set.insert("mandatory".into(), serde_json::json!(false));
@@ -1468,7 +1415,7 @@ mod tests {
 
     /// The app in execution mode after one frame (the execution derived in it).
     fn executed(mut app: SolscopeApp) -> SolscopeApp {
-        app.apply(crate::gui::UiCommand::ShowExecution.into());
+        app.apply(crate::state::UiCommand::ShowExecution.into());
         let ctx = egui::Context::default();
         let mut out = ctx.run_ui(egui::RawInput::default(), |ui| app.frame_ui(ui));
         out.textures_delta.clear();

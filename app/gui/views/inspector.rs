@@ -10,12 +10,11 @@ use solscope_engine::{
 };
 
 use super::{Model, Status, TourAnchors, command_button, editor, execution, flex};
-use crate::gui::commands::{Command, UiCommand};
 use crate::gui::help;
-use crate::gui::state::{Mode, TextBuffers};
 use crate::gui::theme::{
     FIELD_WIDTH, LABEL_WIDTH, TRACK_FONT_SIZE, TRACK_LINE_STROKE, TRACK_ROW_GAP, TRACK_ROW_HEIGHT,
 };
+use crate::state::{Command, Mode, TextBuffers, UiCommand};
 
 /// The right-hand panel.
 pub fn inspector_ui(

@@ -1,215 +1,15 @@
 //! The activity list: search (Ctrl+F), filters by status, unit resource and
-//! sol, the rows as of the step shown; and what the search and filters select
-//! ([`Listed`]), kept between frames for the list, the Gantt's highlight and
-//! the app's Up/Down and next/previous match.
-
-use std::collections::BTreeSet;
-use std::sync::Arc;
+//! sol, the rows as of the step shown. What the search and filters select is
+//! the state's ([`Listed`]: the frame puts it in the view cache before
+//! drawing).
 
 use eframe::egui::{self, RichText};
-use solscope_engine::{Plan, RunOutcome};
+use solscope_engine::RunOutcome;
 
-use super::gantt::window_spans;
-use super::{Model, Status, ViewCache, Widgets, montecarlo, shortcut_button, status_at};
-use crate::gui::commands::{Command, UiCommand};
-use crate::gui::document::Analysis;
-use crate::gui::state::{ListFilter, Mode, Navigation, StatusFilter};
+use super::{Model, ViewCache, Widgets, montecarlo, shortcut_button};
+use crate::gui::shortcuts::kb_shortcut;
 use crate::gui::theme::{SHARE_BAR_HEIGHT, SHARE_BAR_WIDTH};
-
-/// What the search and filters select, for one key.
-#[derive(Clone, Debug)]
-pub struct Listed {
-    key: ListKey,
-    /// The activities the list shows, in step order.
-    pub shown: Vec<usize>,
-    /// Per plan activity: shown (what the Gantt highlights when `active`).
-    pub matches: Vec<bool>,
-    /// Whether anything is filtered out (the Gantt dims what does not match).
-    pub active: bool,
-    /// Bumped each time the list is computed again (the list re-scrolls to
-    /// the selection then).
-    pub generation: u64,
-}
-
-impl Listed {
-    /// Whether activity `a` is shown.
-    pub fn shows(&self, a: usize) -> bool {
-        self.matches.get(a).copied().unwrap_or(false)
-    }
-}
-
-/// What a [`Listed`] was computed for: the filter as it applies (the status
-/// only in schedule mode), and the step only when the status or sol filter
-/// depends on it, so stepping with a search alone costs nothing.
-#[derive(Clone, Debug, PartialEq, Eq)]
-struct ListKey {
-    revision: u64,
-    step: usize,
-    filter: ListFilter,
-}
-
-impl ListKey {
-    fn of(nav: &Navigation, revision: u64) -> Self {
-        let mut filter = nav.filter.clone();
-        filter.search = filter.search.trim().to_lowercase();
-        if nav.mode == Mode::Execution {
-            filter.status = None;
-        }
-        let step = if filter.status.is_some() || filter.sol.is_some() {
-            nav.step
-        } else {
-            0
-        };
-        Self {
-            revision,
-            step,
-            filter,
-        }
-    }
-}
-
-/// What searching and the filters' menus need of one plan revision, derived
-/// once: each activity's id and name in lower case, the unit resources, the
-/// sols of the horizon.
-#[derive(Clone, Debug)]
-pub struct SearchIndex {
-    revision: u64,
-    /// Per activity: `id` and `name` in lower case, joined by a character no
-    /// one types.
-    text: Vec<String>,
-    /// Every unit resource some activity holds, sorted.
-    pub resources: Vec<String>,
-    /// The sols the horizon touches, first to last.
-    pub sols: std::ops::RangeInclusive<i64>,
-}
-
-impl SearchIndex {
-    fn of(plan: &Plan, revision: u64) -> Self {
-        let text = plan
-            .activities
-            .iter()
-            .map(|a| match &a.name {
-                Some(n) => format!("{}\u{1}{}", a.id.to_lowercase(), n.to_lowercase()),
-                None => a.id.to_lowercase(),
-            })
-            .collect();
-        let resources: BTreeSet<&str> = plan
-            .activities
-            .iter()
-            .flat_map(|a| a.resources.iter().map(String::as_str))
-            .collect();
-        let clock = &plan.local_time;
-        let (lo, hi) = (plan.horizon.start, plan.horizon.end);
-        Self {
-            revision,
-            text,
-            resources: resources.into_iter().map(String::from).collect(),
-            sols: clock.sol(lo)..=clock.sol((hi - 1).max(lo)),
-        }
-    }
-}
-
-impl ViewCache {
-    /// The search index of plan revision `revision` (derived when it changes).
-    pub fn search_index(&mut self, plan: &Plan, revision: u64) -> Arc<SearchIndex> {
-        match &self.search {
-            Some(ix) if ix.revision == revision => Arc::clone(ix),
-            _ => {
-                let ix = Arc::new(SearchIndex::of(plan, revision));
-                self.search = Some(Arc::clone(&ix));
-                ix
-            }
-        }
-    }
-
-    /// What the search and filters of `nav` select at plan revision
-    /// `revision`: computed when the filter, the revision or (for the status
-    /// and sol filters) the step changes, else the last result.
-    pub fn listed(
-        &mut self,
-        plan: &Plan,
-        analysis: &Analysis,
-        nav: &Navigation,
-        revision: u64,
-    ) -> Arc<Listed> {
-        let key = ListKey::of(nav, revision);
-        if let Some(l) = self.listed.as_ref().filter(|l| l.key == key) {
-            return Arc::clone(l);
-        }
-        let index = self.search_index(plan, revision);
-        let generation = self.listed.as_ref().map_or(0, |l| l.generation + 1);
-        let listed = Arc::new(compute(plan, analysis, &index, key, generation));
-        self.listed = Some(Arc::clone(&listed));
-        listed
-    }
-}
-
-/// The plan time where sol `sol` starts (local midnight).
-fn sol_start(plan: &Plan, sol: i64) -> i64 {
-    let clock = &plan.local_time;
-    let t0 = plan.horizon.start;
-    let midnight = t0 - clock.time_of_day(t0);
-    midnight.saturating_add((sol - clock.sol(t0)).saturating_mul(clock.sol_length.max(1)))
-}
-
-/// Whether activity `a` is in sol `[from, to)` as of step `k`: its bar when
-/// placed by then, else any of its windows.
-fn in_sol(plan: &Plan, analysis: &Analysis, a: usize, k: usize, (from, to): (i64, i64)) -> bool {
-    let touches = |lo: i64, hi: i64| lo < to && (hi > from || (hi == lo && lo >= from));
-    match status_at(analysis, a, k) {
-        Status::Scheduled(s, e) => touches(s, e),
-        _ => window_spans(plan, &plan.activities[a])
-            .iter()
-            .any(|&(lo, hi)| touches(lo, hi)),
-    }
-}
-
-fn compute(
-    plan: &Plan,
-    analysis: &Analysis,
-    index: &SearchIndex,
-    key: ListKey,
-    generation: u64,
-) -> Listed {
-    let f = &key.filter;
-    let sol = f.sol.map(|s| (sol_start(plan, s), sol_start(plan, s + 1)));
-    let k = key.step;
-    let keep = |a: usize| {
-        let act = &plan.activities[a];
-        (f.search.is_empty() || index.text[a].contains(&f.search))
-            && f.resource
-                .as_ref()
-                .is_none_or(|r| act.resources.iter().any(|x| x == r))
-            && f.status.is_none_or(|s| {
-                matches!(
-                    (s, status_at(analysis, a, k)),
-                    (StatusFilter::Scheduled, Status::Scheduled(..))
-                        | (StatusFilter::Failed, Status::Failed)
-                        | (StatusFilter::Skipped, Status::Skipped)
-                        | (StatusFilter::Pending, Status::Pending)
-                )
-            })
-            && sol.is_none_or(|span| in_sol(plan, analysis, a, k, span))
-    };
-    let shown: Vec<usize> = analysis
-        .schedule
-        .steps
-        .iter()
-        .map(|s| s.activity)
-        .filter(|&a| keep(a))
-        .collect();
-    let mut matches = vec![false; plan.activities.len()];
-    for &a in &shown {
-        matches[a] = true;
-    }
-    Listed {
-        active: key.filter.active(),
-        key,
-        shown,
-        matches,
-        generation,
-    }
-}
+use crate::state::{Command, ListFilter, Listed, Mode, Status, StatusFilter, UiCommand};
 
 /// The search field, the match buttons and count, and the filters' menus.
 fn search_ui(
@@ -220,10 +20,7 @@ fn search_ui(
     cmds: &mut Vec<Command>,
 ) {
     let ctx = ui.ctx().clone();
-    let key = |cmd: UiCommand| {
-        cmd.kb_shortcut()
-            .map_or(String::new(), |s| ctx.format_shortcut(&s))
-    };
+    let key = |cmd: UiCommand| kb_shortcut(cmd).map_or(String::new(), |s| ctx.format_shortcut(&s));
     ui.horizontal(|ui| {
         let label = ui.label(UiCommand::Search.label()).on_hover_text(format!(
             "Activity id or name, any case ({}); Enter or {}: next match, Shift+Enter or {}: \
@@ -291,7 +88,9 @@ fn search_ui(
 
 /// The status, unit resource and sol menus and "Clear filters".
 fn filters_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &mut Vec<Command>) {
-    let index = cache.search_index(&m.doc.plan, m.revision);
+    let Some(index) = cache.search.clone() else {
+        return;
+    };
     let f = &m.nav.filter;
     let set = |cmds: &mut Vec<Command>, change: &dyn Fn(&mut ListFilter)| {
         let mut next = f.clone();
@@ -430,7 +229,9 @@ pub(super) fn activities_ui(
     cmds: &mut Vec<Command>,
 ) {
     ui.heading("Activities");
-    let listed = w.cache.listed(&m.doc.plan, m.analysis, m.nav, m.revision);
+    let Some(listed) = w.cache.listed.clone() else {
+        return;
+    };
     search_ui(ui, m, w, &listed, cmds);
     ui.separator();
     let cache = &mut *w.cache;
@@ -472,136 +273,4 @@ pub(super) fn activities_ui(
             row_ui(ui, m, a, cmds);
         }
     });
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::gui::SolscopeApp;
-
-    fn ids(app: &mut SolscopeApp) -> Vec<String> {
-        let listed = app
-            .view_cache
-            .listed(&app.doc.plan, &app.analysis, &app.ui.nav, app.revision);
-        listed
-            .shown
-            .iter()
-            .map(|&a| app.doc.plan.activities[a].id.clone())
-            .collect()
-    }
-
-    #[test]
-    fn search_matches_id_or_name_ignoring_case_in_step_order() {
-        let mut app = SolscopeApp::with_default_plan().expect("default plan");
-        let all = ids(&mut app);
-        assert_eq!(all.len(), app.doc.plan.activities.len());
-        app.apply(Command::SetFilter("  MEDA ".into()));
-        let meda = ids(&mut app);
-        assert!(meda.len() >= 5, "{meda:?}");
-        let plan = &app.doc.plan;
-        for a in &plan.activities {
-            let hit = a.id.to_lowercase().contains("meda")
-                || a.name
-                    .as_ref()
-                    .is_some_and(|n| n.to_lowercase().contains("meda"));
-            assert_eq!(meda.contains(&a.id), hit, "{}", a.id);
-        }
-        // In step order: a subsequence of the whole list.
-        let mut rest = all.iter();
-        assert!(meda.iter().all(|id| rest.any(|x| x == id)));
-        // By name: "Drill core sample" is drill_core_413's name.
-        app.apply(Command::SetFilter("core sample".into()));
-        assert!(ids(&mut app).contains(&"drill_core_413".to_string()));
-    }
-
-    #[test]
-    fn filters_combine_and_follow_the_step_shown() {
-        let mut app = SolscopeApp::with_default_plan().expect("default plan");
-        let failed = app.analysis.failed();
-        let filter = |status, resource: Option<&str>, sol| ListFilter {
-            status,
-            resource: resource.map(String::from),
-            sol,
-            ..ListFilter::default()
-        };
-        app.apply(Command::SetListFilter(filter(
-            Some(StatusFilter::Failed),
-            None,
-            None,
-        )));
-        let n_failed = ids(&mut app).len();
-        let skipped = app
-            .analysis
-            .schedule
-            .steps
-            .iter()
-            .filter(|s| s.outcome.status() == "skipped")
-            .count();
-        assert_eq!(n_failed + skipped, failed);
-        // Before step 1 nothing failed yet: all pending.
-        app.apply(Command::SetStep(0));
-        assert!(ids(&mut app).is_empty());
-        app.apply(Command::SetListFilter(filter(
-            Some(StatusFilter::Pending),
-            None,
-            None,
-        )));
-        assert_eq!(ids(&mut app).len(), app.doc.plan.activities.len());
-        app.apply(Command::SetStep(app.analysis.steps()));
-        // Holding the arm, in sol 413.
-        app.apply(Command::SetListFilter(filter(None, Some("arm"), Some(413))));
-        let arm_413 = ids(&mut app);
-        assert!(!arm_413.is_empty());
-        let plan = app.doc.plan.clone();
-        for id in &arm_413 {
-            let a = plan
-                .activities
-                .iter()
-                .find(|a| &a.id == id)
-                .expect("activity");
-            assert!(a.resources.iter().any(|r| r == "arm"), "{id}");
-        }
-        assert!(arm_413.contains(&"drill_core_413".to_string()));
-        assert!(!arm_413.contains(&"arm_unstow_412".to_string()));
-        // Execution mode has no schedule statuses to filter by: set aside.
-        app.apply(Command::SetListFilter(filter(
-            Some(StatusFilter::Failed),
-            None,
-            None,
-        )));
-        assert_eq!(ids(&mut app).len(), n_failed);
-        app.apply(crate::gui::UiCommand::ShowExecution.into());
-        assert_eq!(ids(&mut app).len(), app.doc.plan.activities.len());
-    }
-
-    #[test]
-    fn the_list_is_computed_once_per_filter_revision_and_step() {
-        let mut app = SolscopeApp::with_default_plan().expect("default plan");
-        app.apply(Command::SetFilter("meda".into()));
-        let first = app
-            .view_cache
-            .listed(&app.doc.plan, &app.analysis, &app.ui.nav, app.revision);
-        // A search does not depend on the step: stepping keeps the result.
-        app.apply(Command::SetStep(3));
-        let again = app
-            .view_cache
-            .listed(&app.doc.plan, &app.analysis, &app.ui.nav, app.revision);
-        assert!(Arc::ptr_eq(&first, &again));
-        // A status filter does.
-        let status = ListFilter {
-            search: "meda".into(),
-            status: Some(StatusFilter::Scheduled),
-            ..ListFilter::default()
-        };
-        app.apply(Command::SetListFilter(status));
-        let a = app
-            .view_cache
-            .listed(&app.doc.plan, &app.analysis, &app.ui.nav, app.revision);
-        app.apply(Command::SetStep(4));
-        let b = app
-            .view_cache
-            .listed(&app.doc.plan, &app.analysis, &app.ui.nav, app.revision);
-        assert!(!Arc::ptr_eq(&a, &b));
-        assert!(b.generation > a.generation);
-    }
 }

@@ -21,14 +21,13 @@ use solscope_engine::{
 };
 
 use super::{CampaignModel, Model};
-use crate::gui::commands::{Command, UiCommand};
-use crate::gui::execution::ActualsSource;
-use crate::gui::montecarlo::{Bin, COMPARED, CampaignResult, MAX_RUNS, StopReason, total_runs};
-use crate::gui::state::TextBuffers;
 use crate::gui::theme::{
     BAR_OUTLINE_STROKE, CAMPAIGN_FIELD_WIDTH, HISTOGRAM_HEIGHT, LIMIT_LINE_STROKE,
     SHARE_BAR_HEIGHT, SHARE_BAR_LARGE_HEIGHT, SHARE_BAR_WIDTH, SHARE_MIN_WIDTH,
 };
+use crate::state::execution::ActualsSource;
+use crate::state::montecarlo::{Bin, COMPARED, CampaignResult, MAX_RUNS, StopReason, total_runs};
+use crate::state::{Command, TextBuffers, UiCommand};
 
 /// How many of the activities lost most often the panel lists.
 const MOST_LOST_SHOWN: usize = 5;

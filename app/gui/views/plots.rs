@@ -16,14 +16,13 @@ use solscope_engine::{
 
 use super::execution::kind_name;
 use super::{Model, ViewCache};
-use crate::gui::commands::Command;
-use crate::gui::execution::ExecutionRun;
-use crate::gui::state::{Mode, OverlayPlot, OverlayReason, StepView, WouldCause};
 use crate::gui::theme::{
     CYCLE_LINE_STROKE, LABEL_WIDTH, LIMIT_FONT_SIZE, OTHER_VIOLATION_RADIUS, PLOT_HEIGHT, TICK_GAP,
     VALUE_GRID_GAP, VIOLATION_RADIUS, WOULD_CAUSE_STROKE,
 };
 use crate::gui::time_axis::{TimeAxis, tick_label, ticks};
+use crate::state::execution::ExecutionRun;
+use crate::state::{Command, Mode, OverlayPlot, OverlayReason, StepView, WouldCause};
 
 /// One line on a plot.
 struct Series<'a> {

@@ -7,10 +7,9 @@ use eframe::egui::{self, RichText};
 use egui::text::CCursor;
 
 use super::{Model, command_button};
-use crate::gui::commands::{Command, UiCommand};
-use crate::gui::repair::{Repair, char_range, locate};
-use crate::gui::state::TextBuffers;
 use crate::gui::theme::{REPAIR_LIST_WIDTH, REPAIR_VALUE_HEIGHT};
+use crate::state::repair::{Repair, char_range, locate};
+use crate::state::{Command, TextBuffers, UiCommand};
 
 /// The whole window while a plan file is being repaired.
 pub fn repair_ui(

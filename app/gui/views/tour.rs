@@ -6,11 +6,11 @@
 use eframe::egui::{self, Align2, Pos2, Rect, RichText, Stroke, StrokeKind};
 
 use super::Model;
-use crate::gui::commands::{Command, UiCommand};
 use crate::gui::theme::{
     TOUR_GAP, TOUR_OUTLINE, TOUR_OUTLINE_ROUNDING, TOUR_SECTION, TOUR_SECTION_GAP, TOUR_WIDTH,
 };
-use crate::gui::tour::{self, Anchor, Facts, Page};
+use crate::state::tour::{self, Anchor, Facts, Page};
+use crate::state::{Command, UiCommand};
 
 /// Where the parts the tour points at were drawn this frame.
 #[derive(Clone, Copy, Debug, Default)]

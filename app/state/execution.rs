@@ -11,7 +11,7 @@ use solscope_engine::{
     execute, load_actuals, mbit, sample_run, watts, wh,
 };
 
-use super::state::StepView;
+use super::ui::StepView;
 
 /// Where the actual durations of the execution come from.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]

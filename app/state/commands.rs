@@ -1,28 +1,51 @@
 //! Commands: what the UI asks for. Views only read the model and push commands;
-//! `SolscopeApp::apply` carries them out after the frame, so nothing changes
-//! mid-draw.
+//! [`AppState::apply`](super::AppState::apply) carries them out after the frame,
+//! so nothing changes mid-draw.
 //!
 //! As in rerun's `UICommand`, the commands a user gives by name ([`UiCommand`]:
 //! menu items, toolbar buttons, keys) carry no payload and own their label and
-//! keyboard shortcut, so a button and its key cannot drift apart. Everything else
-//! is a [`Command`] with its payload.
+//! keyboard shortcut ([`Shortcut`]: a key and its modifiers, as data; the gui
+//! maps it to its toolkit's), so a button and its key cannot drift apart, and
+//! the keyboard handling goes through [`UiCommand::ALL`]. Everything else is a
+//! [`Command`] with its payload.
 
 use std::path::PathBuf;
 
-use eframe::egui::{Key, KeyboardShortcut, Modifiers};
 use serde_json::{Map, Value};
 
-use super::state::{Dialog, ListFilter, StepWindow};
-use super::time_axis::TimeAxis;
+use super::axis::TimeAxis;
+use super::ui::{Dialog, ListFilter, StepWindow};
 
-/// A command the user gives by name: its label is the button's text (and
-/// accessibility label), its shortcut the key that does the same.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum UiCommand {
-    /// Choose a plan file to open (guarded when there are unsaved changes).
-    Open,
+/// Declares [`UiCommand`] and [`UiCommand::ALL`] from one list, so that no
+/// command can be left out of what the keyboard handling and the shortcut
+/// checks go through.
+macro_rules! ui_commands {
+    ($($(#[$doc:meta])* $name:ident,)*) => {
+        /// A command the user gives by name: its label is the button's text (and
+        /// accessibility label), its shortcut the key that does the same.
+        ///
+        /// Declared in the order the keyboard handling checks the shortcuts:
+        /// one whose key is also another's with fewer modifiers comes first
+        /// (Redo before Undo: Cmd+Shift+Z also matches Cmd+Z logically; so does
+        /// Shift+F3 F3), and within a frame the commands of the keys pressed
+        /// are given in this order.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum UiCommand {
+            $($(#[$doc])* $name,)*
+        }
+
+        impl UiCommand {
+            /// Every command, in declaration order.
+            pub const ALL: &[Self] = &[$(Self::$name,)*];
+        }
+    };
+}
+
+ui_commands! {
     /// Save to the current file (or ask where).
     Save,
+    /// Choose a plan file to open (guarded when there are unsaved changes).
+    Open,
     /// Save to a new file (asks where).
     SaveAs,
     /// Write the schedule JSON (asks where).
@@ -33,10 +56,10 @@ pub enum UiCommand {
     ExportPng,
     /// Quit (guarded when there are unsaved changes).
     Quit,
-    /// Undo the last edit.
-    Undo,
     /// Redo the last undone edit.
     Redo,
+    /// Undo the last edit.
+    Undo,
     /// Add a new activity after the selected one (at the end when none is),
     /// and select it.
     AddActivity,
@@ -52,22 +75,22 @@ pub enum UiCommand {
     ReplaceAtError,
     /// Repair view: leave it; the plan open before stays.
     CancelRepair,
-    /// Show the state before step 1.
-    FirstStep,
     /// Show the previous step.
     PreviousStep,
     /// Show the next step.
     NextStep,
-    /// Show the last step.
-    LastStep,
-    /// Show the next step at which an activity failed, and select it.
-    NextFailure,
     /// Show the previous step at which an activity failed, and select it.
     PreviousFailure,
+    /// Show the next step at which an activity failed, and select it.
+    NextFailure,
     /// Select the activity above the selected one in the activity list.
     SelectPrevious,
     /// Select the activity below the selected one in the activity list.
     SelectNext,
+    /// Show the state before step 1.
+    FirstStep,
+    /// Show the last step.
+    LastStep,
     /// Schedule mode: the scheduler's run over the plan.
     ShowSchedule,
     /// Execution mode: the plan executed cycle by cycle.
@@ -96,10 +119,10 @@ pub enum UiCommand {
     Forward,
     /// Put the keyboard in the activity search field.
     Search,
-    /// Select the next activity the search and filters list (wrapping).
-    NextMatch,
     /// Select the previous activity the search and filters list (wrapping).
     PreviousMatch,
+    /// Select the next activity the search and filters list (wrapping).
+    NextMatch,
     /// Show every activity again: empty the search, clear the filters.
     ClearFilters,
     /// Start the guided tour of one failure on the tutorial plan (opening the
@@ -121,42 +144,6 @@ pub enum UiCommand {
 }
 
 impl UiCommand {
-    /// Commands whose shortcut is taken also while a text field has focus
-    /// (with Ctrl/Cmd, or a function key), in the order the keyboard handling
-    /// checks them (Redo before Undo: Cmd+Shift+Z also matches Cmd+Z
-    /// logically; so does Shift+F3 F3).
-    pub const WITH_MODIFIERS: [Self; 9] = [
-        Self::Redo,
-        Self::Undo,
-        Self::Save,
-        Self::Open,
-        Self::ShowSchedule,
-        Self::ShowExecution,
-        Self::Search,
-        Self::PreviousMatch,
-        Self::NextMatch,
-    ];
-
-    /// Commands on keys without Ctrl/Cmd (stepping, the list, Back and Forward
-    /// on Alt+arrows, which a text field uses to move by words), taken only
-    /// when no text field has focus; each press counts, also several in one
-    /// frame.
-    pub const PLAIN_KEYS: [Self; 13] = [
-        Self::PreviousStep,
-        Self::NextStep,
-        Self::PreviousFailure,
-        Self::NextFailure,
-        Self::SelectPrevious,
-        Self::SelectNext,
-        Self::FirstStep,
-        Self::LastStep,
-        Self::PreviousCycle,
-        Self::NextCycle,
-        Self::ToggleFlex,
-        Self::Back,
-        Self::Forward,
-    ];
-
     /// The text of its button or menu item (also its accessibility label).
     pub fn label(self) -> &'static str {
         match self {
@@ -208,14 +195,14 @@ impl UiCommand {
     }
 
     /// Its keyboard shortcut, if any.
-    pub fn kb_shortcut(self) -> Option<KeyboardShortcut> {
-        let cmd = |key| Some(KeyboardShortcut::new(Modifiers::COMMAND, key));
-        let plain = |key| Some(KeyboardShortcut::new(Modifiers::NONE, key));
+    pub fn shortcut(self) -> Option<Shortcut> {
+        let cmd = |key| Some(Shortcut::new(Modifiers::COMMAND, key));
+        let plain = |key| Some(Shortcut::new(Modifiers::NONE, key));
         match self {
             Self::Open => cmd(Key::O),
             Self::Save => cmd(Key::S),
             Self::Undo => cmd(Key::Z),
-            Self::Redo => Some(KeyboardShortcut::new(
+            Self::Redo => Some(Shortcut::new(
                 Modifiers {
                     shift: true,
                     ..Modifiers::COMMAND
@@ -226,8 +213,8 @@ impl UiCommand {
             Self::PreviousStep => plain(Key::ArrowLeft),
             Self::NextStep => plain(Key::ArrowRight),
             Self::LastStep => plain(Key::End),
-            Self::NextFailure => Some(KeyboardShortcut::new(Modifiers::SHIFT, Key::ArrowRight)),
-            Self::PreviousFailure => Some(KeyboardShortcut::new(Modifiers::SHIFT, Key::ArrowLeft)),
+            Self::NextFailure => Some(Shortcut::new(Modifiers::SHIFT, Key::ArrowRight)),
+            Self::PreviousFailure => Some(Shortcut::new(Modifiers::SHIFT, Key::ArrowLeft)),
             Self::SelectPrevious => plain(Key::ArrowUp),
             Self::SelectNext => plain(Key::ArrowDown),
             Self::ShowSchedule => cmd(Key::Num1),
@@ -241,11 +228,11 @@ impl UiCommand {
             | Self::RecheckRepair
             | Self::ReplaceAtError
             | Self::CancelRepair => None,
-            Self::Back => Some(KeyboardShortcut::new(Modifiers::ALT, Key::ArrowLeft)),
-            Self::Forward => Some(KeyboardShortcut::new(Modifiers::ALT, Key::ArrowRight)),
+            Self::Back => Some(Shortcut::new(Modifiers::ALT, Key::ArrowLeft)),
+            Self::Forward => Some(Shortcut::new(Modifiers::ALT, Key::ArrowRight)),
             Self::Search => cmd(Key::F),
             Self::NextMatch => plain(Key::F3),
-            Self::PreviousMatch => Some(KeyboardShortcut::new(Modifiers::SHIFT, Key::F3)),
+            Self::PreviousMatch => Some(Shortcut::new(Modifiers::SHIFT, Key::F3)),
             Self::SaveAs
             | Self::ExportSchedule
             | Self::ExportScheduleCsv
@@ -263,6 +250,116 @@ impl UiCommand {
             | Self::ZoomStepsOut
             | Self::AllSteps => None,
         }
+    }
+}
+
+/// A key a shortcut is on (the ones the commands use), as data: the gui maps
+/// it to its toolkit's key.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Key {
+    /// The letter O.
+    O,
+    /// The letter S.
+    S,
+    /// The letter Z.
+    Z,
+    /// The letter F.
+    F,
+    /// The digit 1.
+    Num1,
+    /// The digit 2.
+    Num2,
+    /// Home.
+    Home,
+    /// End.
+    End,
+    /// Page Up.
+    PageUp,
+    /// Page Down.
+    PageDown,
+    /// Left arrow.
+    ArrowLeft,
+    /// Right arrow.
+    ArrowRight,
+    /// Up arrow.
+    ArrowUp,
+    /// Down arrow.
+    ArrowDown,
+    /// The function key F3.
+    F3,
+}
+
+impl Key {
+    /// A function key (taken also while a text field has focus).
+    pub fn is_function_key(self) -> bool {
+        matches!(self, Self::F3)
+    }
+}
+
+/// The modifiers held with a shortcut's key. `command` is Ctrl, or Cmd on a
+/// Mac.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Modifiers {
+    /// Ctrl (Cmd on a Mac).
+    pub command: bool,
+    /// Shift.
+    pub shift: bool,
+    /// Alt (Option on a Mac).
+    pub alt: bool,
+}
+
+impl Modifiers {
+    /// No modifier.
+    pub const NONE: Self = Self {
+        command: false,
+        shift: false,
+        alt: false,
+    };
+    /// Ctrl (Cmd on a Mac).
+    pub const COMMAND: Self = Self {
+        command: true,
+        ..Self::NONE
+    };
+    /// Shift.
+    pub const SHIFT: Self = Self {
+        shift: true,
+        ..Self::NONE
+    };
+    /// Alt.
+    pub const ALT: Self = Self {
+        alt: true,
+        ..Self::NONE
+    };
+
+    /// Whether every modifier of `other` is held in `self` too.
+    pub fn contains(self, other: Self) -> bool {
+        (self.command || !other.command) && (self.shift || !other.shift) && (self.alt || !other.alt)
+    }
+}
+
+/// A keyboard shortcut: a key with its modifiers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shortcut {
+    /// The modifiers held.
+    pub modifiers: Modifiers,
+    /// The key pressed.
+    pub key: Key,
+}
+
+impl Shortcut {
+    /// `key` with `modifiers`.
+    pub const fn new(modifiers: Modifiers, key: Key) -> Self {
+        Self { modifiers, key }
+    }
+
+    /// Taken also while a text field has focus: with Ctrl/Cmd, or on a
+    /// function key (once per frame). The others (stepping, the list, Back and
+    /// Forward on Alt+arrows, which a text field uses to move by words) are
+    /// taken only when no text field has focus, each press counting, also
+    /// several in one frame, with exactly their modifiers (Shift+Right is the
+    /// next failure, not also the next step).
+    pub fn while_typing(self) -> bool {
+        self.modifiers.command || self.key.is_function_key()
     }
 }
 
@@ -418,5 +515,61 @@ pub enum Command {
 impl From<UiCommand> for Command {
     fn from(cmd: UiCommand) -> Self {
         Self::Ui(cmd)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_command_has_its_own_label_and_shortcut() {
+        for (i, a) in UiCommand::ALL.iter().enumerate() {
+            assert!(!a.label().is_empty(), "{a:?}");
+            for b in &UiCommand::ALL[i + 1..] {
+                assert_ne!(a, b, "listed twice");
+                assert_ne!(a.label(), b.label(), "{a:?} and {b:?}");
+                if let (Some(sa), Some(sb)) = (a.shortcut(), b.shortcut()) {
+                    assert_ne!(sa, sb, "{a:?} and {b:?} share a shortcut");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_shortcut_taken_while_typing_is_checked_before_one_it_also_matches() {
+        // Such a shortcut matches a key pressed with more modifiers than its
+        // own (Cmd+Z matches Cmd+Shift+Z): the one with more is checked first,
+        // or it would never be given.
+        let typing: Vec<(UiCommand, Shortcut)> = UiCommand::ALL
+            .iter()
+            .filter_map(|&c| c.shortcut().filter(|s| s.while_typing()).map(|s| (c, s)))
+            .collect();
+        assert!(typing.len() >= 5, "{typing:?}");
+        for (i, (a, sa)) in typing.iter().enumerate() {
+            for (b, sb) in &typing[i + 1..] {
+                let shadowed = sa.key == sb.key && sb.modifiers.contains(sa.modifiers);
+                assert!(
+                    !shadowed,
+                    "{b:?} ({sb:?}) is also {a:?} ({sa:?}), checked first"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn shortcuts_taken_while_typing_have_ctrl_or_a_function_key() {
+        let typing = |c: UiCommand| c.shortcut().is_some_and(Shortcut::while_typing);
+        for c in [
+            UiCommand::Undo,
+            UiCommand::Redo,
+            UiCommand::Search,
+            UiCommand::NextMatch,
+        ] {
+            assert!(typing(c), "{c:?}");
+        }
+        for c in [UiCommand::NextStep, UiCommand::Back, UiCommand::ToggleFlex] {
+            assert!(!typing(c), "{c:?}");
+        }
     }
 }

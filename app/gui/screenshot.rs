@@ -6,7 +6,8 @@ use std::path::Path;
 use eframe::egui;
 use egui_kittest::Harness;
 
-use crate::gui::{Command, SolscopeApp};
+use crate::gui::SolscopeApp;
+use crate::state::Command;
 
 /// What to show before rendering.
 #[derive(Clone, Debug, Default)]

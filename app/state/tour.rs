@@ -1,8 +1,8 @@
 //! The guided tour of one failure on the tutorial plan: its pages (what each
 //! says, in plain words, and what it points at) and the commands each page
 //! gives when it is shown. The app keeps where the tour is
-//! ([`super::state::Tour`], changed only by commands) and whether it was
-//! dismissed ([`super::state::Persisted::tour_dismissed`]); the view draws
+//! ([`super::Tour`], changed only by commands) and whether it was
+//! dismissed ([`super::Persisted::tour_dismissed`]); the view draws
 //! the page in a small window beside what it talks about.
 //!
 //! The tutorial plan is recognised by its content: a plan equal to the bundled
@@ -15,7 +15,7 @@ use solscope_engine::{Category, Explanation, Phase, Plan, Suggestion, format_loc
 
 use super::commands::{Command, UiCommand};
 use super::document::Analysis;
-use super::views::failed_steps;
+use super::status::failed_steps;
 
 /// The bundled tutorial plan (`assets/tutorial-plan.json`).
 pub const TUTORIAL_PLAN: &str = include_str!("../../assets/tutorial-plan.json");
@@ -429,7 +429,7 @@ mod tests {
         let mut edited = plan.clone();
         edited.activities[0].priority += 1;
         assert!(!is_tutorial(&edited));
-        let default = solscope_engine::load_plan(super::super::app::DEFAULT_PLAN)
+        let default = solscope_engine::load_plan(super::super::DEFAULT_PLAN)
             .unwrap()
             .plan;
         assert!(!is_tutorial(&default));

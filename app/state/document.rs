@@ -178,7 +178,7 @@ impl Document {
 }
 
 /// Everything derived from a plan: the run with its trace. Explanations are
-/// computed on demand for the activity looked at (see `SolscopeApp`), so an edit
+/// computed on demand for the activity looked at (see `AppState`), so an edit
 /// costs one reschedule.
 #[derive(Clone, Debug)]
 pub struct Analysis {

@@ -1,54 +1,15 @@
-//! The state types: what survives restarts ([`Persisted`]) apart from what lives
-//! for one session ([`UiState`]), and the read-only snapshot of it the views get
-//! ([`Navigation`]). Nothing here depends on the views or the app.
+//! What lives for one session ([`UiState`]; what survives restarts is
+//! [`Persisted`](super::Persisted), apart), and the read-only snapshot of it the
+//! views get ([`Navigation`]). Nothing here depends on the views or the app.
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 use solscope_engine::{LocalTime, Profiles, format_local};
 
+use super::axis::TimeAxis;
 use super::document::OutcomeDiff;
 use super::repair::Repair;
-use super::time_axis::TimeAxis;
-
-/// What survives restarts (saved through eframe storage).
-#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct Persisted {
-    /// Recently opened files, newest first.
-    pub recent: Vec<PathBuf>,
-    /// Light theme instead of dark.
-    pub light: bool,
-    /// Gantt: scheduled activities in one row per unit resource instead of packed
-    /// lanes.
-    #[serde(default)]
-    pub by_resource: bool,
-    /// Gantt: the flexibility layer (slack whiskers, free slack, dispatchable
-    /// neighbours) hidden.
-    #[serde(default)]
-    pub hide_flex: bool,
-    /// Monte Carlo: Run compares the execution policies (replan, dispatch,
-    /// fixed over the same runs) instead of running the replanning executive
-    /// alone.
-    #[serde(default)]
-    pub compare_policies: bool,
-    /// The guided tour was ended: it no longer opens by itself with the
-    /// tutorial plan (Help > Guided tour still shows it; Help > Reset guided
-    /// tour makes it open by itself again).
-    #[serde(default)]
-    pub tour_dismissed: bool,
-}
-
-impl Persisted {
-    /// Puts `path` first in the recent files (at most ten), made absolute so
-    /// it opens from any working directory (as given when the working directory
-    /// cannot be read: then it is the best there is).
-    pub fn remember(&mut self, path: &std::path::Path) {
-        let path = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
-        self.recent.retain(|p| *p != path);
-        self.recent.insert(0, path);
-        self.recent.truncate(10);
-    }
-}
 
 /// A file dialog the host is asked to show after the frame: the app never blocks
 /// on one (headless, nobody shows it). Where no file dialog service exists, the
