@@ -12,8 +12,8 @@ use eframe::egui::{
 };
 use solscope_engine::{FailurePhase, GeneratedKind, Outcome, RunOutcome, Schedule, format_span};
 
-use super::execution::{trigger_text, violation_text};
 use super::flex::{self, Slack};
+use super::text::{trigger_text, violation_text};
 use super::{Look, Model, Status, ViewCache, status_at};
 use crate::gui::commands::Command;
 use crate::gui::document::Analysis;

@@ -10,7 +10,7 @@ use eframe::egui::{self, RichText};
 use solscope_engine::{Plan, RunOutcome};
 
 use super::gantt::window_spans;
-use super::{Model, Status, ViewCache, Widgets, montecarlo, shortcut_button, status_at};
+use super::{Model, Status, ViewCache, Widgets, shortcut_button, status_at, widgets};
 use crate::gui::commands::{Command, UiCommand};
 use crate::gui::document::Analysis;
 use crate::gui::state::{ListFilter, Mode, Navigation, StatusFilter};
@@ -407,7 +407,7 @@ fn row_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Vec<Command>) {
         Some((s, runs)) => {
             ui.horizontal(|ui| {
                 let size = egui::vec2(SHARE_BAR_WIDTH, SHARE_BAR_HEIGHT);
-                montecarlo::share_bar(ui, m, s, runs, size);
+                widgets::share_bar(ui, m, s, runs, size);
                 ui.add(button)
             })
             .inner

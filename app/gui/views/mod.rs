@@ -17,8 +17,10 @@ pub use list::{Listed, SearchIndex};
 mod montecarlo;
 mod plots;
 mod repair;
+mod text;
 mod tour;
 pub use tour::TourAnchors;
+mod widgets;
 
 use eframe::egui::{self, RichText};
 use solscope_engine::{Outcome, Suggestion, parse_local};

@@ -14,7 +14,7 @@ use solscope_engine::{
     format_watts, format_wh, peak_users,
 };
 
-use super::execution::kind_name;
+use super::text::kind_name;
 use super::{Model, ViewCache};
 use crate::gui::commands::Command;
 use crate::gui::execution::ExecutionRun;
