@@ -1,8 +1,10 @@
 //! Words for what the views show, shared by the Gantt, the plots, the
-//! execution controls and the inspector: why a cycle ran, a broken limit, a
-//! time difference, a share of runs.
+//! execution controls, the inspector and the Monte Carlo panel: why a cycle
+//! ran, a broken limit, a time difference, a share of runs, an energy.
 
-use solscope_engine::{Trigger, Violation, ViolationKind, format_watts, format_wh, mbit};
+use solscope_engine::{
+    MJ_PER_WH, Trigger, Violation, ViolationKind, format_watts, format_wh, mbit,
+};
 
 use super::Model;
 
@@ -53,6 +55,11 @@ pub fn slip(d: i64) -> String {
         d if d > 0 => format!("{d} s late"),
         d => format!("{} s early", -d),
     }
+}
+
+/// A value in Wh (a float, as the campaign's summaries give it) for reading.
+pub fn wh_text(x: f64) -> String {
+    format_wh((x * MJ_PER_WH).round() as i128)
 }
 
 /// `k` of `n` as a percentage, never rounded to 0 % or 100 % unless exact.

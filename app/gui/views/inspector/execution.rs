@@ -131,30 +131,46 @@ fn activity_run_ui(
         });
     }
     if r.outcome == RunOutcome::NotRun {
-        match r.last_cycle {
-            Some(c) => {
-                ui.horizontal_wrapped(|ui| {
-                    ui.label(format!("Last in the plan of cycle {c}"));
-                    if c != m.exec.cycle && ui.button(format!("Show cycle {c}")).clicked() {
-                        cmds.push(Command::SetCycle(c));
-                    }
-                });
-            }
-            None => {
-                ui.label("No cycle's plan had it.");
-            }
+        not_run_ui(ui, m, run, (a, r.last_cycle), cmds);
+    }
+    held_ui(ui, m, run, a);
+}
+
+/// Why activity `a`, never started, did not run: the last cycle whose plan
+/// had it (`last_cycle`), and the cycle that dropped it.
+fn not_run_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    run: &ExecutionRun,
+    (a, last_cycle): (usize, Option<usize>),
+    cmds: &mut Vec<Command>,
+) {
+    match last_cycle {
+        Some(c) => {
+            ui.horizontal_wrapped(|ui| {
+                ui.label(format!("Last in the plan of cycle {c}"));
+                if c != m.exec.cycle && ui.button(format!("Show cycle {c}")).clicked() {
+                    cmds.push(Command::SetCycle(c));
+                }
+            });
         }
-        let dropped = run.execution.cycles.iter().enumerate().find_map(|(k, c)| {
-            c.dropped
-                .iter()
-                .find(|(x, _)| *x == a)
-                .map(|(_, why)| (k, why))
-        });
-        if let Some((k, why)) = dropped {
-            ui.label(format!("Cycle {k} dropped it: {}", dropped_text(m, why)));
+        None => {
+            ui.label("No cycle's plan had it.");
         }
     }
-    // Every time the dispatcher held it back, with why and by whom.
+    let dropped = run.execution.cycles.iter().enumerate().find_map(|(k, c)| {
+        c.dropped
+            .iter()
+            .find(|(x, _)| *x == a)
+            .map(|(_, why)| (k, why))
+    });
+    if let Some((k, why)) = dropped {
+        ui.label(format!("Cycle {k} dropped it: {}", dropped_text(m, why)));
+    }
+}
+
+/// Every time the dispatcher held activity `a` back, with why and by whom.
+fn held_ui(ui: &mut egui::Ui, m: &Model<'_>, run: &ExecutionRun, a: usize) {
     let held: Vec<(usize, i64, Guard)> = run
         .execution
         .cycles

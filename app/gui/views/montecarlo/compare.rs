@@ -8,12 +8,11 @@ use std::cmp::Reverse;
 use eframe::egui::{self, RichText};
 use solscope_engine::Summary;
 
-use super::wh_text;
 use crate::gui::commands::Command;
 use crate::gui::montecarlo::{COMPARED, CampaignResult};
 use crate::gui::theme::SHARE_BAR_HEIGHT;
 use crate::gui::views::Model;
-use crate::gui::views::text::percent;
+use crate::gui::views::text::{percent, wh_text};
 use crate::gui::views::widgets::{labelled_share_bar, shares_text};
 
 /// Width of one policy's stacked bar in the comparison (px).

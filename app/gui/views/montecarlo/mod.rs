@@ -14,9 +14,9 @@ mod compare;
 
 use eframe::egui::{self, RichText, Stroke};
 use egui_plot::{Bar, BarChart, Plot, VLine};
-use solscope_engine::{Distribution, MJ_PER_WH, format_wh};
+use solscope_engine::Distribution;
 
-use super::text::percent;
+use super::text::{percent, wh_text};
 use super::{CampaignModel, Model};
 use crate::gui::commands::{Command, UiCommand};
 use crate::gui::montecarlo::{Bin, CampaignResult, MAX_RUNS, StopReason, total_runs};
@@ -294,11 +294,6 @@ fn summary_ui(ui: &mut egui::Ui, m: &Model<'_>, result: &CampaignResult) {
             );
         }
     });
-}
-
-/// A value in Wh for reading.
-pub(super) fn wh_text(x: f64) -> String {
-    format_wh((x * MJ_PER_WH).round() as i128)
 }
 
 /// A distribution over the runs as a histogram (`bins`, with an edge at the
