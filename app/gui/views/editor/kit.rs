@@ -175,6 +175,36 @@ pub(super) enum At<'k> {
 /// it may be left empty.
 pub(super) type FormRow<'k> = (&'k str, At<'k>, Kind, bool);
 
+/// An object field of the target whose entries are named (the plan's states,
+/// its thermal zones).
+pub(super) struct Named<'v> {
+    /// Its key.
+    key: &'static str,
+    /// Its value.
+    whole: &'v Value,
+    /// An entry, in a remove button's name (`Remove state NAME`).
+    noun: &'static str,
+    /// The entries, in the banner (`states (NAME added)`).
+    plural: &'static str,
+}
+
+impl<'v> Named<'v> {
+    /// The field `key` holding `whole`, its entries named by `noun` and
+    /// `plural`.
+    pub(super) fn new(
+        key: &'static str,
+        whole: &'v Value,
+        (noun, plural): (&'static str, &'static str),
+    ) -> Self {
+        Self {
+            key,
+            whole,
+            noun,
+            plural,
+        }
+    }
+}
+
 /// What the fields of one target (an activity, or the plan) draw with.
 pub(super) struct Ed<'a, 'm> {
     pub(super) m: &'a Model<'m>,
@@ -426,18 +456,52 @@ impl Ed<'_, '_> {
         }
     }
 
-    /// Submits the object `key` of the target, `whole` after `change`.
-    pub(super) fn submit_changed(
+    /// Submits the named entries `n` after `change` (typed in `field`).
+    pub(super) fn submit_named(
         &mut self,
+        n: &Named<'_>,
         field: &str,
-        key: &str,
-        whole: &Value,
         change: &dyn Fn(&mut Map<String, Value>),
         what: &str,
     ) {
-        let mut all = whole.as_object().cloned().unwrap_or_default();
+        let mut all = n.whole.as_object().cloned().unwrap_or_default();
         change(&mut all);
-        self.submit(field, key, Value::Object(all), what);
+        self.submit(field, n.key, Value::Object(all), what);
+    }
+
+    /// The heading of entry `name` of `n`, with a button that removes it.
+    pub(super) fn entry_heading(&mut self, ui: &mut egui::Ui, n: &Named<'_>, name: &str) {
+        ui.horizontal_wrapped(|ui| {
+            ui.label(RichText::new(name).monospace());
+            if Ed::remove_button(ui, &format!("Remove {} {name}", n.noun)) {
+                let what = format!("{} ({name} removed)", n.plural);
+                let remove = |all: &mut Map<String, Value>| {
+                    all.remove(name);
+                };
+                self.submit_named(n, n.key, &remove, &what);
+            }
+        });
+    }
+
+    /// The row `label` naming a new entry of `n`, added as `fresh`; then the
+    /// errors of the entries.
+    pub(super) fn new_entry_row(
+        &mut self,
+        ui: &mut egui::Ui,
+        n: &Named<'_>,
+        label: &str,
+        fresh: &Value,
+    ) {
+        let field = format!("{}/new", n.key);
+        if let Some(name) = self.new_name_row(ui, &field, label) {
+            let what = format!("{} ({name} added)", n.plural);
+            let add = |all: &mut Map<String, Value>| {
+                all.insert(name.clone(), fresh.clone());
+            };
+            self.submit_named(n, &field, &add, &what);
+        }
+        self.error_ui(ui, &field);
+        self.error_ui(ui, n.key);
     }
 
     /// A row `label` with an empty field that names something new: the name

@@ -7,7 +7,7 @@ use serde_json::{Map, Value, json};
 use solscope_engine::{Plan, ThermalZone};
 
 use super::kit::At::{In, Top};
-use super::kit::{Ed, FormRow, Kind, Pick, heading_row};
+use super::kit::{Ed, FormRow, Kind, Named, Pick, heading_row};
 use crate::gui::commands::Command;
 use crate::gui::state::TextBuffers;
 use crate::gui::theme::{FIELD_WIDTH, NUMBER_FIELD_WIDTH};
@@ -62,7 +62,6 @@ pub(in crate::gui::views) fn plan_fields_ui(
 const WH: Kind = Kind::Number("Wh");
 const W: Kind = Kind::Number("W");
 const MBIT: Kind = Kind::Number("Mbit");
-const S: Kind = Kind::Seconds;
 
 /// The battery's capacity, initial charge and minimum.
 const BATTERY: &[FormRow<'static>] = &[
@@ -81,10 +80,30 @@ const POWER: &[FormRow<'static>] = &[
 
 /// Waking up and shutting down, and the shortest awake and sleep periods.
 const SLEEP: &[FormRow<'static>] = &[
-    ("Wakeup", In("sleep", "wakeup_duration"), S, false),
-    ("Shutdown", In("sleep", "shutdown_duration"), S, false),
-    ("Shortest awake", In("sleep", "min_awake"), S, false),
-    ("Shortest sleep", In("sleep", "min_sleep"), S, false),
+    (
+        "Wakeup",
+        In("sleep", "wakeup_duration"),
+        Kind::Seconds,
+        false,
+    ),
+    (
+        "Shutdown",
+        In("sleep", "shutdown_duration"),
+        Kind::Seconds,
+        false,
+    ),
+    (
+        "Shortest awake",
+        In("sleep", "min_awake"),
+        Kind::Seconds,
+        false,
+    ),
+    (
+        "Shortest sleep",
+        In("sleep", "min_sleep"),
+        Kind::Seconds,
+        false,
+    ),
 ];
 
 /// Data storage and the sequence engines.
@@ -110,8 +129,18 @@ const HANDOVER: &[FormRow<'static>] = &[
 const CLOCK: &[FormRow<'static>] = &[
     ("Plan start", In("horizon", "start"), Kind::Time, false),
     ("Plan end", In("horizon", "end"), Kind::Time, false),
-    ("Sol length", In("local_time", "sol_length"), S, false),
-    ("Local time at t=0", In("local_time", "offset"), S, false),
+    (
+        "Sol length",
+        In("local_time", "sol_length"),
+        Kind::Seconds,
+        false,
+    ),
+    (
+        "Local time at t=0",
+        In("local_time", "offset"),
+        Kind::Seconds,
+        false,
+    ),
     ("Sol at t=0", In("local_time", "first_sol"), Kind::Int, true),
 ];
 
@@ -144,10 +173,7 @@ fn handover_rows(ui: &mut egui::Ui, ed: &mut Ed<'_, '_>, plan: &Plan, obj: &Valu
 fn plan_states_ui(ui: &mut egui::Ui, ed: &mut Ed<'_, '_>, plan: &Plan) {
     ui.label(RichText::new("States").strong());
     let states = serde_json::to_value(&plan.states).unwrap_or(Value::Null);
-    let set_states =
-        |ed: &mut Ed<'_, '_>, field: &str, change: &dyn Fn(&mut Map<String, Value>), what: &str| {
-            ed.submit_changed(field, "states", &states, change, what);
-        };
+    let named = Named::new("states", &states, ("state", "states"));
     for (name, def) in &plan.states {
         // Sets `key` of this state's definition.
         let set_def =
@@ -157,21 +183,9 @@ fn plan_states_ui(ui: &mut egui::Ui, ed: &mut Ed<'_, '_>, plan: &Plan) {
                         d[key] = value.clone();
                     }
                 };
-                set_states(ed, field, &change, what);
+                ed.submit_named(&named, field, &change, what);
             };
-        ui.horizontal_wrapped(|ui| {
-            ui.label(RichText::new(name).monospace());
-            if Ed::remove_button(ui, &format!("Remove state {name}")) {
-                set_states(
-                    ed,
-                    "states",
-                    &|all| {
-                        all.remove(name);
-                    },
-                    &format!("states ({name} removed)"),
-                );
-            }
-        });
+        ed.entry_heading(ui, &named, name);
         egui::Grid::new(("state", name))
             .num_columns(2)
             .show(ui, |ui| {
@@ -214,21 +228,8 @@ fn plan_states_ui(ui: &mut egui::Ui, ed: &mut Ed<'_, '_>, plan: &Plan) {
                 ed.error_row(ui, &field);
             });
     }
-    if let Some(name) = ed.new_name_row(ui, "states/new", "New state") {
-        set_states(
-            ed,
-            "states/new",
-            &|all| {
-                all.insert(
-                    name.clone(),
-                    json!({ "values": ["off", "on"], "initial": "off" }),
-                );
-            },
-            &format!("states ({name} added)"),
-        );
-    }
-    ed.error_ui(ui, "states/new");
-    ed.error_ui(ui, "states");
+    let fresh = json!({ "values": ["off", "on"], "initial": "off" });
+    ed.new_entry_row(ui, &named, "New state", &fresh);
 }
 
 /// The plan's thermal zones: heater powers, preheat table and operable
@@ -236,25 +237,10 @@ fn plan_states_ui(ui: &mut egui::Ui, ed: &mut Ed<'_, '_>, plan: &Plan) {
 fn zones_ui(ui: &mut egui::Ui, ed: &mut Ed<'_, '_>, plan: &Plan) {
     ui.label(RichText::new("Thermal zones").strong());
     let zones = serde_json::to_value(&plan.thermal_zones).unwrap_or(Value::Null);
-    let set_zones =
-        |ed: &mut Ed<'_, '_>, field: &str, change: &dyn Fn(&mut Map<String, Value>), what: &str| {
-            ed.submit_changed(field, "thermal_zones", &zones, change, what);
-        };
+    let named = Named::new("thermal_zones", &zones, ("zone", "thermal zones"));
     for (name, zone) in &plan.thermal_zones {
         let z = zones.get(name).cloned().unwrap_or(Value::Null);
-        ui.horizontal_wrapped(|ui| {
-            ui.label(RichText::new(name).monospace());
-            if Ed::remove_button(ui, &format!("Remove zone {name}")) {
-                set_zones(
-                    ed,
-                    "thermal_zones",
-                    &|all| {
-                        all.remove(name);
-                    },
-                    &format!("thermal zones ({name} removed)"),
-                );
-            }
-        });
+        ed.entry_heading(ui, &named, name);
         let mut edit = zone_powers_ui(ui, ed, name, &z);
         for (table, cols) in [
             ("preheat", ["from", "duration"]),
@@ -265,8 +251,8 @@ fn zones_ui(ui: &mut egui::Ui, ed: &mut Ed<'_, '_>, plan: &Plan) {
             }
         }
         if let Some((field, change, what)) = edit {
-            set_zones(
-                ed,
+            ed.submit_named(
+                &named,
                 &field,
                 &|all| {
                     if let (Some(Value::Object(z)), Value::Object(change)) =
@@ -285,21 +271,12 @@ fn zones_ui(ui: &mut egui::Ui, ed: &mut Ed<'_, '_>, plan: &Plan) {
             );
         }
     }
-    if let Some(name) = ed.new_name_row(ui, "thermal_zones/new", "New zone") {
-        set_zones(
-            ed,
-            "thermal_zones/new",
-            &|all| {
-                all.insert(
-                    name.clone(),
-                    json!({ "preheat": [{ "from": 0, "duration": 0 }], "preheat_power": 0.0, "maintenance_power": 0.0 }),
-                );
-            },
-            &format!("thermal zones ({name} added)"),
-        );
-    }
-    ed.error_ui(ui, "thermal_zones/new");
-    ed.error_ui(ui, "thermal_zones");
+    let fresh = json!({
+        "preheat": [{ "from": 0, "duration": 0 }],
+        "preheat_power": 0.0,
+        "maintenance_power": 0.0,
+    });
+    ed.new_entry_row(ui, &named, "New zone", &fresh);
 }
 
 /// The edit of a zone: the field it was typed in, the zone's fields it
