@@ -225,29 +225,19 @@ fn generated_rows(m: &Model<'_>, k: usize) -> Vec<Row> {
     let mut awake = Vec::new();
     let mut heat: Vec<Vec<Bar>> = vec![Vec::new(); problem.zone_names.len()];
     for g in m.analysis.schedule.generated_after(k) {
-        match g.kind {
-            GeneratedKind::Awake => awake.push(Bar::new(
-                g.start as f64,
-                g.end as f64,
-                t.awake,
-                None,
-                "awake".into(),
-            )),
-            GeneratedKind::Preheat { zone, activity } => heat[zone].push(Bar::new(
-                g.start as f64,
-                g.end as f64,
-                t.preheat,
-                Some(activity),
-                format!("preheat {}", plan.activities[activity].id),
-            )),
-            GeneratedKind::Maintenance { zone, activity } => heat[zone].push(Bar::new(
-                g.start as f64,
-                g.end as f64,
-                t.maintenance,
-                Some(activity),
-                format!("maint. {}", plan.activities[activity].id),
-            )),
-        }
+        let (start, end) = (g.start as f64, g.end as f64);
+        let (zone, activity, color, what) = match g.kind {
+            GeneratedKind::Awake => {
+                awake.push(Bar::new(start, end, t.awake, None, "awake".into()));
+                continue;
+            }
+            GeneratedKind::Preheat { zone, activity } => (zone, activity, t.preheat, "preheat"),
+            GeneratedKind::Maintenance { zone, activity } => {
+                (zone, activity, t.maintenance, "maint.")
+            }
+        };
+        let label = format!("{what} {}", plan.activities[activity].id);
+        heat[zone].push(Bar::new(start, end, color, Some(activity), label));
     }
     // Wakeup and shutdown drawn over the start and end of each awake period.
     let (wake, shut) = (problem.wake as f64, problem.shut as f64);
