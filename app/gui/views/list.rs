@@ -6,7 +6,7 @@
 use eframe::egui::{self, RichText};
 use solscope_engine::RunOutcome;
 
-use super::{Model, ViewCache, Widgets, montecarlo, shortcut_button};
+use super::{Model, ViewCache, Widgets, shortcut_button, widgets};
 use crate::gui::shortcuts::kb_shortcut;
 use crate::gui::theme::{SHARE_BAR_HEIGHT, SHARE_BAR_WIDTH};
 use crate::state::{Command, ListFilter, Listed, Mode, Status, StatusFilter, UiCommand};
@@ -206,7 +206,7 @@ fn row_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Vec<Command>) {
         Some((s, runs)) => {
             ui.horizontal(|ui| {
                 let size = egui::vec2(SHARE_BAR_WIDTH, SHARE_BAR_HEIGHT);
-                montecarlo::share_bar(ui, m, s, runs, size);
+                widgets::share_bar(ui, m, s, runs, size);
                 ui.add(button)
             })
             .inner

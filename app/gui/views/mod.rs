@@ -20,8 +20,10 @@ mod montecarlo;
 mod plots;
 mod repair;
 mod steps;
+mod text;
 mod toolbar;
 mod tour;
+mod widgets;
 
 pub use model::{Look, Model, ViewCache, Widgets};
 pub use tour::TourAnchors;
