@@ -20,6 +20,7 @@ mod load;
 mod model;
 mod report;
 mod scheduler;
+mod sentence;
 mod timeline;
 mod units;
 mod validate;
