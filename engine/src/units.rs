@@ -585,7 +585,10 @@ mod tests {
         assert_eq!(format_wh_value(1034.4, 0), "1034 Wh");
         assert_eq!(format_wh_value(1034.6, 0), "1035 Wh");
         for (bad, err) in [
-            (parse_watts("750.0 Wh").map(|_| ()), "a power in W (750.0 W)"),
+            (
+                parse_watts("750.0 Wh").map(|_| ()),
+                "a power in W (750.0 W)",
+            ),
             (parse_watts("inf W").map(|_| ()), "a power in W (750.0 W)"),
             (parse_watts("1e300 W").map(|_| ()), "a power in W (750.0 W)"),
             (parse_wh("NaN").map(|_| ()), "an energy in Wh (1034.2 Wh)"),
@@ -595,7 +598,10 @@ mod tests {
                 parse_mbit("1.2.3 Mbit").map(|_| ()),
                 "a data volume in Mbit (12.5 Mbit)",
             ),
-            (parse_mbit("").map(|_| ()), "a data volume in Mbit (12.5 Mbit)"),
+            (
+                parse_mbit("").map(|_| ()),
+                "a data volume in Mbit (12.5 Mbit)",
+            ),
         ] {
             assert_eq!(bad.map_err(|e| e.expected), Err(err));
         }

@@ -1,6 +1,6 @@
-//! The execution policies, each an [`Executive`] the simulation loop asks at
-//! every cycle: `replan`, the onboard scheduler run again at each cycle
-//! (`spec/execution.md`); `fixed`, every activity at its scheduled time like a
+//! The execution policies, each an [`Executive`](super::sim::Executive) the
+//! simulation loop asks at every cycle: `replan`, the onboard scheduler run again
+//! at each cycle (`spec/execution.md`); `fixed`, every activity at its scheduled time like a
 //! time-tagged sequence; and `dispatch`, the flexible plan executed by its start
 //! and skip conditions. Neither of the last two reschedules: the schedule (and
 //! its flexible form) is made once, at `horizon.start` ([`Prepared`]), and the
