@@ -20,6 +20,7 @@ mod load;
 mod model;
 mod report;
 mod scheduler;
+mod sentence;
 mod timeline;
 mod units;
 mod validate;
@@ -71,7 +72,9 @@ pub use scheduler::{
 };
 pub use timeline::{Interval, IntervalSet};
 pub use units::{
-    BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, format_local, format_plan_time, format_span,
-    format_time_of_day, format_watts, format_wh, mbit, parse_local, watts, wh,
+    BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, ParseUnitError, format_local, format_mbit,
+    format_mbit_value, format_plan_time, format_span, format_time_difference, format_time_of_day,
+    format_watts, format_wh, format_wh_value, mbit, parse_local, parse_mbit, parse_span,
+    parse_time_difference, parse_time_of_day, parse_watts, parse_wh, watts, wh,
 };
 pub use validate::{validate, validate_all};

@@ -120,14 +120,93 @@ pub fn mbit(bit: i128) -> f64 {
     bit as f64 / BIT_PER_MBIT
 }
 
+/// Why a text does not read as a quantity, a length of time or a time of day
+/// (the `parse_*` functions beside the printers).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("\"{text}\" is not {expected}")]
+pub struct ParseUnitError {
+    /// The text read.
+    pub text: String,
+    /// What it should have been, with an example of it: `a power in W (750.0 W)`.
+    pub expected: &'static str,
+}
+
+impl ParseUnitError {
+    fn new(text: &str, expected: &'static str) -> Self {
+        Self {
+            text: text.to_string(),
+            expected,
+        }
+    }
+}
+
+/// A decimal number in a planner unit, with or without the unit after it
+/// (`750.0 W`, `750W`, `750`), times `scale` and rounded to the nearest
+/// integer; `None` when it is not one, or out of range.
+fn parse_scaled(text: &str, unit: &str, scale: f64, max: f64) -> Option<i128> {
+    let text = text.trim();
+    let number = text.strip_suffix(unit).unwrap_or(text).trim_end();
+    // Only digits, signs, points and exponents: Rust also reads `inf`, `NaN`.
+    if number.is_empty()
+        || !number
+            .bytes()
+            .all(|b| b.is_ascii_digit() || matches!(b, b'-' | b'+' | b'.' | b'e' | b'E'))
+    {
+        return None;
+    }
+    let x = number.parse::<f64>().ok()?;
+    let v = (x * scale).round();
+    (v.abs() <= max).then_some(v as i128)
+}
+
 /// Energy for reading: `1034.2 Wh`.
 pub fn format_wh(mj: i128) -> String {
-    format!("{:.1} Wh", wh(mj))
+    format_wh_value(wh(mj), 1)
+}
+
+/// Energy in Wh with `decimals` decimals: `format_wh_value(1034.25, 0)` is
+/// `1034 Wh`.
+pub fn format_wh_value(wh: f64, decimals: usize) -> String {
+    format!("{wh:.decimals$} Wh")
+}
+
+/// Reads an energy as [`format_wh`] and [`format_wh_value`] write it (`1034.2
+/// Wh`; the unit may be left out), in mJ, rounded to the nearest.
+pub fn parse_wh(text: &str) -> Result<i128, ParseUnitError> {
+    // Within i64 mJ: every energy the engine computes fits.
+    parse_scaled(text, "Wh", MJ_PER_WH, i64::MAX as f64)
+        .ok_or_else(|| ParseUnitError::new(text, "an energy in Wh (1034.2 Wh)"))
 }
 
 /// Power for reading: `750.0 W`.
 pub fn format_watts(mw: i64) -> String {
     format!("{:.1} W", watts(mw))
+}
+
+/// Reads a power as [`format_watts`] writes it (`750.0 W`; the unit may be left
+/// out), in mW, rounded to the nearest.
+pub fn parse_watts(text: &str) -> Result<i64, ParseUnitError> {
+    parse_scaled(text, "W", MW_PER_W, i64::MAX as f64)
+        .and_then(|v| i64::try_from(v).ok())
+        .ok_or_else(|| ParseUnitError::new(text, "a power in W (750.0 W)"))
+}
+
+/// Data volume for reading: `12.5 Mbit`.
+pub fn format_mbit(bit: i128) -> String {
+    format_mbit_value(mbit(bit), 1)
+}
+
+/// Data volume in Mbit with `decimals` decimals: `format_mbit_value(12.46, 1)`
+/// is `12.5 Mbit`.
+pub fn format_mbit_value(mbit: f64, decimals: usize) -> String {
+    format!("{mbit:.decimals$} Mbit")
+}
+
+/// Reads a data volume as [`format_mbit`] and [`format_mbit_value`] write it
+/// (`12.5 Mbit`; the unit may be left out), in bit, rounded to the nearest.
+pub fn parse_mbit(text: &str) -> Result<i128, ParseUnitError> {
+    parse_scaled(text, "Mbit", BIT_PER_MBIT, i64::MAX as f64)
+        .ok_or_else(|| ParseUnitError::new(text, "a data volume in Mbit (12.5 Mbit)"))
 }
 
 /// A time of day (seconds after local midnight) as `hh:mm:ss`.
@@ -138,6 +217,58 @@ pub fn format_time_of_day(time_of_day: i64) -> String {
         (time_of_day / 60) % 60,
         time_of_day % 60
     )
+}
+
+/// Reads a time of day as [`format_time_of_day`] writes it (`14:15:00`, or
+/// `14:15`), in seconds after local midnight. The hours are not bounded (a
+/// Mars sol's last second is `24:39:34`: check the sol's length where it
+/// matters); minutes and seconds are below 60.
+pub fn parse_time_of_day(text: &str) -> Result<i64, ParseUnitError> {
+    let bad = || ParseUnitError::new(text, "a time of day (14:15 or 14:15:00)");
+    let mut parts = text.trim().split(':').map(|p| p.parse::<i64>().ok());
+    let (h, m) = (
+        parts.next().flatten().ok_or_else(bad)?,
+        parts.next().ok_or_else(bad)?.ok_or_else(bad)?,
+    );
+    let s = match parts.next() {
+        Some(s) => s.ok_or_else(bad)?,
+        None => 0,
+    };
+    if parts.next().is_some() || h < 0 || !(0..60).contains(&m) || !(0..60).contains(&s) {
+        return Err(bad());
+    }
+    h.checked_mul(3600)
+        .and_then(|x| x.checked_add(m * 60 + s))
+        .ok_or_else(bad)
+}
+
+/// A signed difference of two times (one minus the other, as an actual start
+/// against its predicted one): `on time`, `25 s late`, `25 s early`.
+pub fn format_time_difference(seconds: i64) -> String {
+    match seconds {
+        0 => "on time".into(),
+        d if d > 0 => format!("{d} s late"),
+        d => format!("{} s early", d.unsigned_abs()),
+    }
+}
+
+/// Reads a difference of two times as [`format_time_difference`] writes it.
+pub fn parse_time_difference(text: &str) -> Result<i64, ParseUnitError> {
+    let bad = || ParseUnitError::new(text, "a time difference (on time, 25 s late, 25 s early)");
+    let t = text.trim();
+    if t == "on time" {
+        return Ok(0);
+    }
+    let (number, late) = match (t.strip_suffix(" s late"), t.strip_suffix(" s early")) {
+        (Some(n), _) => (n, true),
+        (None, Some(n)) => (n, false),
+        (None, None) => return Err(bad()),
+    };
+    if !number.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(bad());
+    }
+    let n = i128::from(number.parse::<u64>().map_err(|_| bad())?);
+    i64::try_from(if late { n } else { -n }).map_err(|_| bad())
 }
 
 /// Plan time `t` as a planner reads it: its sol and local time of day,
@@ -183,16 +314,7 @@ pub fn parse_local(clock: &LocalTime, text: &str, sol: Option<i64>) -> Option<i6
         }
         None => (sol?, text),
     };
-    let mut parts = clock_text.split(':').map(|p| p.parse::<i64>().ok());
-    let (h, m) = (parts.next()??, parts.next()??);
-    let s = match parts.next() {
-        Some(s) => s?,
-        None => 0,
-    };
-    if parts.next().is_some() || h < 0 || !(0..60).contains(&m) || !(0..60).contains(&s) {
-        return None;
-    }
-    let tod = h * 3600 + m * 60 + s;
+    let tod = parse_time_of_day(clock_text).ok()?;
     let len = clock.sol_length.max(1);
     if tod >= len {
         return None;
@@ -204,7 +326,8 @@ pub fn parse_local(clock: &LocalTime, text: &str, sol: Option<i64>) -> Option<i6
         .checked_sub(clock.offset)
 }
 
-/// A length of time for reading: `45 s`, `12 min 05 s`, `3 h 07 min`.
+/// A length of time for reading: `45 s`, `12 min 05 s`, `3 h 07 min` (to the
+/// minute from an hour on).
 pub fn format_span(seconds: i64) -> String {
     let sign = if seconds < 0 { "-" } else { "" };
     let s = seconds.unsigned_abs();
@@ -218,6 +341,53 @@ pub fn format_span(seconds: i64) -> String {
     } else {
         format!("{sign}{} h {:02} min", s / 3600, (s / 60) % 60)
     }
+}
+
+/// Reads a length of time as [`format_span`] writes it (`45 s`, `12 min 05 s`,
+/// `-3 h 07 min`): hours, minutes and seconds in that order, each at most
+/// once, or whole seconds alone (`725`), in seconds.
+pub fn parse_span(text: &str) -> Result<i64, ParseUnitError> {
+    let bad = || ParseUnitError::new(text, "a length of time (45 s, 12 min 05 s, 3 h 07 min)");
+    let t = text.trim();
+    let (negative, t) = match t.strip_prefix('-') {
+        Some(rest) => (true, rest),
+        None => (false, t),
+    };
+    let digits = |x: &str| !x.is_empty() && x.bytes().all(|b| b.is_ascii_digit());
+    let mut words = t.split_whitespace();
+    let mut total: i128 = 0;
+    let mut units = 0;
+    // The units not yet used, largest first: each may follow only larger ones.
+    let mut allowed: &[(&str, i128)] = &[("h", 3600), ("min", 60), ("s", 1)];
+    while let Some(number) = words.next() {
+        if !digits(number) {
+            return Err(bad());
+        }
+        let n = i128::from(number.parse::<u64>().map_err(|_| bad())?);
+        let factor = match words.next() {
+            // Whole seconds alone.
+            None if units == 0 => 1,
+            None => return Err(bad()),
+            Some(unit) => {
+                let i = allowed
+                    .iter()
+                    .position(|&(u, _)| u == unit)
+                    .ok_or_else(bad)?;
+                let factor = allowed[i].1;
+                allowed = &allowed[i + 1..];
+                factor
+            }
+        };
+        total = n
+            .checked_mul(factor)
+            .and_then(|x| x.checked_add(total))
+            .ok_or_else(bad)?;
+        units += 1;
+    }
+    if units == 0 {
+        return Err(bad());
+    }
+    i64::try_from(if negative { -total } else { total }).map_err(|_| bad())
 }
 
 #[cfg(test)]
@@ -368,6 +538,195 @@ mod tests {
                         "{v} {unit:?} {t:?}"
                     );
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn times_of_day_read_back_with_clear_errors() {
+        assert_eq!(parse_time_of_day("00:00:00"), Ok(0));
+        assert_eq!(parse_time_of_day(" 14:15 "), Ok(14 * 3600 + 15 * 60));
+        assert_eq!(parse_time_of_day("24:39:34"), Ok(88_774));
+        for bad in [
+            "",
+            "14",
+            "14:60",
+            "14:00:60",
+            "-1:00",
+            "1:2:3:4",
+            "x:00",
+            "9223372036854775807:00",
+        ] {
+            let err = parse_time_of_day(bad).unwrap_err();
+            assert_eq!(err.text, bad);
+            assert_eq!(
+                err.to_string(),
+                format!("\"{bad}\" is not a time of day (14:15 or 14:15:00)")
+            );
+        }
+    }
+
+    #[test]
+    fn quantities_read_back_rounded_to_the_nearest() {
+        assert_eq!(parse_watts("750.0 W"), Ok(750_000));
+        assert_eq!(parse_watts("750W"), Ok(750_000));
+        assert_eq!(parse_watts(" -1.5 "), Ok(-1_500));
+        assert_eq!(parse_watts("0.0004 W"), Ok(0));
+        assert_eq!(parse_watts("0.0006 W"), Ok(1));
+        assert_eq!(parse_wh("1034.2 Wh"), Ok(3_600_000 * 1034 + 720_000));
+        assert_eq!(parse_wh("0 Wh"), Ok(0));
+        // A small negative value prints as `-0.0`: it reads back as zero.
+        assert_eq!(format_wh(-1), "-0.0 Wh");
+        assert_eq!(parse_wh("-0.0 Wh"), Ok(0));
+        assert_eq!(parse_mbit("12.5 Mbit"), Ok(12_500_000));
+        assert_eq!(format_mbit(12_460_000), "12.5 Mbit");
+        assert_eq!(format_mbit(-2_500_000), "-2.5 Mbit");
+        assert_eq!(format_mbit_value(12.46, 2), "12.46 Mbit");
+        assert_eq!(format_wh_value(1034.4, 0), "1034 Wh");
+        assert_eq!(format_wh_value(1034.6, 0), "1035 Wh");
+        for (bad, err) in [
+            (
+                parse_watts("750.0 Wh").map(|_| ()),
+                "a power in W (750.0 W)",
+            ),
+            (parse_watts("inf W").map(|_| ()), "a power in W (750.0 W)"),
+            (parse_watts("1e300 W").map(|_| ()), "a power in W (750.0 W)"),
+            (parse_wh("NaN").map(|_| ()), "an energy in Wh (1034.2 Wh)"),
+            (parse_wh("Wh").map(|_| ()), "an energy in Wh (1034.2 Wh)"),
+            (parse_wh("12 W").map(|_| ()), "an energy in Wh (1034.2 Wh)"),
+            (
+                parse_mbit("1.2.3 Mbit").map(|_| ()),
+                "a data volume in Mbit (12.5 Mbit)",
+            ),
+            (
+                parse_mbit("").map(|_| ()),
+                "a data volume in Mbit (12.5 Mbit)",
+            ),
+        ] {
+            assert_eq!(bad.map_err(|e| e.expected), Err(err));
+        }
+    }
+
+    #[test]
+    fn spans_read_back_with_clear_errors() {
+        assert_eq!(parse_span("45 s"), Ok(45));
+        assert_eq!(parse_span("12 min 05 s"), Ok(725));
+        assert_eq!(parse_span("12 min"), Ok(720));
+        assert_eq!(parse_span("-3 h 07 min"), Ok(-(3 * 3600 + 420)));
+        assert_eq!(parse_span("1 h 0 min 9 s"), Ok(3609));
+        assert_eq!(parse_span("725"), Ok(725));
+        assert_eq!(parse_span("0 s"), Ok(0));
+        assert_eq!(parse_span("-0 s"), Ok(0));
+        // The largest span, to the minute toward zero.
+        assert_eq!(format_span(i64::MIN), "-2562047788015215 h 30 min");
+        assert_eq!(parse_span(&format_span(i64::MIN)), Ok(i64::MIN + 8));
+        for bad in [
+            "",
+            "-",
+            "s",
+            "5 min 3 h",
+            "5 s 5 s",
+            "5 sec",
+            "1 h 5",
+            "-5 -5 s",
+            "+5 s",
+            "5.5 s",
+            "99999999999999999999 s",
+            "9999999999999999 h",
+        ] {
+            assert_eq!(
+                parse_span(bad).map_err(|e| e.to_string()),
+                Err(format!(
+                    "\"{bad}\" is not a length of time (45 s, 12 min 05 s, 3 h 07 min)"
+                )),
+            );
+        }
+    }
+
+    #[test]
+    fn time_differences_read_as_late_or_early() {
+        assert_eq!(format_time_difference(0), "on time");
+        assert_eq!(format_time_difference(25), "25 s late");
+        assert_eq!(format_time_difference(-25), "25 s early");
+        assert_eq!(
+            format_time_difference(i64::MIN),
+            "9223372036854775808 s early"
+        );
+        assert_eq!(parse_time_difference(" 25 s late"), Ok(25));
+        assert_eq!(parse_time_difference("0 s early"), Ok(0));
+        for bad in [
+            "",
+            "late",
+            "25 s",
+            "-25 s late",
+            "25 s  late",
+            "9223372036854775808 s late",
+        ] {
+            assert_eq!(
+                parse_time_difference(bad).map_err(|e| e.expected),
+                Err("a time difference (on time, 25 s late, 25 s early)")
+            );
+        }
+    }
+
+    proptest::proptest! {
+        /// A time of day reads back as the second it was.
+        #[test]
+        fn time_of_day_round_trips(t in 0i64..1_000_000) {
+            proptest::prop_assert_eq!(parse_time_of_day(&format_time_of_day(t)), Ok(t));
+        }
+
+        /// A difference of times reads back exactly.
+        #[test]
+        fn time_difference_round_trips(d in proptest::num::i64::ANY) {
+            proptest::prop_assert_eq!(parse_time_difference(&format_time_difference(d)), Ok(d));
+        }
+
+        /// A span reads back exactly below an hour and on whole minutes, and
+        /// to the minute (toward zero) above; either way it prints the same.
+        #[test]
+        fn span_round_trips(s in proptest::num::i64::ANY) {
+            let text = format_span(s);
+            let back = parse_span(&text);
+            proptest::prop_assert_eq!(back.clone().map(format_span), Ok(text.clone()), "{}", s);
+            let exact = if s.unsigned_abs() < 3600 { s } else { s - s % 60 };
+            proptest::prop_assert_eq!(back, Ok(exact), "{}", text);
+        }
+
+        /// A quantity reads back as the fixed-point value of the decimal
+        /// printed (within half its last digit of the value printed), which
+        /// prints the same (but for a negative value printed as zero).
+        #[test]
+        fn quantities_round_trip(x in -1_000_000_000_000i64..1_000_000_000_000, decimals in 0usize..4) {
+            let printed = format_watts(x);
+            let back = parse_watts(&printed);
+            proptest::prop_assert!(back.clone().is_ok_and(|v| (v - x).abs() <= 50), "{}", printed);
+            if !printed.starts_with("-0.0 ") {
+                proptest::prop_assert_eq!(back.map(format_watts), Ok(printed));
+            }
+            let mj = i128::from(x);
+            let printed = format_wh(mj);
+            let back = parse_wh(&printed);
+            proptest::prop_assert!(back.clone().is_ok_and(|v| (v - mj).abs() <= 180_000), "{}", printed);
+            if !printed.starts_with("-0.0 ") {
+                proptest::prop_assert_eq!(back.map(format_wh), Ok(printed));
+            }
+            let printed = format_mbit(mj);
+            let back = parse_mbit(&printed);
+            proptest::prop_assert!(back.clone().is_ok_and(|v| (v - mj).abs() <= 50_000), "{}", printed);
+            if !printed.starts_with("-0.0 ") {
+                proptest::prop_assert_eq!(back.map(format_mbit), Ok(printed));
+            }
+            // With other decimals, from the planner's unit.
+            let printed = format_wh_value(wh(mj), decimals);
+            let back = parse_wh(&printed).map(|v| format_wh_value(wh(v), decimals));
+            if !printed.starts_with('-') || printed.bytes().any(|b| (b'1'..=b'9').contains(&b)) {
+                proptest::prop_assert_eq!(back, Ok(printed));
+            }
+            let printed = format_mbit_value(mbit(mj), decimals);
+            let back = parse_mbit(&printed).map(|v| format_mbit_value(mbit(v), decimals));
+            if !printed.starts_with('-') || printed.bytes().any(|b| (b'1'..=b'9').contains(&b)) {
+                proptest::prop_assert_eq!(back, Ok(printed));
             }
         }
     }

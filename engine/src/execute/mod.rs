@@ -7,15 +7,21 @@
 //! ordinary scheduler on a plan of its own ([`cycle`]): the activities not yet
 //! started, from the state the rover is really in, so the step trace and the
 //! explainer work on any cycle unchanged. Between cycles activities start at the
-//! latest cycle's start times when the dispatch guard lets them (`policy::dispatch`),
-//! and run for their actual durations; the executed profiles are integrated from
-//! what really ran ([`record`]).
+//! latest cycle's start times when the dispatch guard lets them, and run for
+//! their actual durations; the executed profiles are integrated from what really
+//! ran ([`record`]).
+//!
+//! One loop runs every execution, whatever its [`Policy`]: `sim`'s `Sim::run`
+//! goes cycle after cycle and asks its policy (an `Executive`: replan, fixed or
+//! dispatch, in `policy`) what the cycle schedules, when the next cycle is and
+//! what starts before it.
 
 mod actuals;
 mod cycle;
 mod montecarlo;
 mod policy;
 mod record;
+mod sim;
 mod text;
 mod why;
 
@@ -32,10 +38,10 @@ pub use text::loss_line;
 pub use why::{Cause, Loss, loss, losses};
 
 use crate::error::Error;
-use crate::model::{CycleStart, EffectAt, HeaterHold, Plan};
-use crate::scheduler::{Problem, Schedule, run_outcomes, schedule};
-use cycle::{Status, cycle_plan};
-use record::{Integrator, Record, union};
+use crate::model::Plan;
+use crate::scheduler::{Problem, Schedule, schedule};
+use policy::{Prepared, Replan};
+use sim::{Sim, Started, actual_durations, end_of};
 
 /// One execution of a plan.
 #[derive(Clone, Debug)]
@@ -205,280 +211,11 @@ pub fn execute_with(
     options: ExecuteOptions,
 ) -> Result<Execution, Error> {
     let problem = Problem::compile(plan)?;
-    if !options.policy.is_replan() {
-        let prepared = policy::Prepared::new(plan, options.policy)?;
-        return Ok(policy::run(&problem, plan, &prepared, actuals, options));
-    }
-    let mut sim = Sim::new(&problem, plan, actuals);
-    while sim.cycle(&problem, plan, options)? {}
-    Ok(sim.finish(problem, plan))
-}
-
-/// The state of an execution between cycles (cloned to resume a run from a
-/// shared prefix: [`Prefix::execute`]).
-#[derive(Clone, Debug)]
-struct Sim {
-    /// Actual duration by activity (`None`: its `duration`).
-    actual: Vec<Option<i64>>,
-    status: Vec<Status>,
-    runs: Vec<Option<Started>>,
-    last_cycle: Vec<Option<usize>>,
-    record: Record,
-    integ: Integrator,
-    cycles: Vec<Cycle>,
-    /// The next cycle's time and trigger.
-    t: i64,
-    trigger: Trigger,
-    prev_awake: Vec<(i64, i64)>,
-    prev_heat: Vec<Heat>,
-}
-
-impl Sim {
-    fn new(problem: &Problem, plan: &Plan, actuals: &Actuals) -> Self {
-        let n = plan.activities.len();
-        Self {
-            actual: actual_durations(plan, actuals),
-            status: vec![Status::Waiting; n],
-            runs: vec![None; n],
-            last_cycle: vec![None; n],
-            record: Record::default(),
-            integ: Integrator::new(problem),
-            cycles: Vec::new(),
-            t: problem.h0,
-            trigger: Trigger::Start,
-            prev_awake: Vec::new(),
-            prev_heat: Vec::new(),
-        }
-    }
-
-    /// Runs the cycle at `self.t` and dispatches until the next one; `false`
-    /// when there is none.
-    fn cycle(
-        &mut self,
-        problem: &Problem,
-        plan: &Plan,
-        options: ExecuteOptions,
-    ) -> Result<bool, Error> {
-        let (h0, h1) = (problem.h0, problem.h1);
-        let period = plan.execution.and_then(|e| e.replan_period);
-        let on_end = plan.execution.is_none_or(|e| e.replan_on_end);
-        let t = self.t;
-        let Sim {
-            actual,
-            status,
-            runs,
-            last_cycle,
-            record,
-            integ,
-            cycles,
-            prev_awake,
-            prev_heat,
-            ..
-        } = self;
-        integ.advance(problem, record, t);
-        for (i, r) in runs.iter().enumerate() {
-            if let Some(r) = r {
-                status[i] = if r.end <= t {
-                    Status::Ended { end: r.end }
-                } else {
-                    Status::Executing {
-                        start: r.start,
-                        hold: r.planned_end.max(t + 1),
-                    }
-                };
-            }
-        }
-        let start = cycle_start(
-            problem, plan, t, status, runs, record, integ, prev_awake, prev_heat,
-        );
-        let values = state_values(problem, plan, runs, t, true);
-        let soc = start.soc_mj;
-        let cp = cycle_plan(plan, t, status, &values, start);
-        let run = run_outcomes(&cp.plan)?;
-        let k = cycles.len();
-        for &a in &cp.activity_of {
-            if matches!(status[a], Status::Waiting) {
-                last_cycle[a] = Some(k);
-            }
-        }
-        // The next cycle: the next period boundary, or the first end after `t`.
-        let mut next = period.map_or(h1, |p| {
-            let done = (t - h0) / p;
-            h0.saturating_add(p.saturating_mul(done + 1))
-        });
-        next = next.min(h1);
-        let mut next_trigger = Trigger::Period;
-        if on_end {
-            if let Some((end, a)) = runs
-                .iter()
-                .enumerate()
-                .filter_map(|(a, r)| r.map(|r| (r.end, a)))
-                .filter(|&(end, _)| end > t)
-                .min()
-            {
-                if end < next {
-                    next = end;
-                    next_trigger = Trigger::End(a);
-                }
-            }
-        }
-        // Dispatch: the cycle's start times, in time then step order.
-        let mut due: Vec<(i64, usize, usize, i64)> = run
-            .placements
-            .iter()
-            .enumerate()
-            .filter_map(|(i, p)| {
-                let (s, e) = (*p)?;
-                let a = cp.activity_of[i];
-                matches!(status[a], Status::Waiting).then_some((s, run.step_of[i], a, e - s))
-            })
-            .collect();
-        due.sort_unstable();
-        let mut events = Vec::new();
-        let mut seq = runs.iter().flatten().count();
-        for (s, _, a, planned) in due {
-            if s >= next {
-                break;
-            }
-            if let Some(guard) = guard(problem, plan, a, s, runs) {
-                events.push(Event::Held {
-                    activity: a,
-                    time: s,
-                    guard,
-                });
-                continue;
-            }
-            let (end, aborted) = end_of(plan, a, s, planned, actual[a]);
-            runs[a] = Some(Started {
-                start: s,
-                end,
-                planned_end: s + planned,
-                aborted,
-                cycle: k,
-                seq,
-            });
-            seq += 1;
-            status[a] = Status::Executing {
-                start: s,
-                hold: s + planned,
-            };
-            record.activity(problem, a, s, end);
-            events.push(Event::Started {
-                activity: a,
-                time: s,
-            });
-            if on_end && end > t && end < next {
-                next = end;
-                next_trigger = Trigger::End(a);
-            }
-        }
-        // What this cycle's schedule generated runs until the next cycle, and so
-        // do the heaters that were already on.
-        prev_awake.clear();
-        prev_heat.clear();
-        for h in cp.plan.cycle.iter().flat_map(|c| &c.heaters) {
-            if let Some(z) = problem.zone_names.iter().position(|n| *n == h.zone) {
-                let owner = h
-                    .owner
-                    .as_ref()
-                    .and_then(|id| plan.activities.iter().position(|a| &a.id == id));
-                prev_heat.push(Heat {
-                    zone: z,
-                    start: t,
-                    end: h.end,
-                    power: h.power_mw,
-                    owner,
-                });
-                let b = h.end.min(next);
-                if t < b {
-                    record.heat.push((z, t, b, h.power_mw));
-                }
-            }
-        }
-        for &(a, b) in &run.awake {
-            prev_awake.push((a, b));
-            let (a, b) = (a.max(t), b.min(next));
-            if a < b {
-                record.awake.push((a, b));
-            }
-        }
-        for &(zone, start, end, act) in &run.preheats {
-            let power = problem.zones[zone].preheat;
-            prev_heat.push(Heat {
-                zone,
-                start,
-                end,
-                power,
-                owner: cp.activity_of.get(act).copied(),
-            });
-            let (a, b) = (start.max(t), end.min(next));
-            if a < b {
-                record.heat.push((zone, a, b, power));
-            }
-        }
-        cycles.push(Cycle {
-            time: t,
-            trigger: self.trigger,
-            plan: (!options.outcomes_only).then_some(cp.plan),
-            soc,
-            placements: run.placements,
-            activity_of: cp.activity_of,
-            dropped: cp.dropped,
-            events,
-        });
-        if next >= h1 {
-            return Ok(false);
-        }
-        self.t = next;
-        self.trigger = next_trigger;
-        Ok(true)
-    }
-
-    /// The execution, after the last cycle.
-    fn finish(mut self, problem: Problem, plan: &Plan) -> Execution {
-        let (h0, h1) = (problem.h0, problem.h1);
-        self.integ.advance(&problem, &self.record, h1);
-        let first = &self.cycles[0];
-        let activities = (0..plan.activities.len())
-            .map(|a| {
-                let predicted = first.placement(a);
-                let run = self.runs[a];
-                ActivityRun {
-                    outcome: match run {
-                        None => RunOutcome::NotRun,
-                        Some(r) if r.aborted => RunOutcome::Aborted,
-                        Some(_) => RunOutcome::Completed,
-                    },
-                    predicted,
-                    actual: run.map(|r| (r.start, r.end)),
-                    cycle: run.map(|r| r.cycle),
-                    duration: self.actual[a].unwrap_or(plan.activities[a].duration.max()),
-                    last_cycle: if run.is_none() {
-                        self.last_cycle[a]
-                    } else {
-                        None
-                    },
-                }
-            })
-            .collect();
-        let mut profile = std::mem::take(&mut self.integ.profile);
-        profile.awake = union(
-            self.record
-                .awake
-                .iter()
-                .map(|&(a, b)| (a.max(h0), b.min(h1)))
-                .filter(|(a, b)| a < b)
-                .collect(),
-        );
-        Execution {
-            cycles: self.cycles,
-            activities,
-            profile,
-            violations: self.integ.violations,
-            lowest_soc: self.integ.lowest,
-            handover_soc: self.integ.at_handover,
-            problem,
-        }
+    if options.policy.is_replan() {
+        let sim = Sim::new(&problem, plan, actuals);
+        sim.run(&problem, plan, &Replan::new(plan), options)
+    } else {
+        Prepared::new(plan, options.policy)?.execute(&problem, plan, actuals, options)
     }
 }
 
@@ -499,13 +236,14 @@ impl Prefix {
         plan: &Plan,
         options: ExecuteOptions,
     ) -> Result<Self, Error> {
+        let replan = Replan::new(plan);
         let mut sim = Sim::new(problem, plan, &Actuals::nominal());
         let mut before = Vec::new();
         loop {
             let mut snapshot = sim.clone();
             snapshot.cycles = Vec::new();
             before.push(snapshot);
-            if !sim.cycle(problem, plan, options)? {
+            if !sim.cycle(problem, plan, &replan, options)? {
                 break;
             }
         }
@@ -560,8 +298,7 @@ impl Prefix {
                 sim.runs[a] = Some(Started { end, aborted, ..r });
             }
         }
-        while sim.cycle(problem, plan, options)? {}
-        let out = sim.finish(problem.clone(), plan);
+        let out = sim.run(problem, plan, &Replan::new(plan), options)?;
         #[cfg(debug_assertions)]
         if let Ok(full) = execute_with(plan, actuals, options) {
             debug_assert_eq!(out.activities, full.activities, "the resumed run differs");
@@ -569,207 +306,4 @@ impl Prefix {
         }
         Ok(out)
     }
-}
-
-/// When an activity started at `start` for a planned `planned` seconds ends,
-/// and whether it is aborted: an optional one stops at `start + planned`.
-fn end_of(plan: &Plan, a: usize, start: i64, planned: i64, actual: Option<i64>) -> (i64, bool) {
-    let end = start + actual.unwrap_or(planned);
-    if !plan.activities[a].mandatory && end > start + planned {
-        (start + planned, true)
-    } else {
-        (end, false)
-    }
-}
-
-/// The actual duration of each activity under `actuals` (`None`: its
-/// `duration`).
-fn actual_durations(plan: &Plan, actuals: &Actuals) -> Vec<Option<i64>> {
-    plan.activities
-        .iter()
-        .map(|a| actuals.durations.get(&a.id).copied())
-        .collect()
-}
-
-/// A started activity.
-#[derive(Clone, Copy, Debug)]
-struct Started {
-    start: i64,
-    /// Actual end (the abort time when aborted).
-    end: i64,
-    /// `start` + the duration the cycle placed it for.
-    planned_end: i64,
-    aborted: bool,
-    cycle: usize,
-    /// Dispatch order (breaks ties between effects at one instant).
-    seq: usize,
-}
-
-/// A heater demand of a cycle's schedule, or a heater already on at its start.
-#[derive(Clone, Copy, Debug)]
-struct Heat {
-    zone: usize,
-    start: i64,
-    end: i64,
-    power: i64,
-    /// The activity (plan index) whose preheat it is.
-    owner: Option<usize>,
-}
-
-/// What the cycle at `t` starts from.
-#[allow(clippy::too_many_arguments)]
-fn cycle_start(
-    problem: &Problem,
-    plan: &Plan,
-    t: i64,
-    status: &[Status],
-    runs: &[Option<Started>],
-    record: &Record,
-    integ: &Integrator,
-    prev_awake: &[(i64, i64)],
-    prev_heat: &[Heat],
-) -> CycleStart {
-    let held: Vec<usize> = (0..status.len())
-        .filter(|&a| matches!(status[a], Status::Executing { .. }))
-        .collect();
-    // The awake period the rover is in: on in the second before the cycle, to
-    // its planned end in the latest schedule, and at least while an activity
-    // that requires it is still executing (with its shutdown).
-    let awake = (t > problem.h0)
-        .then(|| record.awake_since(t - 1))
-        .flatten()
-        .and_then(|since| {
-            let planned = prev_awake
-                .iter()
-                .filter(|&&(a, b)| a < t && t <= b)
-                .map(|&(_, b)| b)
-                .max();
-            let running = held
-                .iter()
-                .filter(|&&a| problem.acts[a].awake == crate::model::AwakeMode::Required)
-                .filter_map(|&a| match status[a] {
-                    Status::Executing { hold, .. } => Some(hold + problem.shut),
-                    _ => None,
-                })
-                .max();
-            let end = planned.max(running)?;
-            (end > t).then_some((since, end))
-        });
-    let mut heaters: Vec<HeaterHold> = prev_heat
-        .iter()
-        .filter(|h| h.start < t && t <= h.end)
-        .map(|h| HeaterHold {
-            zone: problem.zone_names[h.zone].clone(),
-            end: h.end,
-            power_mw: h.power,
-            owner: h
-                .owner
-                .filter(|&o| matches!(status[o], Status::Waiting))
-                .map(|o| plan.activities[o].id.clone()),
-        })
-        .collect();
-    // A zone kept warm by an activity running in the second before the cycle is
-    // on then too (an activity starting at the cycle needs no preheat; one still
-    // executing keeps it on through its own placement).
-    for (a, r) in runs.iter().enumerate() {
-        let Some(r) = r else { continue };
-        if r.start < t && t <= r.end {
-            for &z in &problem.acts[a].zones {
-                heaters.push(HeaterHold {
-                    zone: problem.zone_names[z].clone(),
-                    end: t,
-                    power_mw: problem.zones[z].maintenance,
-                    owner: None,
-                });
-            }
-        }
-    }
-    CycleStart {
-        soc_mj: integ.soc,
-        data_bit: integ.data,
-        produced_bit: integ.produced,
-        held: held
-            .iter()
-            .map(|&a| plan.activities[a].id.clone())
-            .collect(),
-        awake,
-        heaters,
-    }
-}
-
-/// The executed value of every state at `t` (`(state, value)` names): effects
-/// at or before `t` (`inclusive`) or strictly before it, in time then dispatch
-/// order.
-fn state_values(
-    problem: &Problem,
-    plan: &Plan,
-    runs: &[Option<Started>],
-    t: i64,
-    inclusive: bool,
-) -> Vec<(String, String)> {
-    let mut values = problem.state_initial.clone();
-    let mut effects: Vec<(i64, usize, usize, usize)> = Vec::new();
-    for (a, r) in runs.iter().enumerate() {
-        let Some(r) = r else { continue };
-        for e in &problem.acts[a].effects {
-            let at = if e.at == EffectAt::Start {
-                r.start
-            } else {
-                r.end
-            };
-            if at < t || (inclusive && at == t) {
-                effects.push((at, r.seq, e.state, e.value));
-            }
-        }
-    }
-    effects.sort_unstable();
-    for (_, _, s, v) in effects {
-        values[s] = v;
-    }
-    plan.states
-        .iter()
-        .zip(values)
-        .map(|((name, def), v)| (name.clone(), def.values[v].clone()))
-        .collect()
-}
-
-/// Why activity `a` may not start at `s`, if it may not.
-fn guard(
-    problem: &Problem,
-    plan: &Plan,
-    a: usize,
-    s: i64,
-    runs: &[Option<Started>],
-) -> Option<Guard> {
-    let act = &problem.acts[a];
-    for d in &act.after {
-        let ended = runs[d.target].is_some_and(|r| r.end.saturating_add(d.min_delay) <= s);
-        if !ended {
-            return Some(Guard::Dependency(d.target));
-        }
-    }
-    for (b, r) in runs.iter().enumerate() {
-        let Some(r) = r else { continue };
-        if b != a
-            && r.start <= s
-            && s < r.end
-            && problem.acts[b]
-                .resources
-                .iter()
-                .any(|x| act.resources.contains(x))
-        {
-            return Some(Guard::Resource(b));
-        }
-    }
-    if !act.requires.is_empty() {
-        let values = state_values(problem, plan, runs, s, true);
-        for req in &act.requires {
-            let (name, def) = plan.states.iter().nth(req.state)?;
-            let now = &values.iter().find(|(n, _)| n == name)?.1;
-            if def.values[req.value] != *now {
-                return Some(Guard::State(req.state, req.value));
-            }
-        }
-    }
-    None
 }

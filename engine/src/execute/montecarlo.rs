@@ -186,9 +186,7 @@ pub fn campaign_runs(
             let actuals = sample_run(plan, campaign.seed, r);
             let ex = match (&prefix, &prepared) {
                 (Some(prefix), _) => prefix.execute(&problem, plan, &actuals, options),
-                (None, Some(prepared)) => Ok(super::policy::run(
-                    &problem, plan, prepared, &actuals, options,
-                )),
+                (None, Some(prepared)) => prepared.execute(&problem, plan, &actuals, options),
                 (None, None) => execute_with(plan, &actuals, options),
             };
             let record = ex.and_then(|ex| record_of(plan, campaign, r, &actuals, &ex));

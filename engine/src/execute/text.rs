@@ -3,12 +3,7 @@
 use super::{Cause, Dropped, Loss, RunOutcome};
 use crate::model::Plan;
 use crate::scheduler::Problem;
-use crate::units::format_plan_time;
-
-/// Plan time `t` as planners read it: plan seconds and local time.
-fn at(problem: &Problem, t: i64) -> String {
-    format_plan_time(&problem.clock, t)
-}
+use crate::sentence::{seconds, seconds_delta, time};
 
 /// One sentence on why activity `loss.activity` did not complete in an
 /// execution: "science was not run: at the cycle at 7000 (01:56:40), placement
@@ -19,12 +14,12 @@ pub fn loss_line(plan: &Plan, problem: &Problem, loss: &Loss) -> String {
     let me = name(loss.activity);
     let when = loss
         .cycle
-        .map(|(_, t)| format!("at the cycle at {}", at(problem, t)))
+        .map(|(_, t)| format!("at the cycle at {}", time(&problem.clock, t)))
         .unwrap_or_else(|| "in the last cycle".into());
     let mut line = match &loss.cause {
         Cause::Overran => format!(
-            "{me} was aborted: it ran longer than its duration of {} s.",
-            plan.activities[loss.activity].duration.max()
+            "{me} was aborted: it ran longer than its duration of {}.",
+            seconds(plan.activities[loss.activity].duration.max())
         ),
         Cause::Held => format!(
             "{me} was not run: {when} it was due, but the dispatcher held it back and no later cycle placed it before its windows closed."
@@ -35,7 +30,7 @@ pub fn loss_line(plan: &Plan, problem: &Problem, loss: &Loss) -> String {
         Cause::Dropped(Dropped::DependencyPassed { on, end }) => format!(
             "{me} was not run: {} ended at {}, which leaves no start its dependency allows {when}.",
             name(*on),
-            at(problem, *end)
+            time(&problem.clock, *end)
         ),
         Cause::Dropped(Dropped::DependsOnDropped(b)) => format!(
             "{me} was not run: it depends on {}, which could no longer run.",
@@ -70,11 +65,12 @@ pub fn loss_line(plan: &Plan, problem: &Problem, loss: &Loss) -> String {
             .changed
             .iter()
             .map(|&(b, actual, planned)| {
-                let delta = actual - planned;
                 format!(
-                    "{} ran {actual} s instead of {planned} s ({}{delta} s)",
+                    "{} ran {} instead of {} ({})",
                     name(b),
-                    if delta > 0 { "+" } else { "" }
+                    seconds(actual),
+                    seconds(planned),
+                    seconds_delta(actual - planned)
                 )
             })
             .collect();

@@ -3,13 +3,9 @@
 use super::{Culprit, Explanation, Phase, ReasonRange};
 use crate::model::Plan;
 use crate::scheduler::{Category, Phase2Reason, Problem, Schedule};
+use crate::sentence::{range, span, spans, time};
 use crate::timeline::IntervalSet;
-use crate::units::{format_plan_time, format_span, format_watts, format_wh};
-
-/// Plan time `t` as planners read it: plan seconds and local time.
-fn at(problem: &Problem, t: i64) -> String {
-    format_plan_time(&problem.clock, t)
-}
+use crate::units::{format_watts, format_wh};
 
 fn describe_set(problem: &Problem, set: &IntervalSet) -> String {
     let ivs = set.intervals();
@@ -21,15 +17,15 @@ fn describe_set(problem: &Problem, set: &IntervalSet) -> String {
         .take(3)
         .map(|iv| {
             if iv.lo == iv.hi {
-                format!("only {}", at(problem, iv.lo))
+                format!("only {}", time(&problem.clock, iv.lo))
             } else if iv.lo <= problem.h0 && iv.hi >= problem.h1 {
                 "any start".into()
             } else if iv.lo <= problem.h0 {
-                format!("starts up to {}", at(problem, iv.hi))
+                format!("starts up to {}", time(&problem.clock, iv.hi))
             } else if iv.hi >= problem.h1 {
-                format!("starts from {}", at(problem, iv.lo))
+                format!("starts from {}", time(&problem.clock, iv.lo))
             } else {
-                format!("starts {}–{}", at(problem, iv.lo), at(problem, iv.hi))
+                format!("starts {}", range(&problem.clock, iv.lo, iv.hi))
             }
         })
         .collect();
@@ -80,11 +76,15 @@ pub fn reason_line(plan: &Plan, problem: &Problem, r: &ReasonRange, shown: i64) 
             format!(
                 "SOC {} at {}",
                 format_wh(i128::from(*soc_mj)),
-                at(problem, *t)
+                time(&problem.clock, *t)
             )
         }
         Phase2Reason::MaxPeakPower { at: t, peak_mw } => {
-            format!("peak {} at {}", format_watts(*peak_mw), at(problem, *t))
+            format!(
+                "peak {} at {}",
+                format_watts(*peak_mw),
+                time(&problem.clock, *t)
+            )
         }
         Phase2Reason::HandoverSoc { soc_mj } => {
             format!("SOC {} at handover", format_wh(i128::from(*soc_mj)))
@@ -99,7 +99,7 @@ pub fn reason_line(plan: &Plan, problem: &Problem, r: &ReasonRange, shown: i64) 
         } => format!(
             "{} preheat from {}",
             problem.zone_names[*zone],
-            at(problem, *preheat_start)
+            time(&problem.clock, *preheat_start)
         ),
         Phase2Reason::ForcedSleep { sleep: Some(x) }
         | Phase2Reason::MinSleep { sleep: x }
@@ -110,10 +110,9 @@ pub fn reason_line(plan: &Plan, problem: &Problem, r: &ReasonRange, shown: i64) 
         Phase2Reason::MinAwake { sleep: None } => "the plan bounds".to_string(),
     };
     format!(
-        "{} for starts {}–{}{}: {detail}",
+        "{} for starts {}{}: {detail}",
         r.reason.kind().name(),
-        at(problem, r.first),
-        at(problem, r.last),
+        range(&problem.clock, r.first, r.last),
         lasting(r, shown)
     )
 }
@@ -134,7 +133,7 @@ fn lasting(r: &ReasonRange, shown: i64) -> String {
     if r.duration == shown {
         String::new()
     } else {
-        format!(", lasting {}", format_span(r.duration))
+        format!(", lasting {}", span(r.duration))
     }
 }
 
@@ -178,9 +177,9 @@ pub fn explanation_notes_and_lead(
         });
     let for_duration = durations.map(|(min, max)| {
         let which = if ex.duration == min {
-            format!("its shortest, {}", format_span(min))
+            format!("its shortest, {}", span(min))
         } else {
-            format!("a duration of {}", format_span(ex.duration))
+            format!("a duration of {}", span(ex.duration))
         };
         // The search's tries at other durations are listed too, each
         // naming its own.
@@ -190,9 +189,8 @@ pub fn explanation_notes_and_lead(
             ""
         };
         format!(
-            "{me} may last from {} to {}, and no duration fits; what follows is for {which}{except}.",
-            format_span(min),
-            format_span(max)
+            "{me} may last from {}, and no duration fits; what follows is for {which}{except}.",
+            spans(min, max)
         )
     });
     match phase {
@@ -233,7 +231,7 @@ pub fn explanation_notes_and_lead(
                 notes.push(format!(
                     "Without {} it could start at {}.",
                     cats.join(" and "),
-                    at(problem, r.witness)
+                    time(&problem.clock, r.witness)
                 ));
             }
         }
@@ -249,12 +247,15 @@ pub fn explanation_notes_and_lead(
                 .map(|i| &ex.reasons[i])
             {
                 let range = if r.first == r.last {
-                    format!("At {}{}", at(problem, r.first), lasting(r, ex.duration))
+                    format!(
+                        "At {}{}",
+                        time(&problem.clock, r.first),
+                        lasting(r, ex.duration)
+                    )
                 } else {
                     format!(
-                        "For starts {}–{}{}",
-                        at(problem, r.first),
-                        at(problem, r.last),
+                        "For starts {}{}",
+                        range(&problem.clock, r.first, r.last),
                         lasting(r, ex.duration)
                     )
                 };
@@ -262,7 +263,7 @@ pub fn explanation_notes_and_lead(
                     Phase2Reason::MinSoc { at: t, soc_mj } => format!(
                         "the battery would fall to {} at {}, below the {} minimum",
                         format_wh(i128::from(*soc_mj)),
-                        at(problem, *t),
+                        time(&problem.clock, *t),
                         format_wh(problem.min_soc)
                     ),
                     Phase2Reason::HandoverSoc { soc_mj } => format!(
@@ -273,7 +274,7 @@ pub fn explanation_notes_and_lead(
                     Phase2Reason::MaxPeakPower { at: t, peak_mw } => format!(
                         "peak power would reach {} at {}, above the {} limit",
                         format_watts(*peak_mw),
-                        at(problem, *t),
+                        time(&problem.clock, *t),
                         format_watts(problem.max_peak.unwrap_or(0))
                     ),
                     Phase2Reason::ForcedSleep { sleep } => match sleep {
@@ -304,7 +305,7 @@ pub fn explanation_notes_and_lead(
                     } => format!(
                         "the {} preheat would have to start at {}, before the plan begins",
                         problem.zone_names[*zone],
-                        at(problem, *preheat_start)
+                        time(&problem.clock, *preheat_start)
                     ),
                     Phase2Reason::PreheatOperability {
                         zone,
@@ -312,7 +313,7 @@ pub fn explanation_notes_and_lead(
                     } => format!(
                         "the {} preheat would start at {}, outside the times that zone may be heated",
                         problem.zone_names[*zone],
-                        at(problem, *preheat_start)
+                        time(&problem.clock, *preheat_start)
                     ),
                 };
                 notes.push(format!("{range}, {why}."));

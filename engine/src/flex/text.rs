@@ -2,8 +2,8 @@
 
 use super::{Bound, Constraint, Controllability, Flex, OrderKind, TimePoint};
 use crate::model::Plan;
+use crate::sentence::{between, range_or_time, span, spans, time};
 use crate::timeline::IntervalSet;
-use crate::units::{format_plan_time, format_span};
 
 /// An event as read: `drive's end`, `the horizon start`.
 pub fn time_point_name(plan: &Plan, e: TimePoint) -> String {
@@ -30,12 +30,7 @@ pub fn constraint_line(plan: &Plan, c: &Constraint) -> String {
             )
         }
         Constraint::Duration { act } => match plan.activities[*act].duration_model {
-            Some(m) => format!(
-                "{} lasts {} to {}",
-                id(*act),
-                format_span(m.min),
-                format_span(m.max)
-            ),
+            Some(m) => format!("{} lasts {}", id(*act), spans(m.min, m.max)),
             None => format!("{} lasts as scheduled", id(*act)),
         },
         Constraint::Dependency { act, on } => format!("{} starts after {} ends", id(*act), id(*on)),
@@ -61,8 +56,8 @@ fn bound_line(plan: &Plan, b: &Bound) -> String {
     let what = time_point_name(plan, b.event);
     match b.offset {
         0 => format!("when {what}"),
-        o if o > 0 => format!("{} after {what}", format_span(o)),
-        o => format!("{} before {what}", format_span(-o)),
+        o if o > 0 => format!("{} after {what}", span(o)),
+        o => format!("{} before {what}", span(-o)),
     }
 }
 
@@ -73,17 +68,7 @@ fn set_line(plan: &Plan, set: &IntervalSet) -> String {
     let clock = &plan.local_time;
     set.intervals()
         .iter()
-        .map(|iv| {
-            if iv.lo == iv.hi {
-                format_plan_time(clock, iv.lo)
-            } else {
-                format!(
-                    "{} to {}",
-                    format_plan_time(clock, iv.lo),
-                    format_plan_time(clock, iv.hi)
-                )
-            }
-        })
+        .map(|iv| range_or_time(clock, iv.lo, iv.hi))
         .collect::<Vec<_>>()
         .join(", ")
 }
@@ -134,12 +119,11 @@ pub fn flex_text(plan: &Plan, flex: &Flex) -> String {
         push(
             &mut out,
             format!(
-                "{id}: scheduled at {}; may start from {} to {} ({} earlier, {} later).",
-                format_plan_time(clock, s.nom),
-                format_plan_time(clock, s.lb),
-                format_plan_time(clock, s.ub),
-                format_span(s.nom - s.lb),
-                format_span(s.ub - s.nom)
+                "{id}: scheduled at {}; may start {} ({} earlier, {} later).",
+                time(clock, s.nom),
+                between(clock, s.lb, s.ub),
+                span(s.nom - s.lb),
+                span(s.ub - s.nom)
             ),
         );
         for b in &fa.condition.after {
@@ -160,9 +144,8 @@ pub fn flex_text(plan: &Plan, flex: &Flex) -> String {
                     push(
                         &mut out,
                         format!(
-                            "  whatever the uncertain durations: from {} to {}",
-                            format_plan_time(clock, lb),
-                            format_plan_time(clock, ub)
+                            "  whatever the uncertain durations: {}",
+                            between(clock, lb, ub)
                         ),
                     );
                 }
@@ -173,7 +156,7 @@ pub fn flex_text(plan: &Plan, flex: &Flex) -> String {
                     format!(
                         "  waits until {} ends or {} after it starts",
                         plan.activities[w.on].id,
-                        format_span(w.offset)
+                        span(w.offset)
                     ),
                 );
             }

@@ -1,198 +1,47 @@
-//! Execution policies beside onboard replanning (issue 12): `fixed`, every
-//! activity at its scheduled time like a time-tagged sequence, and `dispatch`, the
-//! flexible plan executed by its start and skip conditions. Neither reschedules:
-//! the schedule (and its flexible form) is made once, at `horizon.start`, and the
-//! generated awake and heating periods run as scheduled.
+//! The dispatch policy: the flexible schedule executed by its start and skip
+//! conditions, in time order.
 
 use std::collections::BTreeMap;
 
-use super::{
-    Actuals, Cycle, Event, ExecuteOptions, Execution, Sim, Started, Trigger, end_of, guard,
-};
+use super::{no_next, scheduled_once};
 use crate::error::Error;
-use crate::flex::{Flex, FlexOptions, TimePoint, flex_with};
+use crate::execute::sim::{CycleSchedule, Executive, Next, Sim, guard};
+use crate::execute::{Event, Guard};
+use crate::flex::{Flex, TimePoint};
 use crate::model::Plan;
-use crate::scheduler::{Problem, RunOutcomes, run_outcomes, schedule};
+use crate::scheduler::{Problem, RunOutcomes};
 
-/// How activities are started while the plan executes.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    Default,
-    PartialEq,
-    Eq,
-    PartialOrd,
-    Ord,
-    Hash,
-    serde::Serialize,
-    serde::Deserialize,
-)]
-#[serde(rename_all = "snake_case")]
-pub enum Policy {
-    /// The onboard scheduler runs again at every cycle (`spec/execution.md`).
-    #[default]
-    Replan,
-    /// Every activity at its scheduled start, skipped if the guard does not let it
-    /// start then.
-    Fixed,
-    /// The flexible schedule: each activity by its start and skip conditions.
-    Dispatch,
+/// The dispatching executive of a plan scheduled once, with its flexible form.
+pub(super) struct Dispatch<'a> {
+    pub outcomes: &'a RunOutcomes,
+    pub flex: &'a Flex,
 }
 
-impl Policy {
-    /// The name on the command line and in documents.
-    pub fn name(self) -> &'static str {
-        match self {
-            Policy::Replan => "replan",
-            Policy::Fixed => "fixed",
-            Policy::Dispatch => "dispatch",
-        }
+impl Executive for Dispatch<'_> {
+    fn schedule<'p>(
+        &'p self,
+        _: &Problem,
+        plan: &'p Plan,
+        _: &mut Sim,
+    ) -> Result<CycleSchedule<'p>, Error> {
+        Ok(scheduled_once(plan, self.outcomes))
     }
 
-    /// Whether this is the default, [`Policy::Replan`].
-    pub fn is_replan(&self) -> bool {
-        *self == Policy::Replan
+    fn next_cycle(&self, problem: &Problem, _: &Sim) -> Next {
+        no_next(problem)
     }
-}
 
-/// What a non-replanning policy needs once per plan: the schedule's outcomes and,
-/// for dispatch, the flexible form.
-#[derive(Clone, Debug)]
-pub(crate) struct Prepared {
-    outcomes: RunOutcomes,
-    flex: Option<Flex>,
-}
-
-impl Prepared {
-    pub(crate) fn new(plan: &Plan, policy: Policy) -> Result<Self, Error> {
-        if policy != Policy::Dispatch {
-            return Ok(Self {
-                outcomes: run_outcomes(plan)?,
-                flex: None,
-            });
-        }
-        // Dispatch needs the schedule for its flexible form: its outcomes are
-        // the recorded run's, replayed, not a second run.
-        let sched = schedule(plan)?;
-        let outcomes = RunOutcomes::of(&sched);
-        debug_assert_eq!(
-            Some(&outcomes),
-            run_outcomes(plan).ok().as_ref(),
-            "the outcomes replayed from the schedule differ from a run's"
-        );
-        let flex = Some(flex_with(plan, &sched, FlexOptions { free_slack: false }));
-        Ok(Self { outcomes, flex })
+    /// [`dispatch`], over the whole horizon.
+    fn start(
+        &self,
+        problem: &Problem,
+        plan: &Plan,
+        sim: &mut Sim,
+        _: &CycleSchedule<'_>,
+        _: &mut Next,
+    ) -> Vec<Event> {
+        dispatch(problem, plan, self.flex, sim)
     }
-}
-
-/// One execution under the policy `prepared` is for (dispatch when it has the
-/// flexible form, fixed otherwise).
-pub(crate) fn run(
-    problem: &Problem,
-    plan: &Plan,
-    prepared: &Prepared,
-    actuals: &Actuals,
-    options: ExecuteOptions,
-) -> Execution {
-    let mut sim = Sim::new(problem, plan, actuals);
-    let events = match &prepared.flex {
-        Some(flex) => dispatch(problem, plan, flex, &mut sim),
-        None => fixed(problem, plan, prepared, &mut sim),
-    };
-    // The generated periods run as scheduled.
-    let out = &prepared.outcomes;
-    sim.record.awake.extend(out.awake.iter().copied());
-    for &(zone, start, end, _) in &out.preheats {
-        sim.record
-            .heat
-            .push((zone, start, end, problem.zones[zone].preheat));
-    }
-    let n = plan.activities.len();
-    sim.cycles.push(Cycle {
-        time: problem.h0,
-        trigger: Trigger::Start,
-        plan: (!options.outcomes_only).then(|| plan.clone()),
-        soc: problem.soc0,
-        placements: out.placements.clone(),
-        activity_of: (0..n).collect(),
-        dropped: Vec::new(),
-        events,
-    });
-    sim.finish(problem.clone(), plan)
-}
-
-/// Starts activity `a` at `s` for its scheduled `planned` seconds.
-fn start(problem: &Problem, plan: &Plan, sim: &mut Sim, a: usize, s: i64, planned: i64) {
-    // Same-time effects apply in the schedule's step order, as the schedule
-    // that placed them assumed (no cycle reorders them).
-    let seq = problem.step_of[a];
-    let (end, aborted) = end_of(plan, a, s, planned, sim.actual[a]);
-    sim.runs[a] = Some(Started {
-        start: s,
-        end,
-        planned_end: s + planned,
-        aborted,
-        cycle: 0,
-        seq,
-    });
-    sim.record.activity(problem, a, s, end);
-}
-
-/// Every activity at its scheduled start, in time then step order, if the guard
-/// lets it start then (once the others due at that instant have started);
-/// otherwise it does not run.
-fn fixed(problem: &Problem, plan: &Plan, prepared: &Prepared, sim: &mut Sim) -> Vec<Event> {
-    let out = &prepared.outcomes;
-    let mut due: Vec<(i64, usize, usize, i64)> = out
-        .placements
-        .iter()
-        .enumerate()
-        .filter_map(|(a, p)| p.map(|(s, e)| (s, out.step_of[a], a, e - s)))
-        .collect();
-    due.sort_unstable();
-    let mut events = Vec::new();
-    // Activities due at the same time start together: one held back (a required
-    // state another sets at that instant, a dependency ending then) is tried again
-    // after the others of its instant.
-    let mut i = 0;
-    while i < due.len() {
-        let t = due[i].0;
-        let mut group: Vec<(usize, i64)> = due[i..]
-            .iter()
-            .take_while(|x| x.0 == t)
-            .map(|x| (x.2, x.3))
-            .collect();
-        i += group.len();
-        loop {
-            let before = group.len();
-            let mut held = Vec::new();
-            for &(a, planned) in &group {
-                match guard(problem, plan, a, t, &sim.runs) {
-                    Some(g) => held.push((a, planned, g)),
-                    None => {
-                        start(problem, plan, sim, a, t, planned);
-                        events.push(Event::Started {
-                            activity: a,
-                            time: t,
-                        });
-                    }
-                }
-            }
-            group = held.iter().map(|&(a, p, _)| (a, p)).collect();
-            if group.is_empty() || group.len() == before {
-                for (a, _, g) in held {
-                    events.push(Event::Held {
-                        activity: a,
-                        time: t,
-                        guard: g,
-                    });
-                }
-                break;
-            }
-        }
-    }
-    events
 }
 
 /// The flexible schedule by its conditions: in time order (never before the last
@@ -249,7 +98,7 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
     let mut events = Vec::new();
     // Held back by the guard at an instant when others may still start: (index,
     // activity, time, guard).
-    let mut deferred: Vec<(usize, usize, i64, super::Guard)> = Vec::new();
+    let mut deferred: Vec<(usize, usize, i64, Guard)> = Vec::new();
     let mut latest = vec![i64::MAX; flex.activities.len()];
     // The time of the last event: nothing starts before it.
     let mut clock = problem.h0;
@@ -339,7 +188,7 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
                 events.push(Event::Held {
                     activity: a,
                     time: latest,
-                    guard: super::Guard::Skipped,
+                    guard: Guard::Skipped,
                 });
             }
             continue;
@@ -381,15 +230,15 @@ fn dispatch(problem: &Problem, plan: &Plan, flex: &Flex, sim: &mut Sim) -> Vec<E
                     continue;
                 }
                 let planned = fa.end.nom - fa.start.nom;
-                start(problem, plan, sim, a, t, planned);
+                // Same-time effects apply in the schedule's step order, as
+                // the schedule that placed them assumed.
+                let end = sim.start(problem, plan, a, t, planned, problem.step_of[a]);
                 events.push(Event::Started {
                     activity: a,
                     time: t,
                 });
                 times.insert(TimePoint::Start(a), t);
-                if let Some(r) = sim.runs[a] {
-                    running.push((r.end, a));
-                }
+                running.push((end, a));
                 for (j, ..) in deferred.drain(..) {
                     pending.push(j);
                 }

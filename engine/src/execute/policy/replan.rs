@@ -1,0 +1,142 @@
+//! Onboard replanning (`spec/execution.md`): every cycle runs the scheduler
+//! again on the plan of what has not started yet, from the executed state, and
+//! the dispatcher starts that schedule's activities at their times until the
+//! next cycle, behind the guard.
+
+use std::borrow::Cow;
+
+use crate::error::Error;
+use crate::execute::cycle::{Status, cycle_plan};
+use crate::execute::sim::{CycleSchedule, Executive, Next, Sim, cycle_start, guard, state_values};
+use crate::execute::{Event, Trigger};
+use crate::model::Plan;
+use crate::scheduler::{Problem, run_outcomes};
+
+/// The replanning executive of one plan: its cycle period and whether an
+/// executing activity's end triggers a cycle.
+pub(in crate::execute) struct Replan {
+    period: Option<i64>,
+    on_end: bool,
+}
+
+impl Replan {
+    pub(in crate::execute) fn new(plan: &Plan) -> Self {
+        Self {
+            period: plan.execution.and_then(|e| e.replan_period),
+            on_end: plan.execution.is_none_or(|e| e.replan_on_end),
+        }
+    }
+}
+
+impl Executive for Replan {
+    /// The cycle's own plan (the activities not yet started, from the executed
+    /// state), scheduled for its outcomes.
+    fn schedule<'p>(
+        &'p self,
+        problem: &Problem,
+        plan: &'p Plan,
+        sim: &mut Sim,
+    ) -> Result<CycleSchedule<'p>, Error> {
+        let start = cycle_start(problem, plan, sim);
+        let values = state_values(problem, plan, &sim.runs, sim.t);
+        let cp = cycle_plan(plan, sim.t, &sim.status, &values, start);
+        let outcomes = run_outcomes(&cp.plan)?;
+        let k = sim.cycles.len();
+        for &a in &cp.activity_of {
+            if matches!(sim.status[a], Status::Waiting) {
+                sim.last_cycle[a] = Some(k);
+            }
+        }
+        Ok(CycleSchedule {
+            plan: Cow::Owned(cp.plan),
+            activity_of: cp.activity_of,
+            dropped: cp.dropped,
+            outcomes: Cow::Owned(outcomes),
+        })
+    }
+
+    /// The next period boundary, or the first end of an executing activity
+    /// after the cycle.
+    fn next_cycle(&self, problem: &Problem, sim: &Sim) -> Next {
+        let (h0, t) = (problem.h0, sim.t);
+        let time = self.period.map_or(problem.h1, |p| {
+            let done = (t - h0) / p;
+            h0.saturating_add(p.saturating_mul(done + 1))
+        });
+        let mut next = Next {
+            time: time.min(problem.h1),
+            trigger: Trigger::Period,
+        };
+        if self.on_end {
+            if let Some((end, a)) = sim
+                .runs
+                .iter()
+                .enumerate()
+                .filter_map(|(a, r)| r.map(|r| (r.end, a)))
+                .filter(|&(end, _)| end > t)
+                .min()
+            {
+                if end < next.time {
+                    next = Next {
+                        time: end,
+                        trigger: Trigger::End(a),
+                    };
+                }
+            }
+        }
+        next
+    }
+
+    /// The cycle's start times before the next cycle, in time then step order;
+    /// an activity the guard holds back waits for a later cycle.
+    fn start(
+        &self,
+        problem: &Problem,
+        plan: &Plan,
+        sim: &mut Sim,
+        schedule: &CycleSchedule<'_>,
+        next: &mut Next,
+    ) -> Vec<Event> {
+        let run = &schedule.outcomes;
+        let mut due: Vec<(i64, usize, usize, i64)> = run
+            .placements
+            .iter()
+            .enumerate()
+            .filter_map(|(i, p)| {
+                let (s, e) = (*p)?;
+                let a = schedule.activity_of[i];
+                matches!(sim.status[a], Status::Waiting).then_some((s, run.step_of[i], a, e - s))
+            })
+            .collect();
+        due.sort_unstable();
+        let mut events = Vec::new();
+        let t = sim.t;
+        let mut seq = sim.runs.iter().flatten().count();
+        for (s, _, a, planned) in due {
+            if s >= next.time {
+                break;
+            }
+            if let Some(guard) = guard(problem, plan, a, s, &sim.runs) {
+                events.push(Event::Held {
+                    activity: a,
+                    time: s,
+                    guard,
+                });
+                continue;
+            }
+            let end = sim.start(problem, plan, a, s, planned, seq);
+            seq += 1;
+            events.push(Event::Started {
+                activity: a,
+                time: s,
+            });
+            if self.on_end && end > t && end < next.time {
+                *next = Next {
+                    time: end,
+                    trigger: Trigger::End(a),
+                };
+            }
+        }
+        events
+    }
+}
