@@ -3,7 +3,7 @@
 //! ran, a broken limit, a time difference, a share of runs, an energy.
 
 use solscope_engine::{
-    MJ_PER_WH, Trigger, Violation, ViolationKind, format_watts, format_wh, mbit,
+    MJ_PER_WH, Trigger, Violation, ViolationKind, format_mbit, format_watts, format_wh,
 };
 
 use super::Model;
@@ -32,7 +32,7 @@ fn limit_value(kind: ViolationKind, x: i128) -> String {
     match kind {
         ViolationKind::MinSoc | ViolationKind::HandoverSoc => format_wh(x),
         ViolationKind::MaxPeakPower => format_watts(i64::try_from(x).unwrap_or(i64::MAX)),
-        ViolationKind::DataCapacity => format!("{:.1} Mbit", mbit(x)),
+        ViolationKind::DataCapacity => format_mbit(x),
     }
 }
 
@@ -46,15 +46,6 @@ pub fn violation_text(m: &Model<'_>, v: &Violation) -> String {
         m.time(v.worst.1),
         limit_value(v.kind, v.limit)
     )
-}
-
-/// A signed difference of two times, in seconds.
-pub fn slip(d: i64) -> String {
-    match d {
-        0 => "on time".into(),
-        d if d > 0 => format!("{d} s late"),
-        d => format!("{} s early", -d),
-    }
 }
 
 /// A value in Wh (a float, as the campaign's summaries give it) for reading.

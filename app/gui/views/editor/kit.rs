@@ -13,6 +13,7 @@ use eframe::egui::{self, RichText};
 use serde_json::{Map, Value, json};
 use solscope_engine::{
     Activity, LocalTime, Plan, format_local, format_span, format_time_of_day, parse_local,
+    parse_time_of_day,
 };
 
 use crate::gui::theme::{
@@ -104,17 +105,11 @@ impl Kind {
                 }
             }
             Kind::TimeOfDay => {
-                // Seconds after midnight, or hh:mm[:ss] read as a time in the
-                // first sol of a clock without offset.
-                let day = LocalTime {
-                    sol_length: clock.sol_length,
-                    offset: 0,
-                    first_sol: None,
-                };
+                // Seconds after midnight, or hh:mm[:ss].
                 match text
                     .parse::<i64>()
                     .ok()
-                    .or_else(|| parse_local(&day, text, Some(0)))
+                    .or_else(|| parse_time_of_day(text).ok())
                 {
                     Some(t) => json!(t),
                     None => {

@@ -6,12 +6,12 @@
 
 use eframe::egui::{self, RichText};
 use solscope_engine::{
-    Dropped, Event, FailurePhase, Guard, Outcome, ReasonRange, RunOutcome, format_wh, loss_line,
-    reason_line, wh,
+    Dropped, Event, FailurePhase, Guard, Outcome, ReasonRange, RunOutcome, format_time_difference,
+    format_wh, loss_line, reason_line, wh,
 };
 
 use super::montecarlo;
-use crate::gui::views::text::{slip, trigger_text, violation_text};
+use crate::gui::views::text::{trigger_text, violation_text};
 use crate::gui::views::{Model, widgets};
 use crate::state::Command;
 use crate::state::execution::ExecutionRun;
@@ -105,7 +105,11 @@ fn activity_run_ui(
             ui.end_row();
             if let (Some(p), Some(x)) = (r.predicted, r.actual) {
                 ui.label("Start, end");
-                ui.label(format!("{}, {}", slip(x.0 - p.0), slip(x.1 - p.1)));
+                ui.label(format!(
+                    "{}, {}",
+                    format_time_difference(x.0 - p.0),
+                    format_time_difference(x.1 - p.1)
+                ));
                 ui.end_row();
             }
             ui.label("Actual duration");

@@ -6,11 +6,11 @@
 //! to open.
 
 use eframe::egui::{self, RichText};
-use solscope_engine::{ActivitySummary, LostSummary, Predictor};
+use solscope_engine::{ActivitySummary, LostSummary, Predictor, format_time_difference};
 
 use crate::gui::theme::{SHARE_BAR_HEIGHT, SHARE_BAR_LARGE_HEIGHT, SHARE_BAR_WIDTH};
 use crate::gui::views::Model;
-use crate::gui::views::text::{percent, slip};
+use crate::gui::views::text::percent;
 use crate::gui::views::widgets::share_bar;
 use crate::state::Command;
 use crate::state::execution::ActualsSource;
@@ -113,12 +113,12 @@ fn start_ui(ui: &mut egui::Ui, m: &Model<'_>, s: &ActivitySummary) {
     };
     let started = s.completed + s.aborted;
     let vs = |t: i64| match s.predicted_start {
-        Some(p) => format!("{} ({})", m.time(t), slip(t - p)),
+        Some(p) => format!("{} ({})", m.time(t), format_time_difference(t - p)),
         None => m.time(t),
     };
     if q.min == q.max {
         let when = match s.predicted_start {
-            Some(p) => format!(", {},", slip(q.min - p)),
+            Some(p) => format!(", {},", format_time_difference(q.min - p)),
             None => String::new(),
         };
         ui.label(format!(

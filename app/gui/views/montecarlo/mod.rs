@@ -14,7 +14,7 @@ mod compare;
 
 use eframe::egui::{self, RichText, Stroke};
 use egui_plot::{Bar, BarChart, Plot, VLine};
-use solscope_engine::Distribution;
+use solscope_engine::{Distribution, format_wh_value};
 
 use super::text::{percent, wh_text};
 use super::{CampaignModel, Model};
@@ -337,7 +337,7 @@ fn histogram_ui(
         .allow_boxed_zoom(false)
         .allow_double_click_reset(false)
         .include_y(0.0)
-        .x_axis_formatter(|mark, _| format!("{:.0} Wh", mark.value))
+        .x_axis_formatter(|mark, _| format_wh_value(mark.value, 0))
         .y_axis_label("runs");
     if let Some((_, l, _)) = near {
         plot = plot.include_x(l);

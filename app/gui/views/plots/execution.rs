@@ -4,7 +4,9 @@
 //! lines; at the time clicked, the executed and predicted values.
 
 use eframe::egui::{self, RichText};
-use solscope_engine::{MJ_PER_WH, MW_PER_W, ViolationKind, format_watts, format_wh};
+use solscope_engine::{
+    MJ_PER_WH, MW_PER_W, ViolationKind, format_mbit_value, format_watts, format_wh,
+};
 
 use super::plot::{Chart, DATA, Mark, PEAK, Pick, SOC, Series, limits, plot_ui};
 use crate::gui::views::text::kind_name;
@@ -145,7 +147,7 @@ fn probe_ui(ui: &mut egui::Ui, m: &Model<'_>, run: &ExecutionRun, t: i64, cmds: 
             |v| &v.peak,
             |x| format_watts((x * MW_PER_W).round() as i64),
         ),
-        ("Data volume", |v| &v.data, |x| format!("{x:.1} Mbit")),
+        ("Data volume", |v| &v.data, |x| format_mbit_value(x, 1)),
     ];
     egui::Grid::new("execution_probe")
         .num_columns(4)
