@@ -647,7 +647,7 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
             }
             let (campaign, records) = solscope_engine::merge_parts(&docs)?;
             if csv {
-                Ok(runs_csv(&campaign, &records))
+                Ok(solscope_engine::runs_csv(&campaign, &records))
             } else {
                 to_json(&solscope_engine::summarize(&campaign, &records))
             }
@@ -703,7 +703,7 @@ fn run(command: Command, limit: usize) -> Result<String, Failure> {
             })?
             .unwrap_or_default();
             if csv {
-                Ok(runs_csv(&campaign, &records))
+                Ok(solscope_engine::runs_csv(&campaign, &records))
             } else if shard.is_some() {
                 to_json(&solscope_engine::RunsDoc {
                     format: solscope_engine::MONTECARLO_RUNS_FORMAT.into(),
@@ -816,74 +816,6 @@ fn with_progress<T>(total: u64, work: impl FnOnce(&(dyn Fn() + Sync)) -> T) -> T
     };
     let out = work(&tick);
     bar.finish_and_clear();
-    out
-}
-
-/// One CSV row per run: the run, its lowest state of charge (Wh) and when, the
-/// state of charge at the handover, the limits it broke, the outcome counts, each
-/// uncertain activity's actual duration and each activity's outcome.
-fn runs_csv(
-    campaign: &solscope_engine::Campaign,
-    records: &[solscope_engine::RunRecord],
-) -> String {
-    let quote = |s: &str| {
-        if s.contains([',', '"', '\n']) {
-            format!("\"{}\"", s.replace('"', "\"\""))
-        } else {
-            s.to_string()
-        }
-    };
-    let mut header = vec![
-        "run".to_string(),
-        "lowest_soc_wh".into(),
-        "lowest_soc_time".into(),
-        "handover_soc_wh".into(),
-        "violations".into(),
-        "completed".into(),
-        "aborted".into(),
-        "not_run".into(),
-    ];
-    header.extend(
-        campaign
-            .uncertain
-            .iter()
-            .map(|&a| quote(&format!("duration:{}", campaign.activities[a]))),
-    );
-    header.extend(
-        campaign
-            .activities
-            .iter()
-            .map(|id| quote(&format!("outcome:{id}"))),
-    );
-    let mut out = header.join(",") + "\n";
-    let mut records: Vec<&solscope_engine::RunRecord> = records.iter().collect();
-    records.sort_by_key(|r| r.run);
-    for r in records {
-        let count = |c: char| r.outcomes.chars().filter(|&x| x == c).count().to_string();
-        let mut row = vec![
-            r.run.to_string(),
-            format!("{:.3}", solscope_engine::wh(i128::from(r.lowest_soc.0))),
-            r.lowest_soc.1.to_string(),
-            r.handover_soc
-                .map(|x| format!("{:.3}", solscope_engine::wh(i128::from(x))))
-                .unwrap_or_default(),
-            r.violations.join(";"),
-            count('c'),
-            count('a'),
-            count('n'),
-        ];
-        row.extend(r.durations.iter().map(i64::to_string));
-        row.extend(r.outcomes.chars().map(|c| {
-            match c {
-                'c' => "completed",
-                'a' => "aborted",
-                _ => "not_run",
-            }
-            .to_string()
-        }));
-        out.push_str(&row.join(","));
-        out.push('\n');
-    }
     out
 }
 

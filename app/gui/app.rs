@@ -1400,7 +1400,7 @@ impl SolscopeApp {
 
 impl SolscopeApp {
     fn export_csv_to(&mut self, path: &Path) {
-        let csv = super::export::schedule_csv(&self.doc.plan, &self.analysis.schedule);
+        let csv = solscope_engine::schedule_csv(&self.doc.plan, &self.analysis.schedule);
         if let Err(e) = std::fs::write(path, csv) {
             self.ui.messages.error = Some(format!("Could not write {}: {e}", path.display()));
         }

@@ -10,14 +10,13 @@
 //!
 //! Modules, lowest first (each uses only those before it):
 //! `time_axis`, `theme`, `help` → `document`, `repair` → `state`, `commands` → `tour`,
-//! `execution`, `export` → `montecarlo` → `derived` → `views` → `app` → `host`.
+//! `execution` → `montecarlo` → `derived` → `views` → `app` → `host`.
 
 pub mod app;
 pub mod commands;
 mod derived;
 pub mod document;
 pub mod execution;
-pub mod export;
 pub mod help;
 pub mod host;
 pub mod montecarlo;
