@@ -1,10 +1,10 @@
-//! solscope: the desktop app (eframe) and the headless screenshot renderer, on
-//! top of `solscope-engine`. The binary (`main.rs`) is the command line.
-//!
-//! [`state`] is the app without a toolkit (the document, the commands, the
-//! reducer, the derived values); [`gui`] draws it with egui.
+//! solscope, on top of `solscope-engine`, in three wings: the command line
+//! ([`cli`]), the app without a toolkit ([`state`]: the document, the commands,
+//! the reducer, the derived values and their jobs) and its egui side ([`gui`]:
+//! the frame, the views, the eframe host and the headless screenshot
+//! renderer). The binary (`main.rs`) parses the command line and hands over to
+//! [`cli::run`], or opens the app.
 
+pub mod cli;
 pub mod gui;
 pub mod state;
-
-pub use gui::screenshot;

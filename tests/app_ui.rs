@@ -3,8 +3,8 @@
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
 use egui_kittest::kittest::{NodeT, Queryable};
+use solscope::gui::screenshot::{SNAPSHOT_SIZE, View, harness};
 use solscope::gui::{Look, SolscopeApp};
-use solscope::screenshot::{SNAPSHOT_SIZE, View, harness};
 use solscope::state::{Command, Dialog, ListFilter, Mode, StatusFilter, UiCommand};
 
 fn tutorial() -> SolscopeApp {

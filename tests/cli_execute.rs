@@ -197,6 +197,10 @@ fn montecarlo_runs_replay_and_shards_merge() {
     let text = String::from_utf8(csv.stdout.clone()).unwrap();
     assert_eq!(text.lines().count(), 41);
     assert!(text.starts_with("run,lowest_soc_wh,"), "{text}");
+    // RFC 4180: every line, the header's too, ends with CRLF.
+    assert_eq!(text.matches("\r\n").count(), 41, "{text:?}");
+    assert_eq!(text.matches('\n').count(), 41, "{text:?}");
+    assert!(text.ends_with("\r\n"), "{text:?}");
     args.push("--csv");
     assert_eq!(solscope(&args).stdout, csv.stdout);
     // A missing shard is refused.

@@ -6,7 +6,7 @@
 
 use serde_json::json;
 use solscope::gui::SolscopeApp;
-use solscope::screenshot::{SNAPSHOT_SIZE, View, harness, snapshot_options};
+use solscope::gui::screenshot::{SNAPSHOT_SIZE, View, harness, snapshot_options};
 use solscope::state::{Command, TimeAxis, UiCommand};
 
 fn app() -> SolscopeApp {

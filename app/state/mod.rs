@@ -8,7 +8,7 @@
 //! and turns input into commands.
 //!
 //! Modules, lowest first (each uses only those before it): `axis`, `job`
-//! → `document`, `repair`, `export` → `persisted`, `ui` → `commands`,
+//! → `document`, `repair` → `persisted`, `ui` → `commands`,
 //! `status`, `execution` → `extent`, `list`, `tour`, `montecarlo` →
 //! `exec_model`, `derived` → this module (`AppState`), `frame`, `reduce`.
 
@@ -18,7 +18,6 @@ mod derived;
 pub mod document;
 mod exec_model;
 pub mod execution;
-pub mod export;
 mod extent;
 mod frame;
 mod job;

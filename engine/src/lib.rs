@@ -5,9 +5,10 @@
 //! warnings) → [`Plan`] → [`schedule`] (compiles the plan to fixed-point
 //! [`Problem`] and runs the greedy scheduler) → [`Schedule`] (step trace) →
 //! [`explain()`] ([`Explanation`]s, failures as data) → the documents
-//! ([`schedule_document`], [`explain_document`]) and the text
-//! ([`explain_text`]). Units and times read the same everywhere through the
-//! `units` functions re-exported here ([`format_wh`], [`format_plan_time`], ...).
+//! ([`schedule_document`], [`explain_document`]; as CSV, [`schedule_csv`] and a
+//! Monte Carlo campaign's [`runs_csv`]) and the text ([`explain_text`]). Units
+//! and times read the same everywhere through the `units` functions re-exported
+//! here ([`format_wh`], [`format_plan_time`], ...).
 #![deny(missing_docs)]
 
 mod edit;
@@ -62,7 +63,8 @@ pub use report::{
     EditEntry, EventEntry, ExecutionDoc, ExplainDoc, ExplanationEntry, FLEX_FORMAT, FlexDoc,
     FlexEntry, FlexSummary, GeneratedEntry, PointEntry, RelaxationEntry, RunEntry, ScheduleDoc,
     SuggestionEntry, SummaryEntry, TimedValue, ViolationEntry, WaitEntry, WhyEntry,
-    execution_document, explain_document, explanation_entry, flex_document, schedule_document,
+    execution_document, explain_document, explanation_entry, flex_document, runs_csv, schedule_csv,
+    schedule_document,
 };
 pub use scheduler::{
     Act, Category, CategoryIntervals, FailurePhase, Generated, GeneratedKind, Outcome,

@@ -279,7 +279,7 @@ impl AppState {
 
     /// Writes the schedule CSV to `path`; a failed write is shown.
     fn export_csv_to(&mut self, path: &Path) {
-        let csv = super::super::export::schedule_csv(&self.doc.plan, &self.analysis.schedule);
+        let csv = solscope_engine::schedule_csv(&self.doc.plan, &self.analysis.schedule);
         if let Err(e) = std::fs::write(path, csv) {
             self.ui.messages.error = Some(format!("Could not write {}: {e}", path.display()));
         }

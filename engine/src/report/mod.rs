@@ -1,13 +1,16 @@
 //! The output documents, built from the structured results: the schedule
 //! (`solscope.schedule/1`), the explanation (`solscope.explain/1`), the
-//! execution (`solscope.execution/1`) and the flexible schedule (`solscope.flex/1`). Each is
-//! built in one place; numbers go through `units`.
+//! execution (`solscope.execution/1`) and the flexible schedule (`solscope.flex/1`), and
+//! the CSV documents (the schedule, a Monte Carlo campaign's runs) with their one CSV
+//! writer. Each is built in one place; numbers go through `units`.
 
+mod csv;
 mod execution;
 mod explain;
 mod flex;
 mod schedule;
 
+pub use csv::{runs_csv, schedule_csv};
 pub use execution::{
     ChangedEntry, CycleEntry, DroppedEntry, EXECUTION_FORMAT, EventEntry, ExecutionDoc, RunEntry,
     SummaryEntry, TimedValue, ViolationEntry, WhyEntry, execution_document,

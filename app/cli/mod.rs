@@ -1,0 +1,69 @@
+//! The command line: `solscope schedule|explain|execute|montecarlo|flex|check|generate|screenshot`.
+//!
+//! [`args`] holds every flag (the clap types); [`run`] hands a parsed command to its
+//! module, one per command, and ends it through [`failure`]: a command makes its
+//! whole output first and prints it only once it has succeeded, so that a failure
+//! prints nothing on standard output (`explain` streams its output, once the plan
+//! has loaded and scheduled). Invalid input prints a path-named message on
+//! standard error and exits with status 2; an output that could not be made or
+//! written exits with status 1.
+
+pub mod args;
+mod check;
+mod execute;
+mod explain;
+pub mod failure;
+mod flex;
+mod generate;
+mod montecarlo;
+mod progress;
+mod schedule;
+mod screenshot;
+
+use std::path::Path;
+use std::process::ExitCode;
+
+pub use args::{Cli, Command};
+pub use failure::{EXIT_INVALID, Failure};
+
+/// Runs a command to completion: its output on standard output, or a message on
+/// standard error; returns the exit status.
+pub fn run(command: Command) -> ExitCode {
+    match dispatch(command) {
+        Ok(code) => code,
+        Err(failure) => failure.report(),
+    }
+}
+
+/// Runs a command; the commands that print one output make it whole before it
+/// is printed.
+fn dispatch(command: Command) -> Result<ExitCode, Failure> {
+    let text = match command {
+        Command::Screenshot(args) => return screenshot::run(&args),
+        Command::Explain(args) => {
+            explain::run(&args, args.input.bytes()?)?;
+            return Ok(ExitCode::SUCCESS);
+        }
+        Command::Schedule(args) => schedule::run(&args, args.input.bytes()?)?,
+        Command::Execute(args) => execute::run(&args, args.input.bytes()?)?,
+        Command::Montecarlo(args) => montecarlo::run(&args)?,
+        Command::Flex(args) => flex::run(&args, args.input.bytes()?)?,
+        Command::Check(args) => check::run(&args, args.input.bytes()?)?,
+        Command::Generate(args) => generate::run(&args)?,
+    };
+    failure::print(&text)?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Reads and loads a plan file of at most `limit` bytes.
+fn load(plan: &Path, limit: usize) -> Result<solscope_engine::LoadedPlan, solscope_engine::Error> {
+    let text = solscope_engine::read_plan_text(plan, limit)?;
+    solscope_engine::load_plan_limited(&text, limit)
+}
+
+/// The plan's display name when the file does not give one: the file name.
+fn default_name(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
