@@ -6,8 +6,11 @@
 //! [`Problem`] and runs the greedy scheduler) → [`Schedule`] (step trace) →
 //! [`explain()`] ([`Explanation`]s, failures as data) → the documents
 //! ([`schedule_document`], [`explain_document`]) and the text
-//! ([`explain_text`]). Units and times read the same everywhere through the
-//! `units` functions re-exported here ([`format_wh`], [`format_plan_time`], ...).
+//! ([`explain_text`]). [`tune`] searches the priorities that keep the most of
+//! what matters when durations vary, scoring orders on Monte Carlo samples
+//! ([`Tuning`], [`tuning_document`]). Units and times read the same everywhere
+//! through the `units` functions re-exported here ([`format_wh`],
+//! [`format_plan_time`], ...).
 #![deny(missing_docs)]
 
 mod edit;
@@ -21,6 +24,7 @@ mod model;
 mod report;
 mod scheduler;
 mod timeline;
+mod tune;
 mod units;
 mod validate;
 
@@ -63,6 +67,11 @@ pub use report::{
     SuggestionEntry, SummaryEntry, TimedValue, ViolationEntry, WaitEntry, WhyEntry,
     execution_document, explain_document, explanation_entry, flex_document, schedule_document,
 };
+pub use report::{
+    ChangeEntry, CountsEntry, CountsPair, DifferenceEntry, PairEntry, SampleEntry, ScoreEntry,
+    ScoresEntry, SearchEntry, TUNING_FORMAT, TunedActivityEntry, TuningDoc, VerdictEntry,
+    WhyChangeEntry, tuning_document, tuning_json,
+};
 pub use scheduler::{
     Act, Category, CategoryIntervals, FailurePhase, Generated, GeneratedKind, Outcome,
     PartialSchedule, Phase2Reason, Placement, Problem, Profiles, ReasonKind, RunOutcomes, Schedule,
@@ -70,6 +79,10 @@ pub use scheduler::{
     valid_intervals_at,
 };
 pub use timeline::{Interval, IntervalSet};
+pub use tune::{
+    ActivityCounts, Change, ChangeWhy, Counts, Mode, Moved, Sample, Score, Scores, Stop,
+    TuneOptions, Tuning, ValueMeasure, change_line, tune,
+};
 pub use units::{
     BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, format_local, format_plan_time, format_span,
     format_time_of_day, format_watts, format_wh, mbit, parse_local, watts, wh,
