@@ -6,7 +6,7 @@
 //! [`Problem`] and runs the greedy scheduler) → [`Schedule`] (step trace) →
 //! [`explain()`] ([`Explanation`]s, failures as data) → the documents
 //! ([`schedule_document`], [`explain_document`]) and the text
-//! ([`explain_text`]). [`tune`] searches the priorities that keep the most of
+//! ([`explain_text`]). [`tune()`] searches the priorities that keep the most of
 //! what matters when durations vary, scoring orders on Monte Carlo samples
 //! ([`Tuning`], [`tuning_document`]). Units and times read the same everywhere
 //! through the `units` functions re-exported here ([`format_wh`],
@@ -81,7 +81,7 @@ pub use scheduler::{
 pub use timeline::{Interval, IntervalSet};
 pub use tune::{
     ActivityCounts, Change, ChangeWhy, Counts, Mode, Moved, Sample, Score, Scores, Stop,
-    TuneOptions, Tuning, ValueMeasure, change_line, tune,
+    TuneOptions, TuneProgress, Tuning, ValueMeasure, change_line, tune,
 };
 pub use units::{
     BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, format_local, format_plan_time, format_span,

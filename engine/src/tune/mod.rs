@@ -53,8 +53,11 @@ pub struct TuneOptions<'a> {
     pub cancel: Option<&'a AtomicBool>,
     /// Called after each batch of orders scored: the evaluations done and the
     /// best score so far.
-    pub progress: Option<&'a (dyn Fn(u64, &Score) + Sync)>,
+    pub progress: Option<TuneProgress<'a>>,
 }
+
+/// A progress callback: the orders scored so far and the best score.
+pub type TuneProgress<'a> = &'a (dyn Fn(u64, &Score) + Sync);
 
 impl Default for TuneOptions<'_> {
     fn default() -> Self {

@@ -330,8 +330,11 @@ fn counts(n: usize, records: &[RunRecord]) -> Vec<Counts> {
     out
 }
 
+/// Per cause key: runs, and runs per culprit.
+type CauseTally<'r> = BTreeMap<&'r str, (u64, BTreeMap<usize, u64>)>;
+
 fn causes(n: usize, records: &[RunRecord]) -> Vec<Vec<CauseRuns>> {
-    let mut by: Vec<BTreeMap<&str, (u64, BTreeMap<usize, u64>)>> = vec![BTreeMap::new(); n];
+    let mut by: Vec<CauseTally<'_>> = vec![BTreeMap::new(); n];
     for r in records {
         for l in &r.losses {
             let Some(m) = by.get_mut(l.activity) else {

@@ -27,7 +27,7 @@ pub(crate) struct Search<'s, 'p> {
     pub sample: Sample,
     pub budget: u64,
     pub cancel: Option<&'s AtomicBool>,
-    pub progress: Option<&'s (dyn Fn(u64, &Score) + Sync)>,
+    pub progress: Option<super::TuneProgress<'s>>,
     /// Orders scored on the tuning sample.
     pub evaluations: u64,
     /// Orders already scored.
