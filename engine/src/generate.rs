@@ -74,6 +74,7 @@ fn activity(id: String, priority: i64, duration: i64) -> Activity {
         comm_kind: None,
         group: None,
         duration_model: None,
+        value: None,
     }
 }
 

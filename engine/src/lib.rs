@@ -6,9 +6,11 @@
 //! [`Problem`] and runs the greedy scheduler) → [`Schedule`] (step trace) →
 //! [`explain()`] ([`Explanation`]s, failures as data) → the documents
 //! ([`schedule_document`], [`explain_document`]; as CSV, [`schedule_csv`] and a
-//! Monte Carlo campaign's [`runs_csv`]) and the text ([`explain_text`]). Units
-//! and times read the same everywhere through the `units` functions re-exported
-//! here ([`format_wh`], [`format_plan_time`], ...).
+//! Monte Carlo campaign's [`runs_csv`]) and the text ([`explain_text`]).
+//! [`tune()`] searches the priorities that keep the most of what matters when
+//! durations vary, scoring orders on Monte Carlo samples ([`Tuning`],
+//! [`tuning_document`]). Units and times read the same everywhere through the
+//! `units` functions re-exported here ([`format_wh`], [`format_plan_time`], ...).
 #![deny(missing_docs)]
 
 mod edit;
@@ -23,6 +25,7 @@ mod report;
 mod scheduler;
 mod sentence;
 mod timeline;
+mod tune;
 mod units;
 mod validate;
 
@@ -66,6 +69,11 @@ pub use report::{
     execution_document, explain_document, explanation_entry, flex_document, runs_csv, schedule_csv,
     schedule_document,
 };
+pub use report::{
+    ChangeEntry, CountsEntry, CountsPair, DifferenceEntry, PairEntry, SampleEntry, ScoreEntry,
+    ScoresEntry, SearchEntry, TUNING_FORMAT, TunedActivityEntry, TuningDoc, VerdictEntry,
+    WhyChangeEntry, tuning_document, tuning_json,
+};
 pub use scheduler::{
     Act, Category, CategoryIntervals, FailurePhase, Generated, GeneratedKind, Outcome,
     PartialSchedule, Phase2Reason, Placement, Problem, Profiles, ReasonKind, RunOutcomes, Schedule,
@@ -73,6 +81,10 @@ pub use scheduler::{
     valid_intervals_at,
 };
 pub use timeline::{Interval, IntervalSet};
+pub use tune::{
+    ActivityCounts, Change, ChangeWhy, Counts, Mode, Moved, Sample, Score, Scores, Stop,
+    TuneOptions, TuneProgress, Tuning, ValueMeasure, change_line, tune,
+};
 pub use units::{
     BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, ParseUnitError, format_local, format_mbit,
     format_mbit_value, format_plan_time, format_span, format_time_difference, format_time_of_day,

@@ -386,6 +386,11 @@ pub struct Activity {
     /// The range of actual durations (execution extension; fixed durations only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub duration_model: Option<DurationModel>,
+    /// What completing the activity is worth to the planners (tuning extension;
+    /// finite, `>= 0`). Only priority tuning reads it: scheduling and execution
+    /// ignore it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub value: Option<f64>,
 }
 
 fn default_true() -> bool {

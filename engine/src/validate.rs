@@ -37,7 +37,8 @@
 //!   combined with `min_delay`/`max_delay`; delays are `>= 0` (an activity always
 //!   starts at or after its dependency's end) and `min_delay <= max_delay`; at most
 //!   one requirement per state and one effect per (state, `at`); `group` and
-//!   `comm_kind` non-empty when given.
+//!   `comm_kind` non-empty when given; `value` (tuning extension) finite, `>= 0`
+//!   and at most 1e12.
 //!
 //! # Warnings
 //!
@@ -81,6 +82,9 @@ pub(crate) const MAX_HORIZON_LENGTH: i64 = 1_000_000_000;
 pub(crate) const MAX_RATE: f64 = 1e6;
 /// Largest magnitude of an energy (Wh) or data volume (Mbit).
 pub(crate) const MAX_AMOUNT: f64 = 1e12;
+/// Largest activity `value` (tuning extension): a sum of values in millionths
+/// over millions of runs stays far inside an `i128`.
+pub(crate) const MAX_VALUE: f64 = 1e12;
 
 /// Checks a parsed plan; returns its warnings (in path order) or the first error.
 pub fn validate(plan: &Plan) -> Result<Vec<Warning>, Error> {
@@ -489,6 +493,28 @@ enum Sign {
     Any,
     NonNegative,
     Positive,
+}
+
+/// An activity's `value` (tuning extension): finite, `>= 0`, at most
+/// [`MAX_VALUE`]. Tuning sums it over runs in millionths (docs/semantics.md,
+/// "Priority tuning"), so it carries no unit and no fixed-point warning.
+fn activity_value(path: impl Display, x: f64) -> Result<(), Error> {
+    if !x.is_finite() {
+        return Err(invalid(
+            path,
+            format!("must be a finite number (got {})", short(x)),
+        ));
+    }
+    if x < 0.0 {
+        return Err(invalid(path, format!("must be >= 0 (got {})", short(x))));
+    }
+    if x > MAX_VALUE {
+        return Err(invalid(
+            path,
+            format!("must be at most {MAX_VALUE} (got {})", short(x)),
+        ));
+    }
+    Ok(())
 }
 
 fn invalid(path: impl Display, reason: impl Into<String>) -> Error {
@@ -1193,6 +1219,9 @@ impl<'p> Validator<'p> {
         }
         if let Some(group) = &a.group {
             self.part(|v| v.non_empty(format_args!("{base}.group"), group))?;
+        }
+        if let Some(value) = a.value {
+            self.part(|_| activity_value(format_args!("{base}.value"), value))?;
         }
         Ok(())
     }
@@ -2104,6 +2133,37 @@ mod tests {
             "activities[0].data_rate",
             "in magnitude",
         );
+    }
+
+    #[test]
+    fn activity_value() {
+        assert_err(
+            |v| v["activities"][0]["value"] = json!(-0.5),
+            "activities[0].value",
+            "must be >= 0 (got -0.5)",
+        );
+        assert_err(
+            |v| v["activities"][0]["value"] = json!(2e12),
+            "activities[0].value",
+            "must be at most 1000000000000",
+        );
+        let mut plan = with(|v| v["activities"][0]["value"] = json!(1.0));
+        plan.activities[0].value = Some(f64::NAN);
+        assert_eq!(
+            err(&plan),
+            (
+                "activities[0].value".into(),
+                "must be a finite number (got NaN)".into()
+            )
+        );
+        // Zero is a value (nothing gained), and absent stays absent on save.
+        let plan = with(|v| v["activities"][0]["value"] = json!(0.0));
+        assert!(validate(&plan).is_ok_and(|w| w.is_empty()));
+        let back: Value = serde_json::to_value(&plan).expect("json");
+        assert_eq!(back["activities"][0]["value"], json!(0.0));
+        let plain = parse(base_json());
+        let back: Value = serde_json::to_value(&plain).expect("json");
+        assert!(back["activities"][0].get("value").is_none());
     }
 
     #[test]

@@ -37,6 +37,8 @@ pub use record::{ExecutedProfile, Violation, ViolationKind};
 pub use text::loss_line;
 pub use why::{Cause, Loss, loss, losses};
 
+pub(crate) use montecarlo::runs_of;
+
 use crate::error::Error;
 use crate::model::Plan;
 use crate::scheduler::{Problem, Schedule, schedule};

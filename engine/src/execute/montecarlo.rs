@@ -164,13 +164,28 @@ pub fn campaign_runs(
     progress: &(dyn Fn() + Sync),
     cancel: Option<&AtomicBool>,
 ) -> Result<Option<Vec<RunRecord>>, Error> {
+    runs_of(plan, campaign, indices, progress, cancel, true)
+}
+
+/// [`campaign_runs`], explaining the losses only when `explain_losses` is set:
+/// without it every record's `losses` is empty and no cycle plan is kept, for a
+/// caller that needs only the outcomes and the violations (priority tuning
+/// scores many orders and explains the losses of a few).
+pub(crate) fn runs_of(
+    plan: &Plan,
+    campaign: &Campaign,
+    indices: &[u64],
+    progress: &(dyn Fn() + Sync),
+    cancel: Option<&AtomicBool>,
+    explain_losses: bool,
+) -> Result<Option<Vec<RunRecord>>, Error> {
     // Every run shares the nominal execution up to its first changed end; the
     // other policies share the schedule (and its flexible form).
     let problem = crate::scheduler::Problem::compile(plan)?;
     let policy = campaign.policy;
     let options = ExecuteOptions {
         policy,
-        ..ExecuteOptions::default()
+        outcomes_only: !explain_losses,
     };
     let (prefix, prepared) = if policy.is_replan() {
         (Some(Prefix::nominal(&problem, plan, options)?), None)
@@ -189,7 +204,8 @@ pub fn campaign_runs(
                 (None, Some(prepared)) => prepared.execute(&problem, plan, &actuals, options),
                 (None, None) => execute_with(plan, &actuals, options),
             };
-            let record = ex.and_then(|ex| record_of(plan, campaign, r, &actuals, &ex));
+            let record =
+                ex.and_then(|ex| record_of(plan, campaign, r, &actuals, &ex, explain_losses));
             progress();
             Some(record)
         })
@@ -212,18 +228,24 @@ pub fn run_record(plan: &Plan, campaign: &Campaign, run: u64) -> Result<RunRecor
         ..ExecuteOptions::default()
     };
     let ex = execute_with(plan, &actuals, options)?;
-    record_of(plan, campaign, run, &actuals, &ex)
+    record_of(plan, campaign, run, &actuals, &ex, true)
 }
 
-/// The record of run `run`, executed as `ex` with `actuals`.
+/// The record of run `run`, executed as `ex` with `actuals` (its losses
+/// explained when `explain_losses` is set).
 fn record_of(
     plan: &Plan,
     campaign: &Campaign,
     run: u64,
     actuals: &super::Actuals,
     ex: &super::Execution,
+    explain_losses: bool,
 ) -> Result<RunRecord, Error> {
-    let lost = losses(plan, ex)?;
+    let lost = if explain_losses {
+        losses(plan, ex)?
+    } else {
+        Vec::new()
+    };
     Ok(RunRecord {
         run,
         durations: campaign
