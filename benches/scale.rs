@@ -14,14 +14,14 @@
 //! the network, bounds, minimum dispatchable network and controllability, and the
 //! free slack apart, on 1,000 and 10,000 activities of both profiles (worst of
 //! `--sweep N` seeds too when given). `--huge` measures 200,000 activities over 30
-//! sols (issue 14): validation and scheduling, and explaining every failure without
+//! sols: validation and scheduling, and explaining every failure without
 //! suggestions (`explain_each`, as `solscope explain --no-suggestions` streams it),
 //! once each (minutes). `--navigation` measures the activity list's search and
-//! filters (issue 13) on 1,000 and 10,000 activities: a frame with nothing
+//! filters on 1,000 and 10,000 activities: a frame with nothing
 //! filtered, a frame with a search or a status and sol filter standing, the
 //! frame after the search text changes (the list computed again), and "Next
 //! match" with the frame that shows it. `--drag` measures frames while the step
-//! slider is dragged across 1,000 and 10,000 activities (issue 13: 60 frames each
+//! slider is dragged across 1,000 and 10,000 activities (60 frames each
 //! moving the step, as a slider drag gives one new step per frame; the same with
 //! five step changes arriving between two frames; 30 frames zooming the time
 //! range in then out), with the median and worst frame, and how long the plots
@@ -187,7 +187,7 @@ fn huge() {
 /// activities at the same density (3, 9, 30 and 90 sols), the median over
 /// seeds `1..=seeds` of scheduling and of explaining every failure without
 /// suggestions, and the exponent `k` of `N^k` from 1,000 to each size (the
-/// issue's targets: schedule at most N^1.3, explain at most N^1.5, to 30,000).
+/// targets: schedule at most N^1.3, explain at most N^1.5, to 30,000).
 fn growth(profiles: &[(&str, Profile)], seeds: u64) {
     println!(
         "| profile | activities | sols | seeds | median schedule | exponent | median explain (no suggestions) | exponent |"

@@ -1631,7 +1631,7 @@ fn a_controllable_plan_shows_the_waits_of_the_selected_activity() {
     }
 }
 
-// ---- Keyboard, editing, files (issue 13) and one culprit list (issue 14) ----
+// ---- Keyboard, editing, files and one culprit list ----
 
 type Hs = egui_kittest::Harness<'static, SolscopeApp>;
 
@@ -2195,7 +2195,7 @@ fn hovering_a_bar_says_what_it_is_when_and_for_how_long() {
     );
 }
 
-// ---- Linked navigation: back and forward, search, filters (issue 13) ----
+// ---- Linked navigation: back and forward, search, filters ----
 
 /// The default plan's failed MOXIE run selected, in a harness.
 fn moxie_selected() -> H {
@@ -2820,7 +2820,7 @@ fn the_help_menu_opens_the_tutorial_for_the_tour_from_another_plan() {
     );
 }
 
-// ---- Big plans: the zoomable step slider, free slack off the frame (issue 13) ----
+// ---- Big plans: the zoomable step slider, free slack off the frame ----
 
 /// A generated plan (standard or realistic profile) in a harness as the desktop
 /// app runs it (workers on), the flexibility layer `shown` or not.

@@ -1,7 +1,7 @@
 //! Recorded outputs: `schedule`, `explain` and `explain --text` of the bundled
 //! plans, the example plans and generated plans stay byte-identical to what
 //! `tests/golden/` holds. The files were recorded with the release binary before
-//! the engine was restructured (issue 9); a change in any output byte fails here.
+//! the engine was restructured; a change in any output byte fails here.
 //!
 //! An intended change of output re-records them (review the diff before
 //! committing):
@@ -34,7 +34,7 @@ const ALL: Commands = &[
 ];
 
 /// For plans whose suggestions take long to verify (about 40 s for the 300-activity
-/// plan, issue 10): the explanation without suggestions.
+/// plan): the explanation without suggestions.
 const NO_SUGGESTIONS: Commands = &[
     (&["schedule"], "schedule.json"),
     (

@@ -1,4 +1,4 @@
-//! Fixed point errs on the safe side (issue 14): on random plans whose energy,
+//! Fixed point errs on the safe side: on random plans whose energy,
 //! power and data figures carry more decimals than the scheduler's units (mW,
 //! mJ, bit), every placement of the schedule is checked again by the independent
 //! oracle in exact integer arithmetic on the plan's own decimals (nW, nJ,

@@ -2,7 +2,7 @@
 
 //! Expanding activities whose feasibility is not monotone in the duration (the
 //! min_awake extension near the plan end): the longest duration is found without
-//! trying every duration, and the trace stays small (issue 10).
+//! trying every duration, and the trace stays small.
 
 use std::time::{Duration, Instant};
 
@@ -12,7 +12,7 @@ use solscope_engine::{
     schedule,
 };
 
-/// Issue 10: a valid five-line plan that hung with memory growing ~50 MB/s (the
+/// A valid five-line plan that hung with memory growing ~50 MB/s (the
 /// scheduler tried every duration from 999,000,000 s down, one second at a time,
 /// keeping every failed try). Kept exactly as reported.
 const HANG: &str = r#"{"format":"solscope.plan/1","horizon":{"start":0,"end":1000000000},
@@ -142,7 +142,7 @@ fn an_awake_period_that_charges_still_gets_the_longest_duration() {
     );
 }
 
-/// The hanging plan of issue 10 with an effect at the activity's end, which makes
+/// The once-hanging plan with an effect at the activity's end, which makes
 /// feasibility non-monotone in the duration, so that a binary search cannot decide
 /// it: every duration used to be searched, one second at a time. Leaving out the
 /// state_effect category bounds the answer, and here proves that no duration

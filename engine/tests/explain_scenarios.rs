@@ -328,7 +328,7 @@ fn a_dependency_is_loosened_before_it_is_dropped() {
 }
 
 /// Every view names the same culprits: the text's "Involved" line lists exactly
-/// `involved(ex)`, which the app's clickable list also shows (issue 14: the
+/// `involved(ex)`, which the app's clickable list also shows (the
 /// inspector used to list ten where the text named six).
 #[test]
 fn text_and_app_name_the_same_culprits() {
@@ -368,7 +368,7 @@ fn text_and_app_name_the_same_culprits() {
 
 /// `preheat_outside_plan`: the window [100, 500] closes before an 800 s preheat
 /// fits after the plan start, so every start fails; moving the window to open at
-/// 800 fixes it (issue 14: this failure got no suggestion).
+/// 800 fixes it (this failure once got no suggestion).
 #[test]
 fn preheat_outside_plan_suggests_a_later_window() {
     let p = plan(

@@ -186,7 +186,7 @@ fn pitfall_a_at_zero_b_failed() {
 }
 
 /// How often the generator makes the plans that exercise the expanding search's
-/// split paths (issue 10): an expanding, awake-required activity with `min_awake >
+/// split paths: an expanding, awake-required activity with `min_awake >
 /// 0` whose window (or the whole horizon) ends within `min_awake - wakeup` of the
 /// plan end, with and without an effect at its end. The property tests above only
 /// test these paths as often as this finds them.
