@@ -1,5 +1,5 @@
 //! The app's state, with no toolkit in it: the open plan and its analysis
-//! ([`Document`], [`Analysis`]), the session's state ([`UiState`]) apart from
+//! ([`Document`], [`Analysis`]), the runtime state ([`UiState`]) apart from
 //! what survives restarts ([`Persisted`]), the commands ([`UiCommand`] with
 //! their labels and shortcuts as data, [`Command`]), the reducer
 //! ([`AppState::apply`], by area in `reduce/`), and the values derived from

@@ -1,5 +1,5 @@
 //! What survives restarts: the settings and recent files the host saves through
-//! its storage, kept apart from the session's state ([`UiState`](super::UiState)).
+//! its storage, kept apart from the runtime state ([`UiState`](super::UiState)).
 
 use std::path::PathBuf;
 

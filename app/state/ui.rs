@@ -1,4 +1,4 @@
-//! What lives for one session ([`UiState`]; what survives restarts is
+//! What lives while the app runs ([`UiState`]; what survives restarts is
 //! [`Persisted`](super::Persisted), apart), and the read-only snapshot of it the
 //! views get ([`Navigation`]). Nothing here depends on the views or the app.
 

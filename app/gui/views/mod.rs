@@ -4,7 +4,7 @@
 //!
 //! The views see the app only through this interface: they import the state's
 //! types (`crate::state`, read-only through the model) and the gui's `theme`,
-//! `time_axis` and `shortcuts`, never the frame or the host.
+//! `time_axis`, `shortcuts` and `help`, never the frame or the host.
 
 mod axis;
 mod controls;

@@ -1,4 +1,4 @@
-//! The guided tour's window: the page shown (`gui::tour`), in a small window
+//! The guided tour's window: the page shown (`state::tour`), in a small window
 //! beside what it talks about (not modal: the app stays usable under it), with
 //! Back, Next and End tour; what it talks about is outlined when it is a part
 //! of the inspector.

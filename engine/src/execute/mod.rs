@@ -1,6 +1,6 @@
 //! Execution: what the onboard scheduler does while the plan runs, with actual
 //! durations that differ from the predicted ones (the execution extension of the
-//! format, `spec/execution.md`; readings in docs/semantics.md, "Execution").
+//! format, docs/format.md §10; readings in docs/semantics.md, "Execution").
 //!
 //! Scheduling cycles happen at `horizon.start`, every `replan_period`, and (with
 //! `replan_on_end`) whenever an executing activity ends. Each cycle runs the

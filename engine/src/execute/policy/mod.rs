@@ -1,6 +1,6 @@
 //! The execution policies, each an [`Executive`](super::sim::Executive) the
 //! simulation loop asks at every cycle: `replan`, the onboard scheduler run again
-//! at each cycle (`spec/execution.md`); `fixed`, every activity at its scheduled time like a
+//! at each cycle (docs/format.md §10); `fixed`, every activity at its scheduled time like a
 //! time-tagged sequence; and `dispatch`, the flexible plan executed by its start
 //! and skip conditions. Neither of the last two reschedules: the schedule (and
 //! its flexible form) is made once, at `horizon.start` ([`Prepared`]), and the
@@ -39,7 +39,7 @@ use fixed::Fixed;
 )]
 #[serde(rename_all = "snake_case")]
 pub enum Policy {
-    /// The onboard scheduler runs again at every cycle (`spec/execution.md`).
+    /// The onboard scheduler runs again at every cycle (docs/format.md §10).
     #[default]
     Replan,
     /// Every activity at its scheduled start, skipped if the guard does not let it

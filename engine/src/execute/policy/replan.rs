@@ -1,4 +1,4 @@
-//! Onboard replanning (`spec/execution.md`): every cycle runs the scheduler
+//! Onboard replanning (docs/format.md §10): every cycle runs the scheduler
 //! again on the plan of what has not started yet, from the executed state, and
 //! the dispatcher starts that schedule's activities at their times until the
 //! next cycle, behind the guard.
