@@ -151,9 +151,8 @@ fn tuned_plan_text(
 /// then renamed over it. On any error the temporary file is removed and
 /// `target` is as it was.
 fn write_whole(target: &Path, text: &str) -> Result<(), Failure> {
-    let failed = |e: std::io::Error| {
-        Failure::Output(format!("{}: could not write: {e}", target.display()))
-    };
+    let failed =
+        |e: std::io::Error| Failure::Output(format!("{}: could not write: {e}", target.display()));
     let name = target
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
