@@ -177,7 +177,7 @@ fn ctrl_c_stops_the_search_and_prints_the_best_order_so_far() {
     assert_eq!(doc["search"]["stop"], "cancelled");
     let evaluations = doc["search"]["evaluations"].as_u64().unwrap();
     assert!((1..100_000).contains(&evaluations), "{evaluations}");
-    assert_eq!(doc["held_out"]["no_worse"].is_boolean(), true);
+    assert!(doc["held_out"]["no_worse"].is_boolean());
 }
 
 /// Runs `tune` with `args` and `--write-plan` into a fresh directory: exit
