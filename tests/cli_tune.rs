@@ -254,3 +254,54 @@ fn a_plan_where_nothing_can_move_is_refused() {
     let plan = plan.to_str().unwrap();
     refused("one", plan, &[], plan);
 }
+
+#[test]
+fn a_plan_that_cannot_be_written_leaves_nothing_behind() {
+    // The target is a directory: the rename fails after the search.
+    let dir = scratch("unwritable");
+    let target = dir.join("taken");
+    std::fs::create_dir(&target).unwrap();
+    std::fs::write(target.join("inside"), "kept").unwrap();
+    let out = solscope(&["tune", EXAMPLE, "--write-plan", target.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(out.stdout.is_empty(), "nothing on stdout");
+    assert!(
+        err.starts_with(&format!("error: {}: could not write: ", target.display())),
+        "{err}"
+    );
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names, ["taken"], "no temporary file is left behind");
+    assert_eq!(
+        std::fs::read_to_string(target.join("inside")).unwrap(),
+        "kept"
+    );
+    // A directory that does not exist is refused before the search.
+    let missing = dir.join("no/such/dir/tuned.json");
+    let out = solscope(&["tune", EXAMPLE, "--write-plan", missing.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(out.stdout.is_empty());
+    assert!(!dir.join("no").exists());
+}
+
+#[test]
+fn refused_input_leaves_an_old_plan_untouched() {
+    let dir = scratch("old");
+    let target = dir.join("tuned.json");
+    std::fs::write(&target, "old").unwrap();
+    let out = solscope(&[
+        "tune",
+        EXAMPLE,
+        "--runs",
+        "0",
+        "--write-plan",
+        target.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "old");
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+}
