@@ -44,11 +44,8 @@ pub fn run(args: &TuneArgs, limit: usize) -> Result<String, Failure> {
     if tuning.movable == 0 {
         return Err(Failure::Input(Error::invalid(
             args.plan.display().to_string(),
-            if args.pin.is_empty() {
-                "no activity can move: every one is fixed in the step order by its dependencies"
-            } else {
-                "no activity can move: every one is pinned or fixed in the step order by its dependencies"
-            },
+            "no activity can move (every one is pinned, alone, or fixed in the step order \
+             by its dependencies): there is nothing to tune",
         )));
     }
     let mut out = solscope_engine::tuning_json(&plan, &tuning);
