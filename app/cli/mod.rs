@@ -1,4 +1,4 @@
-//! The command line: `solscope schedule|explain|execute|montecarlo|flex|check|generate|screenshot`.
+//! The command line: `solscope schedule|explain|execute|montecarlo|flex|tune|check|generate|screenshot`.
 //!
 //! [`args`] holds every flag (the clap types); [`run`] hands a parsed command to its
 //! module, one per command, and ends it through [`failure`]: a command makes its
@@ -19,6 +19,7 @@ mod montecarlo;
 mod progress;
 mod schedule;
 mod screenshot;
+mod tune;
 
 use std::path::Path;
 use std::process::ExitCode;
@@ -48,6 +49,7 @@ fn dispatch(command: Command) -> Result<ExitCode, Failure> {
         Command::Execute(args) => execute::run(&args, args.input.bytes()?)?,
         Command::Montecarlo(args) => montecarlo::run(&args)?,
         Command::Flex(args) => flex::run(&args, args.input.bytes()?)?,
+        Command::Tune(args) => tune::run(&args, args.input.bytes()?)?,
         Command::Check(args) => check::run(&args, args.input.bytes()?)?,
         Command::Generate(args) => generate::run(&args)?,
     };
