@@ -225,3 +225,68 @@ fn montecarlo_runs_replay_and_shards_merge() {
         assert!(err.contains("--shard"), "{bad}: {err}");
     }
 }
+
+/// The parts of `--runs RUNS` split `of` ways, written to scratch files named
+/// after `tag`, in shard order.
+fn shard_files(tag: &str, runs: u64, of: u64) -> Vec<String> {
+    (0..of)
+        .map(|i| {
+            let args = [
+                "montecarlo",
+                EXAMPLE,
+                "--runs",
+                &runs.to_string(),
+                "--shard",
+                &format!("{i}/{of}"),
+            ];
+            let out = solscope(&args);
+            assert_eq!(
+                out.status.code(),
+                Some(0),
+                "{args:?}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            let part = scratch(
+                &format!("{tag}-{i}.json"),
+                std::str::from_utf8(&out.stdout).unwrap(),
+            );
+            part.to_str().unwrap().to_string()
+        })
+        .collect()
+}
+
+#[test]
+fn shards_past_the_last_run_are_empty_and_merge() {
+    let parts = shard_files("wide", 10, 32);
+    // Shards 10 to 31 hold no run.
+    for (i, part) in parts.iter().enumerate() {
+        let doc: Value = serde_json::from_str(&std::fs::read_to_string(part).unwrap()).unwrap();
+        let records = doc["records"].as_array().unwrap();
+        assert_eq!(records.len(), usize::from(i < 10), "shard {i}");
+        assert_eq!(doc["shard"], serde_json::json!([i, 32]));
+    }
+    let mut args = vec!["montecarlo", "merge"];
+    args.extend(parts.iter().map(String::as_str));
+    let merged = solscope(&args);
+    assert_eq!(merged.status.code(), Some(0));
+    let whole = solscope(&["montecarlo", EXAMPLE, "--runs", "10"]);
+    assert_eq!(whole.status.code(), Some(0));
+    assert_eq!(merged.stdout, whole.stdout);
+    args.push("--csv");
+    let merged_csv = solscope(&args);
+    assert_eq!(merged_csv.status.code(), Some(0));
+    let whole_csv = solscope(&["montecarlo", EXAMPLE, "--runs", "10", "--csv"]);
+    assert_eq!(whole_csv.status.code(), Some(0));
+    assert_eq!(merged_csv.stdout, whole_csv.stdout);
+    // Shards far past the runs, up to the largest K, hold nothing either.
+    let max = u64::MAX.to_string();
+    for shard in [
+        "11/32".to_string(),
+        format!("{}/{max}", u64::MAX - 1),
+        format!("9/{max}"),
+    ] {
+        let doc = ok_json(&["montecarlo", EXAMPLE, "--runs", "10", "--shard", &shard]);
+        let want = usize::from(shard.starts_with('9'));
+        assert_eq!(doc["records"].as_array().unwrap().len(), want, "{shard}");
+    }
+}
