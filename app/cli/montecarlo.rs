@@ -89,22 +89,18 @@ fn merge(parts: &[PathBuf], limit: usize, csv: bool) -> Result<String, Failure> 
     let mut docs = Vec::with_capacity(parts.len());
     for path in parts {
         let text = solscope_engine::read_plan_text(path, limit)?;
-        let doc: solscope_engine::RunsDoc = serde_json::from_str(&text).map_err(|e| {
-            solscope_engine::Error::invalid(
-                format!("{}", path.display()),
-                format!("not a solscope.montecarlo-runs/1 document: {e}"),
-            )
-        })?;
-        docs.push(doc);
+        let name = format!("{}", path.display());
+        let doc = solscope_engine::read_runs(&text, &name)?;
+        docs.push((name, doc));
     }
-    let total: usize = docs.iter().map(|d| d.records.len()).sum();
+    let total: usize = docs.iter().map(|(_, d)| d.records.len()).sum();
     if total as u64 > MAX_RECORDS_MERGED {
         return Err(Failure::Input(solscope_engine::Error::invalid(
             "parts",
             format!("{total} records; at most {MAX_RECORDS_MERGED} are merged in one process"),
         )));
     }
-    let (campaign, records) = solscope_engine::merge_parts(&docs)?;
+    let (campaign, records) = solscope_engine::merge_files(&docs)?;
     if csv {
         Ok(solscope_engine::runs_csv(&campaign, &records))
     } else {
