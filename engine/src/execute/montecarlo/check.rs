@@ -43,8 +43,13 @@ impl<'a> At<'a> {
 }
 
 /// Reads a document of run records (a shard's output) from `text`, the
-/// contents of the file `name`, and checks it (see [`check_part`]); errors
-/// name the file and the JSON path.
+/// contents of the file `name`, and checks it: its format, its campaign header,
+/// its shard `[i, k]` with `i < k`, and every record against them (the run
+/// belongs to the shard and is below the campaign's runs, in increasing run
+/// order; lengths of `durations`, `outcomes` and `spans`; outcome characters;
+/// spans present exactly for the activities that ran; violation names; loss and
+/// culprit indices). Errors name the file and the JSON path
+/// (`part-3.json: records[4].outcomes: ...`).
 pub fn read_runs(text: &str, name: &str) -> Result<RunsDoc, Error> {
     let doc: RunsDoc = serde_json::from_str(text).map_err(|e| {
         Error::invalid(
@@ -287,14 +292,170 @@ pub(super) fn merge_at(
         return Err(Error::invalid("parts", format!("run {k} is missing")));
     }
     if records.len() as u64 != runs {
+        // Every run present is below `runs` and distinct: the first one after
+        // them is missing.
         return Err(Error::invalid(
             "parts",
             format!(
-                "{} of {runs} runs present (run {} is missing)",
+                "run {} is missing ({} of {runs} runs present)",
                 records.len(),
                 records.len()
             ),
         ));
     }
     Ok((first.campaign.clone(), records))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{LossRecord, merge_parts};
+    use super::*;
+    use crate::execute::Policy;
+
+    /// A campaign of two activities (the second uncertain) and `runs` runs.
+    fn campaign(runs: u64) -> Campaign {
+        Campaign {
+            plan: "p".into(),
+            plan_hash: "0".into(),
+            seed: 1,
+            runs,
+            activities: vec!["a".into(), "b".into()],
+            mandatory: vec![false, false],
+            predicted: vec![Some((0, 10)), Some((10, 20))],
+            uncertain: vec![1],
+            policy: Policy::Replan,
+        }
+    }
+
+    fn record(run: u64) -> RunRecord {
+        RunRecord {
+            run,
+            durations: vec![12],
+            outcomes: "cn".into(),
+            spans: vec![Some((0, 10)), None],
+            lowest_soc: (0, 0),
+            handover_soc: None,
+            violations: vec![],
+            losses: vec![LossRecord {
+                activity: 1,
+                cause: "held".into(),
+                cycle_time: Some(0),
+                culprits: vec![0],
+            }],
+        }
+    }
+
+    /// Runs 0..4 in shards 0/2 and 1/2.
+    fn parts() -> Vec<RunsDoc> {
+        (0..2)
+            .map(|i| RunsDoc {
+                format: MONTECARLO_RUNS_FORMAT.into(),
+                campaign: campaign(4),
+                shard: (i, 2),
+                records: vec![record(i), record(i + 2)],
+            })
+            .collect()
+    }
+
+    /// The message of merging `parts` with `edit` applied to the second.
+    fn refused(edit: impl Fn(&mut RunsDoc)) -> String {
+        let mut parts = parts();
+        edit(&mut parts[1]);
+        match merge_parts(&parts) {
+            Ok(_) => String::new(),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn sound_parts_merge_into_every_run() {
+        let merged = merge_parts(&parts()).map(|(_, r)| r.iter().map(|r| r.run).collect());
+        assert_eq!(merged.ok(), Some(vec![0u64, 1, 2, 3]));
+    }
+
+    #[test]
+    fn every_corrupted_record_is_refused_at_its_path() {
+        for (edit, want) in [
+            (
+                (|d: &mut RunsDoc| d.records[1].outcomes = "xn".into()) as fn(&mut RunsDoc),
+                "parts[1].records[1].outcomes: character 0 is 'x'",
+            ),
+            (
+                |d| d.records[0].outcomes = "c".into(),
+                "parts[1].records[0].outcomes: 1 entries for 2 activities",
+            ),
+            (
+                |d| d.records[0].losses[0].activity = 999_999,
+                "parts[1].records[0].losses[0].activity: 999999 is not an activity index",
+            ),
+            (
+                |d| d.records[0].losses[0].culprits = vec![2],
+                "parts[1].records[0].losses[0].culprits[0]: 2 is not an activity index",
+            ),
+            (
+                |d| d.records[0].losses[0].activity = 0,
+                "parts[1].records[0].losses[0].activity: activity 0 (a) was not lost",
+            ),
+            (|d| d.shard = (1, 0), "parts[1].shard: expected [i, k]"),
+            (
+                |d| d.records[0].run = 2,
+                "parts[1].records[0].run: run 2 is not in shard [1, 2]",
+            ),
+            (
+                |d| d.records[1].run = 5,
+                "parts[1].records[1].run: run 5 is not below",
+            ),
+            (
+                |d| d.records[0].durations.clear(),
+                "parts[1].records[0].durations: 0 entries",
+            ),
+            (
+                |d| d.records[0].spans[1] = Some((5, 6)),
+                "parts[1].records[0].spans[1]: a span",
+            ),
+            (
+                |d| d.records[0].spans[0] = None,
+                "parts[1].records[0].spans[0]: null",
+            ),
+            (
+                |d| d.records[0].violations = vec!["nope".into()],
+                "parts[1].records[0].violations[0]",
+            ),
+            (
+                |d| d.records.reverse(),
+                "parts[1].records[1].run: run 1 after run 3",
+            ),
+            (
+                |d| d.campaign.seed = 2,
+                "parts[1].campaign: a part of another campaign",
+            ),
+            (
+                |d| d.campaign.uncertain = vec![2],
+                "parts[1].campaign.uncertain[0]",
+            ),
+            (
+                |d| d.campaign.mandatory.pop().map_or((), drop),
+                "parts[1].campaign.mandatory",
+            ),
+            (|d| d.format = "x".into(), "parts[1].format"),
+            (
+                |d| d.records.pop().map_or((), drop),
+                "parts: run 3 is missing",
+            ),
+        ] {
+            let err = refused(edit);
+            assert!(err.starts_with(want), "{want}: {err}");
+        }
+    }
+
+    #[test]
+    fn a_run_in_two_parts_is_refused() {
+        let mut parts = parts();
+        parts.push(parts[0].clone());
+        let err = merge_parts(&parts).err().map(|e| e.to_string());
+        assert_eq!(
+            err.as_deref(),
+            Some("parts[2].records[0].run: run 0 appears twice (also in parts[0])")
+        );
+    }
 }
