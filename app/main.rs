@@ -12,7 +12,10 @@ use clap::Parser;
 use solscope::cli::{Cli, Failure};
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return solscope::cli::failure::usage(&e),
+    };
     match cli.command {
         Some(command) => solscope::cli::run(command),
         None => run_app(cli.plan.as_deref()),

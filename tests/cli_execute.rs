@@ -225,3 +225,184 @@ fn montecarlo_runs_replay_and_shards_merge() {
         assert!(err.contains("--shard"), "{bad}: {err}");
     }
 }
+
+/// The parts of `--runs RUNS` split `of` ways, written to scratch files named
+/// after `tag`, in shard order.
+fn shard_files(tag: &str, runs: u64, of: u64) -> Vec<String> {
+    (0..of)
+        .map(|i| {
+            let args = [
+                "montecarlo",
+                EXAMPLE,
+                "--runs",
+                &runs.to_string(),
+                "--shard",
+                &format!("{i}/{of}"),
+            ];
+            let out = solscope(&args);
+            assert_eq!(
+                out.status.code(),
+                Some(0),
+                "{args:?}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            let part = scratch(
+                &format!("{tag}-{i}.json"),
+                std::str::from_utf8(&out.stdout).unwrap(),
+            );
+            part.to_str().unwrap().to_string()
+        })
+        .collect()
+}
+
+#[test]
+fn shards_past_the_last_run_are_empty_and_merge() {
+    let parts = shard_files("wide", 10, 32);
+    // Shards 10 to 31 hold no run.
+    for (i, part) in parts.iter().enumerate() {
+        let doc: Value = serde_json::from_str(&std::fs::read_to_string(part).unwrap()).unwrap();
+        let records = doc["records"].as_array().unwrap();
+        assert_eq!(records.len(), usize::from(i < 10), "shard {i}");
+        assert_eq!(doc["shard"], serde_json::json!([i, 32]));
+    }
+    let mut args = vec!["montecarlo", "merge"];
+    args.extend(parts.iter().map(String::as_str));
+    let merged = solscope(&args);
+    assert_eq!(merged.status.code(), Some(0));
+    let whole = solscope(&["montecarlo", EXAMPLE, "--runs", "10"]);
+    assert_eq!(whole.status.code(), Some(0));
+    assert_eq!(merged.stdout, whole.stdout);
+    args.push("--csv");
+    let merged_csv = solscope(&args);
+    assert_eq!(merged_csv.status.code(), Some(0));
+    let whole_csv = solscope(&["montecarlo", EXAMPLE, "--runs", "10", "--csv"]);
+    assert_eq!(whole_csv.status.code(), Some(0));
+    assert_eq!(merged_csv.stdout, whole_csv.stdout);
+    // Shards far past the runs, up to the largest K, hold nothing either.
+    let max = u64::MAX.to_string();
+    for shard in [
+        "11/32".to_string(),
+        format!("{}/{max}", u64::MAX - 1),
+        format!("9/{max}"),
+    ] {
+        let doc = ok_json(&["montecarlo", EXAMPLE, "--runs", "10", "--shard", &shard]);
+        let want = usize::from(shard.starts_with('9'));
+        assert_eq!(doc["records"].as_array().unwrap().len(), want, "{shard}");
+    }
+}
+
+/// Merges the three parts of a 30-run campaign with `edit` applied to the
+/// part of shard 1 (written as `part-1.json`): the merge's output.
+fn merge_edited(tag: &str, edit: impl Fn(&mut Value)) -> Output {
+    let parts = shard_files(tag, 30, 3);
+    let mut doc: Value =
+        serde_json::from_str(&std::fs::read_to_string(&parts[1]).unwrap()).unwrap();
+    edit(&mut doc);
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("cli_execute")
+        .join(tag);
+    std::fs::create_dir_all(&dir).unwrap();
+    let edited = dir.join("part-1.json");
+    std::fs::write(&edited, serde_json::to_string_pretty(&doc).unwrap()).unwrap();
+    let edited = edited.to_str().unwrap().to_string();
+    let args = ["montecarlo", "merge", &parts[0], &edited, &parts[2]];
+    // Unedited, the same parts merge.
+    let fine = solscope(&["montecarlo", "merge", &parts[0], &parts[1], &parts[2]]);
+    assert_eq!(fine.status.code(), Some(0), "{tag}");
+    solscope(&args)
+}
+
+/// The merge was refused with nothing on stdout and the message names the
+/// edited file and `path`.
+fn refused_at(out: &Output, path: &str) -> String {
+    let err = String::from_utf8(out.stderr.clone()).unwrap();
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(out.stdout.is_empty(), "stdout not empty: {err}");
+    assert!(err.contains(&format!("part-1.json: {path}: ")), "{err}");
+    err
+}
+
+#[test]
+fn merge_refuses_an_outcome_character_out_of_its_enumeration() {
+    let out = merge_edited("outcome-char", |doc| {
+        let o = doc["records"][4]["outcomes"].as_str().unwrap().to_string();
+        doc["records"][4]["outcomes"] = Value::from(format!("x{}", &o[1..]));
+    });
+    let err = refused_at(&out, "records[4].outcomes");
+    assert!(err.contains("'x'"), "{err}");
+}
+
+#[test]
+fn merge_refuses_a_loss_of_no_activity() {
+    let out = merge_edited("loss-index", |doc| {
+        let loss = serde_json::json!({
+            "activity": 999999, "cause": "aborted", "cycle_time": null, "culprits": []
+        });
+        doc["records"][2]["losses"]
+            .as_array_mut()
+            .unwrap()
+            .push(loss);
+    });
+    let err = refused_at(&out, "records[2].losses[0].activity");
+    assert!(err.contains("999999"), "{err}");
+}
+
+#[test]
+fn merge_refuses_outcomes_one_character_short() {
+    let out = merge_edited("outcome-short", |doc| {
+        let o = doc["records"][0]["outcomes"].as_str().unwrap().to_string();
+        doc["records"][0]["outcomes"] = Value::from(&o[1..]);
+    });
+    refused_at(&out, "records[0].outcomes");
+}
+
+#[test]
+fn merge_refuses_a_shard_with_i_not_below_k() {
+    let out = merge_edited("shard-1-0", |doc| {
+        doc["shard"] = serde_json::json!([1, 0]);
+    });
+    refused_at(&out, "shard");
+}
+
+#[test]
+fn merge_refuses_runs_outside_the_shard_or_the_campaign() {
+    // Run 3 is not 1 modulo 3.
+    let out = merge_edited("run-other-shard", |doc| {
+        doc["records"][0]["run"] = Value::from(3);
+    });
+    refused_at(&out, "records[0].run");
+    // Run 31 is 1 modulo 3 but not below 30.
+    let out = merge_edited("run-past-runs", |doc| {
+        let last = doc["records"].as_array().unwrap().len() - 1;
+        doc["records"][last]["run"] = Value::from(31);
+    });
+    refused_at(&out, "records[9].run");
+    // A header that disagrees with the other parts'.
+    let out = merge_edited("header", |doc| {
+        doc["campaign"]["seed"] = Value::from(99);
+    });
+    refused_at(&out, "campaign");
+}
+
+#[test]
+fn merge_refuses_a_run_given_twice() {
+    let parts = shard_files("twice", 30, 3);
+    let out = solscope(&[
+        "montecarlo",
+        "merge",
+        &parts[0],
+        &parts[1],
+        &parts[2],
+        &parts[1],
+    ]);
+    let err = String::from_utf8(out.stderr.clone()).unwrap();
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(out.stdout.is_empty());
+    assert!(
+        err.contains(&format!(
+            "{}: records[0].run: run 1 appears twice",
+            parts[1]
+        )),
+        "{err}"
+    );
+}

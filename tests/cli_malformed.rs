@@ -9,7 +9,7 @@
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Stdio};
 
 /// `(file, expected JSON path, fragment of the reason)`.
 const EXPECTED: &[(&str, &str, &str)] = &[
@@ -428,4 +428,82 @@ fn a_million_activities_are_refused_cleanly() {
         );
     }
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `solscope ARGS` with standard output and standard error as given.
+fn with_streams(args: &[&str], stdout: Stdio, stderr: Stdio) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_solscope"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdout(stdout)
+        .stderr(stderr)
+        .output()
+        .expect("solscope runs")
+}
+
+/// `/dev/full`, where every write fails with "no space left on device".
+fn full() -> Stdio {
+    Stdio::from(
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .expect("/dev/full"),
+    )
+}
+
+#[test]
+fn a_full_standard_error_ends_with_the_status_alone() {
+    // The error cannot be said; the status still says it, with no panic (101).
+    let out = with_streams(&["check", "/nonexistent"], Stdio::piped(), full());
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    // A usage error, likewise.
+    let out = with_streams(&["check", "--bogus"], Stdio::piped(), full());
+    assert_eq!(out.status.code(), Some(2));
+}
+
+#[test]
+fn help_and_version_that_cannot_be_written_fail() {
+    for args in [&["--help"][..], &["check", "--help"], &["--version"]] {
+        let out = with_streams(args, full(), Stdio::piped());
+        assert_eq!(out.status.code(), Some(1), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.starts_with("error: could not write the output to standard output: "),
+            "{args:?}: {err}"
+        );
+        // Written, they succeed.
+        let out = with_streams(args, Stdio::piped(), Stdio::piped());
+        assert_eq!(out.status.code(), Some(0), "{args:?}");
+        assert!(!out.stdout.is_empty(), "{args:?}");
+    }
+}
+
+#[test]
+fn a_reader_that_stops_early_ends_the_output_quietly() {
+    // As `solscope schedule PLAN | head -c 10` once head has exited: the reader's
+    // end of the pipe is closed before anything is written (docs/semantics.md,
+    // "Output streams": exit status 0, nothing on standard error).
+    for args in [
+        &["schedule", "assets/default-plan.json"][..],
+        &["explain", "assets/examples/pitfall.json"],
+        &["generate", "--activities", "2000"],
+        &["--help"],
+    ] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_solscope"))
+            .args(args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("solscope runs");
+        drop(child.stdout.take());
+        let out = child.wait_with_output().expect("solscope ends");
+        assert_eq!(out.status.code(), Some(0), "{args:?}");
+        assert!(
+            out.stderr.is_empty(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
 }

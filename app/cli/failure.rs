@@ -14,8 +14,9 @@ pub enum Failure {
     Input(solscope_engine::Error),
     /// The output could not be made (exit status 1).
     Output(String),
-    /// Standard output could not be written (exit status 1; said on standard
-    /// error unless the reader stopped early).
+    /// Standard output could not be written (exit status 1, said on standard
+    /// error; a reader that stopped early is no failure: exit status 0, nothing
+    /// said).
     Stdout(std::io::Error),
 }
 
@@ -30,20 +31,35 @@ impl Failure {
     pub fn report(self) -> ExitCode {
         match self {
             Failure::Input(err) => {
-                eprintln!("error: {err}");
+                say(&format!("error: {err}"));
                 ExitCode::from(EXIT_INVALID)
             }
             Failure::Output(what) => {
-                eprintln!("error: {what}");
+                say(&format!("error: {what}"));
                 ExitCode::FAILURE
             }
-            // A reader that stopped early (`| head`) wants no more: not news.
-            Failure::Stdout(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::FAILURE,
+            // A reader that stopped early (`| head`) wants no more: the output
+            // ends quietly, as when `head` closes any tool's output.
+            Failure::Stdout(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
             Failure::Stdout(e) => {
-                eprintln!("error: could not write the output to standard output: {e}");
+                say(&format!(
+                    "error: could not write the output to standard output: {e}"
+                ));
                 ExitCode::FAILURE
             }
         }
+    }
+}
+
+/// Writes one line on standard error. Standard error is where failures are
+/// reported: when it cannot be written itself (`2>/dev/full`, a closed
+/// terminal) there is nowhere left to report that, so the write's failure is
+/// dropped here and the exit status alone carries what went wrong.
+pub fn say(line: &str) {
+    let mut err = std::io::stderr().lock();
+    let written = writeln!(err, "{line}").and_then(|()| err.flush());
+    if written.is_err() {
+        // Unreportable (see above): the caller's exit status stands for it.
     }
 }
 
@@ -60,4 +76,24 @@ pub fn to_json<T: serde::Serialize>(value: &T) -> Result<String, Failure> {
     serde_json::to_string_pretty(value)
         .map(|text| text + "\n")
         .map_err(|e| Failure::Output(format!("could not write the document as JSON: {e}")))
+}
+
+/// Ends a command line that clap answered itself: the help or version text on
+/// standard output (exit status 0; 1 with a message when it could not be
+/// written, 0 when the reader stopped early, as for any output), or a usage
+/// error on standard error (exit status 2, whether or not it could be written).
+pub fn usage(e: &clap::Error) -> ExitCode {
+    let code = u8::try_from(e.exit_code()).unwrap_or(EXIT_INVALID);
+    if e.use_stderr() {
+        // On standard error: if it cannot be written, the status alone says it.
+        if e.print().is_err() {
+            // Unreportable (see `say`): the usage error's status stands for it.
+        }
+        return ExitCode::from(code);
+    }
+    let printed = e.print().and_then(|()| std::io::stdout().flush());
+    match printed {
+        Ok(()) => ExitCode::from(code),
+        Err(err) => Failure::Stdout(err).report(),
+    }
 }

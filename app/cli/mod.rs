@@ -6,7 +6,7 @@
 //! prints nothing on standard output (`explain` streams its output, once the plan
 //! has loaded and scheduled). Invalid input prints a path-named message on
 //! standard error and exits with status 2; an output that could not be made or
-//! written exits with status 1.
+//! written exits with status 1 (a reader that stopped early: status 0, quietly).
 
 pub mod args;
 mod check;

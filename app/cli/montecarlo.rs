@@ -47,7 +47,7 @@ fn campaign(args: &MontecarloArgs, limit: usize) -> Result<String, Failure> {
     };
     // Every record this process runs is kept until it prints: a bigger
     // share is split into more shards.
-    let share = (runs - part).div_ceil(of);
+    let share = shard_size(part, of, runs);
     if share > MAX_RECORDS_PER_PROCESS {
         return Err(Failure::Input(solscope_engine::Error::invalid(
             "--runs",
@@ -63,7 +63,9 @@ fn campaign(args: &MontecarloArgs, limit: usize) -> Result<String, Failure> {
         &default_name(plan),
         args.policy.into(),
     )?;
-    let indices: Vec<u64> = (part..runs).step_by(of as usize).collect();
+    // A step beyond the address space takes only the first run (if any).
+    let step = usize::try_from(of).unwrap_or(usize::MAX);
+    let indices: Vec<u64> = (part..runs).step_by(step).collect();
     let records = with_progress(indices.len() as u64, |tick| {
         solscope_engine::campaign_runs(&loaded.plan, &campaign, &indices, tick, None)
     })?
@@ -87,26 +89,33 @@ fn merge(parts: &[PathBuf], limit: usize, csv: bool) -> Result<String, Failure> 
     let mut docs = Vec::with_capacity(parts.len());
     for path in parts {
         let text = solscope_engine::read_plan_text(path, limit)?;
-        let doc: solscope_engine::RunsDoc = serde_json::from_str(&text).map_err(|e| {
-            solscope_engine::Error::invalid(
-                format!("{}", path.display()),
-                format!("not a solscope.montecarlo-runs/1 document: {e}"),
-            )
-        })?;
-        docs.push(doc);
+        let name = format!("{}", path.display());
+        let doc = solscope_engine::read_runs(&text, &name)?;
+        docs.push((name, doc));
     }
-    let total: usize = docs.iter().map(|d| d.records.len()).sum();
+    let total: usize = docs.iter().map(|(_, d)| d.records.len()).sum();
     if total as u64 > MAX_RECORDS_MERGED {
         return Err(Failure::Input(solscope_engine::Error::invalid(
             "parts",
             format!("{total} records; at most {MAX_RECORDS_MERGED} are merged in one process"),
         )));
     }
-    let (campaign, records) = solscope_engine::merge_parts(&docs)?;
+    let (campaign, records) = solscope_engine::merge_files(&docs)?;
     if csv {
         Ok(solscope_engine::runs_csv(&campaign, &records))
     } else {
         to_json(&solscope_engine::summarize(&campaign, &records))
+    }
+}
+
+/// How many of the runs `0..runs` shard `part` of `of` holds (the indices
+/// `part, part + of, ...` below `runs`): none when `part >= runs`, which is a
+/// shard like any other (it merges as zero records). Needs `of >= 1`.
+fn shard_size(part: u64, of: u64, runs: u64) -> u64 {
+    match runs.checked_sub(part) {
+        None | Some(0) => 0,
+        // `left >= 1`: the first index, then one per whole step in the rest.
+        Some(left) => (left - 1) / of.max(1) + 1,
     }
 }
 
@@ -132,6 +141,35 @@ fn parse_shard(text: &str) -> Result<(u64, u64), Failure> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_shard_holds_the_indices_below_runs_without_wrapping() {
+        // Counted by hand: 10 runs in 32 shards, 3 in 4, 10 in 3.
+        assert_eq!(shard_size(0, 32, 10), 1);
+        assert_eq!(shard_size(9, 32, 10), 1);
+        assert_eq!(shard_size(10, 32, 10), 0);
+        assert_eq!(shard_size(11, 32, 10), 0);
+        assert_eq!(shard_size(31, 32, 10), 0);
+        assert_eq!(shard_size(0, 3, 10), 4);
+        assert_eq!(shard_size(1, 3, 10), 3);
+        assert_eq!(shard_size(2, 3, 10), 3);
+        assert_eq!(shard_size(0, 1, 10), 10);
+        assert_eq!(shard_size(0, u64::MAX, u64::MAX), 1);
+        assert_eq!(shard_size(u64::MAX - 1, u64::MAX, u64::MAX), 1);
+        assert_eq!(shard_size(0, 1, u64::MAX), u64::MAX);
+        assert_eq!(shard_size(u64::MAX, u64::MAX, 0), 0);
+        // Every shard's size is the number of indices it runs.
+        for runs in 0..20u64 {
+            for of in 1..25u64 {
+                let total: u64 = (0..of).map(|part| shard_size(part, of, runs)).sum();
+                assert_eq!(total, runs, "{runs} runs in {of} shards");
+                for part in 0..of {
+                    let n = (part..runs).step_by(of as usize).count() as u64;
+                    assert_eq!(shard_size(part, of, runs), n, "{part}/{of} of {runs}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn shards_are_i_of_k_with_i_below_k() {

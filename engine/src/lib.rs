@@ -37,7 +37,8 @@ pub use execute::{
     Loss, LossRecord, LostSummary, MONTECARLO_FORMAT, MONTECARLO_RUNS_FORMAT, PairSummary, Policy,
     Predictor, Quantiles, RunOutcome, RunRecord, RunsDoc, Summary, Trigger, Violation,
     ViolationKind, campaign, campaign_runs, campaign_with, execute, execute_with, load_actuals,
-    loss, loss_line, losses, merge_parts, run_record, sample_actuals, sample_run, summarize,
+    loss, loss_line, losses, merge_files, merge_parts, read_runs, run_record, sample_actuals,
+    sample_run, summarize,
 };
 pub use explain::{
     Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,

@@ -30,7 +30,8 @@ pub use cycle::Dropped;
 pub use montecarlo::{
     ActivitySummary, Campaign, CauseCount, Distribution, LimitSummary, LossRecord, LostSummary,
     MONTECARLO_FORMAT, MONTECARLO_RUNS_FORMAT, PairSummary, Predictor, Quantiles, RunRecord,
-    RunsDoc, Summary, campaign, campaign_runs, campaign_with, merge_parts, run_record, summarize,
+    RunsDoc, Summary, campaign, campaign_runs, campaign_with, merge_files, merge_parts, read_runs,
+    run_record, summarize,
 };
 pub use policy::Policy;
 pub use record::{ExecutedProfile, Violation, ViolationKind};

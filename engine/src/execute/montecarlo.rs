@@ -24,6 +24,10 @@ use crate::error::Error;
 use crate::model::Plan;
 use crate::units::{MJ_PER_WH, wh};
 
+mod check;
+
+pub use check::read_runs;
+
 /// The value of `format` in a Monte Carlo summary.
 pub const MONTECARLO_FORMAT: &str = "solscope.montecarlo/1";
 /// The value of `format` in a document of run records (a shard's output).
@@ -698,47 +702,25 @@ fn pairs(campaign: &Campaign, records: &[&RunRecord]) -> Vec<PairSummary> {
 }
 
 /// Checks that `parts` are shards of one campaign covering every run exactly
-/// once, and returns the campaign and all records.
+/// once, every record consistent with its campaign header (see
+/// [`read_runs`]), and returns the campaign and all records; errors name the
+/// part by its index (`parts[2].records[4].outcomes`).
 pub fn merge_parts(parts: &[RunsDoc]) -> Result<(Campaign, Vec<RunRecord>), Error> {
-    let Some(first) = parts.first() else {
-        return Err(Error::invalid("parts", "no parts to merge"));
-    };
-    let mut records = Vec::new();
-    for (i, p) in parts.iter().enumerate() {
-        if p.format != MONTECARLO_RUNS_FORMAT {
-            return Err(Error::invalid(
-                format!("parts[{i}].format"),
-                format!(
-                    "expected \"{MONTECARLO_RUNS_FORMAT}\", found \"{}\"",
-                    p.format
-                ),
-            ));
-        }
-        if p.campaign != first.campaign {
-            return Err(Error::invalid(
-                format!("parts[{i}].campaign"),
-                "a part of another campaign (plan, seed or run count differ)",
-            ));
-        }
-        records.extend(p.records.iter().cloned());
-    }
-    records.sort_by_key(|r| r.run);
-    let runs = first.campaign.runs;
-    for (k, r) in records.iter().enumerate() {
-        if r.run != k as u64 {
-            let what = if k > 0 && records[k - 1].run == r.run {
-                format!("run {} appears twice", r.run)
-            } else {
-                format!("run {k} is missing")
-            };
-            return Err(Error::invalid("parts", what));
-        }
-    }
-    if records.len() as u64 != runs {
-        return Err(Error::invalid(
-            "parts",
-            format!("{} of {runs} runs present", records.len()),
-        ));
-    }
-    Ok((first.campaign.clone(), records))
+    let names: Vec<String> = (0..parts.len()).map(|i| format!("parts[{i}]")).collect();
+    let named: Vec<(check::At<'_>, &RunsDoc)> = names
+        .iter()
+        .zip(parts)
+        .map(|(name, doc)| (check::At::path(name), doc))
+        .collect();
+    check::merge_at(&named)
+}
+
+/// [`merge_parts`] of parts read from files: `(file name, part)`; errors name
+/// the file and the JSON path in it (`part-3.json: records[4].outcomes`).
+pub fn merge_files(parts: &[(String, RunsDoc)]) -> Result<(Campaign, Vec<RunRecord>), Error> {
+    let named: Vec<(check::At<'_>, &RunsDoc)> = parts
+        .iter()
+        .map(|(name, doc)| (check::At::file(name), doc))
+        .collect();
+    check::merge_at(&named)
 }
