@@ -5,7 +5,8 @@
 //! docs/performance.md.
 //!
 //! `cargo bench -- --quick` measures only 100 and 1,000 activities;
-//! `--profile standard|realistic` only one generator profile (default: both);
+//! `--profile standard|realistic|starved` only one generator profile (default: all
+//! three);
 //! `--sweep N` schedules seeds 1..=N of each size and profile once, explains
 //! every failure without suggestions, and reports for each the median and the worst (the plan of a sweep that costs most, not only the seed-1
 //! plan the table measures). `--execution` measures executions instead: the bundled
@@ -89,6 +90,26 @@ fn arg(flag: &str) -> Option<String> {
         .and_then(|i| args.get(i + 1).cloned())
 }
 
+/// The generator profiles `--profile` names (default: all three). `starved` is
+/// the over-subscribed, energy-starved plan, where most placements fail on the
+/// battery or handover minimum.
+fn chosen_profiles() -> Vec<(&'static str, Profile)> {
+    let all = [
+        ("standard", Profile::Standard),
+        ("realistic", Profile::Realistic),
+        ("starved", Profile::Starved),
+    ];
+    let named: Vec<_> = all
+        .into_iter()
+        .filter(|(n, _)| arg("--profile").is_some_and(|p| p == *n))
+        .collect();
+    if named.is_empty() {
+        all.to_vec()
+    } else {
+        named
+    }
+}
+
 fn main() {
     let quick = std::env::args().any(|a| a == "--quick");
     let sizes: &[(usize, usize, usize)] = if quick {
@@ -96,14 +117,7 @@ fn main() {
     } else {
         &[(100, 1, 5), (1000, 3, 3), (10_000, 30, 1)]
     };
-    let profiles: Vec<(&str, Profile)> = match arg("--profile").as_deref() {
-        Some("standard") => vec![("standard", Profile::Standard)],
-        Some("realistic") => vec![("realistic", Profile::Realistic)],
-        _ => vec![
-            ("standard", Profile::Standard),
-            ("realistic", Profile::Realistic),
-        ],
-    };
+    let profiles = chosen_profiles();
     if std::env::args().any(|a| a == "--execution") {
         execution();
         return;

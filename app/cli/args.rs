@@ -303,6 +303,9 @@ pub enum Profile {
     /// one window per sol, long expanding activities, night work, tight energy,
     /// data and handover limits. Most, not all, activities schedule.
     Realistic,
+    /// The realistic shapes on a battery near its minimum for days: most
+    /// activities fail, most of them on the battery or handover minimum.
+    Starved,
 }
 
 impl From<Profile> for solscope_engine::Profile {
@@ -310,6 +313,7 @@ impl From<Profile> for solscope_engine::Profile {
         match p {
             Profile::Standard => solscope_engine::Profile::Standard,
             Profile::Realistic => solscope_engine::Profile::Realistic,
+            Profile::Starved => solscope_engine::Profile::Starved,
         }
     }
 }

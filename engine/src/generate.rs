@@ -1,4 +1,4 @@
-//! Random plans, for stress tests and benchmarks, in two profiles ([`Profile`]).
+//! Random plans, for stress tests and benchmarks, in three profiles ([`Profile`]).
 //! Deterministic per seed.
 //!
 //! - **standard** ([`generate_plan`]): per sol, relay and direct-to-Earth passes, a
@@ -12,6 +12,13 @@
 //!   activities, start and end effects on four states, a drill with a sealing step
 //!   that `meets` it, five heated zones with operable periods, UHF and X-band passes
 //!   with `uhf_interactions`, and a plan offset from local midnight.
+//! - **starved** ([`Profile::Starved`]): the realistic plan, over-subscribed on a
+//!   battery that hovers near its minimum for days: a weak RTG, a handover
+//!   minimum near the battery's, `min_sleep` without `min_awake`, wider or absent
+//!   windows and more preheated activities against operable periods. Most
+//!   activities fail, most of them in placement on `min_soc` or `handover_soc` at
+//!   every start they try: the plans where a failing placement must be proven
+//!   cheaply.
 
 use std::collections::BTreeMap;
 
@@ -398,6 +405,10 @@ pub enum Profile {
     /// activities, night activities, start and end effects, and tighter energy,
     /// data and handover limits. Most, not all, activities schedule.
     Realistic,
+    /// The realistic plan's shapes on a battery near its minimum for days, with
+    /// wider or absent windows and more preheats: about nine activities in ten
+    /// fail, most in placement on the battery or handover minimum.
+    Starved,
 }
 
 /// A plan of `activities` activities over `sols` sols (at least one) in the given
@@ -406,6 +417,7 @@ pub fn generate_plan_with(profile: Profile, activities: usize, sols: usize, seed
     match profile {
         Profile::Standard => generate_plan(activities, sols, seed),
         Profile::Realistic => Realistic::new(activities, sols, seed).plan(),
+        Profile::Starved => starved(Realistic::new(activities, sols, seed).plan(), seed),
     }
 }
 
@@ -1123,6 +1135,53 @@ impl Realistic {
     }
 }
 
+/// The starved profile: `plan`, a realistic plan, on a battery near its minimum
+/// for days (a weak RTG, little charge above `min_soc`, a handover minimum just
+/// above it), with `min_sleep` but no `min_awake`, and its fillers made harder to
+/// place on energy: a third lose their windows, a third get windows six hours
+/// wider (without cutoffs), and about a third of the awake ones are preheated in a
+/// zone with operable periods. Its own random stream, so the realistic profile is
+/// unchanged.
+fn starved(mut plan: Plan, seed: u64) -> Plan {
+    let mut rng = Rng(seed ^ 0x05_7A2F_ED00_0000);
+    plan.name = plan.name.map(|n| n.replacen("(realistic)", "(starved)", 1));
+    plan.battery = Battery {
+        capacity: 2650.0,
+        initial: 1020.5,
+        min_soc: 950.0,
+    };
+    plan.power.rtg = 52.5;
+    plan.sleep.min_awake = 0;
+    if let Some(h) = plan.handover.as_mut() {
+        h.min_soc = Some(1010.0);
+    }
+    let horizon_end = plan.horizon.end;
+    for a in &mut plan.activities {
+        if !a.id.contains("_f") {
+            continue;
+        }
+        let longest = a.duration.max();
+        let last = (horizon_end - longest - 1800).max(1800);
+        match rng.range(0, 2) {
+            0 => a.windows = None,
+            1 => {
+                if let Some(ws) = a.windows.as_mut() {
+                    for w in ws {
+                        w.end = (w.end + 6 * HOUR).min(last).max(w.start);
+                        w.cutoff = None;
+                    }
+                }
+            }
+            _ => {}
+        }
+        if a.awake == AwakeMode::Required && a.thermal_zones.is_empty() && rng.chance(35) {
+            let zone = if rng.chance(50) { "arm" } else { "mobility" };
+            a.thermal_zones = vec![zone.into()];
+        }
+    }
+    plan
+}
+
 fn require(state: &str, value: &str) -> StateRequirement {
     StateRequirement {
         state: state.into(),
@@ -1430,6 +1489,58 @@ mod tests {
                     "{what}: sol {s}"
                 );
             }
+        }
+    }
+
+    /// Starved plans are valid (no warning but the step-order remark), keep
+    /// the realistic plan's activities, and fail as the profile says: at least
+    /// seven activities in ten (about nine at 333 a sol), most of those in
+    /// placement with starts rejected on energy.
+    #[test]
+    fn starved_plans_mostly_fail_on_energy() {
+        use crate::scheduler::{FailurePhase, Outcome};
+        for (n, sols, seed) in [(300, 3, 1), (300, 3, 5), (1000, 3, 2)] {
+            let what = format!("{n} activities, {sols} sols, seed {seed}");
+            let plan = generate_plan_with(Profile::Starved, n, sols, seed);
+            assert_eq!(plan, generate_plan_with(Profile::Starved, n, sols, seed));
+            let realistic = generate_plan_with(Profile::Realistic, n, sols, seed);
+            let ids = |p: &Plan| {
+                p.activities
+                    .iter()
+                    .map(|a| a.id.clone())
+                    .collect::<Vec<_>>()
+            };
+            assert_eq!(ids(&plan), ids(&realistic), "{what}");
+            assert_ne!(plan, realistic, "{what}");
+            let text = serde_json::to_string_pretty(&plan).expect("serialises");
+            let loaded = crate::load::load_plan(&text).expect(&what);
+            for w in &loaded.warnings {
+                assert!(
+                    w.message.contains("optional activity"),
+                    "{what}: unexpected warning {w}"
+                );
+            }
+            assert_eq!(plan.sleep.min_awake, 0, "{what}");
+            assert!(plan.sleep.min_sleep > 0, "{what}");
+            let sched = crate::scheduler::schedule(&plan).expect("schedules");
+            let failed = sched
+                .steps
+                .iter()
+                .filter(|x| matches!(x.outcome, Outcome::Failed(_)))
+                .count();
+            let on_energy = sched
+                .steps
+                .iter()
+                .filter(|x| {
+                    x.outcome == Outcome::Failed(FailurePhase::Placement)
+                        && x.rejected.soc.is_some()
+                })
+                .count();
+            assert!(failed * 100 >= n * 70, "{what}: {failed} failed");
+            assert!(
+                on_energy * 100 >= failed * 60,
+                "{what}: {on_energy} of {failed} on energy"
+            );
         }
     }
 

@@ -215,6 +215,13 @@ proptest! {
     fn explanations_match_brute_force(text in plangen::plan_text()) {
         check(&text)?;
     }
+
+    /// The same on plans with a starved battery, where most failures are on
+    /// the battery or handover minimum.
+    #[test]
+    fn starved_explanations_match_brute_force(text in plangen::starved_plan_text()) {
+        check(&text)?;
+    }
 }
 
 /// The plans the repository ships (relative to its root).

@@ -3,6 +3,7 @@
 //! 1. replay: on random small plans the schedule document agrees with the oracle at
 //!    every step (validity, completeness, the exact choice rule), and its generated
 //!    activities and profiles match the oracle's second-by-second simulation;
+//!    the same on plans with a starved battery (`plangen::starved_plan_text`);
 //! 2. determinism: scheduling twice gives byte-identical JSON;
 //! 3. every shipped example and asset schedules and replays clean; the pitfall
 //!    example gives A at 0 and B failed;
@@ -53,6 +54,24 @@ proptest! {
 
     #[test]
     fn replay_agrees_with_oracle(text in plangen::plan_text()) {
+        if let Err(e) = check_plan(&text) {
+            return Err(TestCaseError::fail(format!("{e}\nplan:\n{}", pretty(&text))));
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 128,
+        failure_persistence: None,
+        max_shrink_iters: 2000,
+        ..ProptestConfig::default()
+    })]
+
+    /// The same on plans whose battery hovers near its minimum: most steps are
+    /// decided by the state-of-charge shortcuts.
+    #[test]
+    fn replay_agrees_with_oracle_when_starved(text in plangen::starved_plan_text()) {
         if let Err(e) = check_plan(&text) {
             return Err(TestCaseError::fail(format!("{e}\nplan:\n{}", pretty(&text))));
         }

@@ -572,6 +572,31 @@ pub fn plan_text() -> impl Strategy<Value = String> {
         .prop_map(|g| assemble(&g).to_string())
 }
 
+/// [`plan_text`]'s plans on a starved battery, as the generator's `starved`
+/// profile makes them at scale: the battery starts within a tenth of its room
+/// above `min_soc`, the RTG gives no more than the sleeping rover draws, and a
+/// handover minimum (when drawn) sits at most a fifth of the room above
+/// `min_soc`, so most placements fail on the battery or handover minimum, at
+/// most starts they try, and the state-of-charge shortcuts decide most steps.
+pub fn starved_plan_text() -> impl Strategy<Value = String> {
+    let len = prop_oneof![3 => 600i64..=2400, 1 => 2400i64..=7200];
+    len.prop_flat_map(|l| plan_g(l..=l, 10, 900))
+        .prop_map(|mut g| {
+            starve(&mut g);
+            assemble(&g).to_string()
+        })
+}
+
+/// Moves a drawn plan's battery near its minimum (see [`starved_plan_text`]).
+fn starve(g: &mut PlanG) {
+    g.min_pct = 40 + g.min_pct;
+    g.init_pct /= 10;
+    g.rtg = g.rtg.min(g.asleep);
+    if let Some((_, Some(pct), _)) = g.handover.as_mut() {
+        *pct /= 5;
+    }
+}
+
 /// Smaller plans for paranoid (fast-vs-naive) oracle self-checks.
 pub fn small_plan_text() -> impl Strategy<Value = String> {
     plan_g(300..=1500, 6, 300).prop_map(|g| assemble(&g).to_string())
