@@ -76,14 +76,69 @@ pub(super) fn concave_nearest(
         return Some(p);
     }
     if p < b && g(p + 1) > gp {
+        // The tangents at both ends of the rising side bound its maximum: when
+        // they prove it negative, the peak need not be searched for.
+        if b - p >= TANGENT_MIN_WIDTH && tangent_bound(p, b, gp, g(p + 1), g(b - 1), g(b)) < 0 {
+            return None;
+        }
         let top = peak(p + 1, b, g);
         (g(top) >= 0).then(|| first_ok(p + 1, top, g))
     } else if p > a && g(p - 1) > gp {
+        if p - a >= TANGENT_MIN_WIDTH && tangent_bound(a, p, g(a), g(a + 1), g(p - 1), gp) < 0 {
+            return None;
+        }
         let top = peak(a, p - 1, g);
         (g(top) >= 0).then(|| last_ok(top, p - 1, g))
     } else {
         None
     }
+}
+
+/// [`concave_nearest`] bounds a side of at least this many seconds by its
+/// tangents ([`tangent_bound`]) before searching its peak: on a shorter one
+/// the search costs about as much.
+const TANGENT_MIN_WIDTH: i64 = 8;
+
+/// An upper bound on the maximum over the integers of `[l, r]` (`l < r`) of a
+/// concave integer function `g`, from `gl = g(l)`, `gl1 = g(l + 1)`,
+/// `gr1 = g(r - 1)` and `gr = g(r)`. A concave function's differences never
+/// rise, so `g(x) <= gl + (x - l) * (gl1 - gl)` and `g(x) <= gr + (r - x) *
+/// (gr1 - gr)` on the whole of `[l, r]`: the maximum lies below the lower of
+/// the two lines, highest at an integer next to where they cross. Exact
+/// integer arithmetic; `i128::MAX` (no bound) should it overflow.
+pub(super) fn tangent_bound(l: i64, r: i64, gl: i128, gl1: i128, gr1: i128, gr: i128) -> i128 {
+    let rise = gl1 - gl;
+    let fall = gr1 - gr;
+    if rise <= 0 {
+        // Falling from `l` on: the maximum is `g(l)`.
+        return gl;
+    }
+    if fall <= 0 {
+        // Rising up to `r`: the maximum is `g(r)`.
+        return gr;
+    }
+    let (l, r) = (i128::from(l), i128::from(r));
+    let below = |x: i128| -> Option<i128> {
+        let left = gl.checked_add(x.checked_sub(l)?.checked_mul(rise)?)?;
+        let right = gr.checked_add(r.checked_sub(x)?.checked_mul(fall)?)?;
+        Some(left.min(right))
+    };
+    // The lines cross at `x = (gr - gl + r * fall + l * rise) / (rise + fall)`.
+    let cross = || -> Option<i128> {
+        let num = gr
+            .checked_sub(gl)?
+            .checked_add(r.checked_mul(fall)?)?
+            .checked_add(l.checked_mul(rise)?)?;
+        Some(num.div_euclid(rise.checked_add(fall)?))
+    };
+    let Some(x) = cross() else {
+        return i128::MAX;
+    };
+    [x, x + 1]
+        .into_iter()
+        .map(|x| below(x.clamp(l, r)))
+        .try_fold(i128::MIN, |best, v| v.map(|v| best.max(v)))
+        .unwrap_or(i128::MAX)
 }
 
 /// The largest `x` in `[from, to]` with `g(x) >= 0`, given `g(from) >= 0`
@@ -193,6 +248,38 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The tangent bound is at least the maximum, for tents, plateaus, lines
+    /// and parabolas on every subrange, and the maximum itself on a tent whose
+    /// peak the tangents meet at.
+    #[test]
+    fn tangent_bound_bounds_the_maximum() {
+        let mut shapes: Vec<Box<dyn Fn(i64) -> i128>> = Vec::new();
+        for (peak, width) in [(40i64, 5i64), (40, -30), (0, 3), (100, -7), (63, -2)] {
+            shapes.push(Box::new(move |s: i64| i128::from(width - (s - peak).abs())));
+        }
+        shapes.push(Box::new(|s: i64| {
+            i128::from((s.min(60) - s.max(30)).min(0) - 1)
+        }));
+        shapes.push(Box::new(|s: i64| i128::from(50 - 3 * s)));
+        shapes.push(Box::new(|s: i64| i128::from(2 * s - 70)));
+        shapes.push(Box::new(|s: i64| -i128::from((s - 47) * (s - 47)) - 5));
+        for g in &shapes {
+            for l in (0..100).step_by(7) {
+                for r in (l + 1)..=100 {
+                    let max = (l..=r).map(g.as_ref()).max().unwrap();
+                    let bound = tangent_bound(l, r, g(l), g(l + 1), g(r - 1), g(r));
+                    assert!(bound >= max, "[{l}, {r}]: {bound} < {max}");
+                }
+            }
+        }
+        let tent = |s: i64| i128::from(-3 - (s - 40).abs());
+        assert_eq!(
+            tangent_bound(0, 100, tent(0), tent(1), tent(99), tent(100)),
+            -3
+        );
+        assert_eq!(tangent_bound(0, 10, -5, -4, -2, -3), 1);
     }
 
     #[test]

@@ -440,7 +440,10 @@ pub(crate) enum Detail {
     /// that only ask where activities land, and why a step failed).
     Outcome,
     /// The outcome, duration and category intervals within the window span,
-    /// but no tries.
+    /// but no tries, and no record of the rejected starts (`Step::rejected`
+    /// stays empty): a cell is searched only for its passing start nearest the
+    /// preferred time, as for [`Detail::Placement`] (the explainer's probes and
+    /// the traces without tries, which read neither).
     Intervals,
     /// The category intervals within the activity's window span and the
     /// tries ([`Schedule::trace`]).
@@ -525,7 +528,7 @@ pub(crate) fn run_step(
         let part = Part {
             record: traced,
             bare: matches!(detail, Detail::Outcome | Detail::Placement),
-            found_only: detail == Detail::Placement,
+            found_only: matches!(detail, Detail::Placement | Detail::Intervals),
             ..Part::default()
         };
         let tried = try_duration(state, a, d, scope, span, part);
@@ -595,14 +598,18 @@ pub(crate) fn run_step(
             })
             .collect(),
     );
-    let tries = merge_tries_with(std::mem::take(&mut pending), |t| {
-        let exact = state.cell_tries(a, t.duration, t.starts.lo, t.starts.hi);
-        debug_assert!(exact.len() == 1 && exact[0].reason.is_some());
-        exact
-            .into_iter()
-            .find(|x| x.reason.is_some())
-            .unwrap_or_else(|| t.clone())
-    });
+    let tries = merge_tries_with(
+        std::mem::take(&mut pending),
+        |t| {
+            let exact = state.cell_tries(a, t.duration, t.starts.lo, t.starts.hi);
+            debug_assert!(exact.len() == 1 && exact[0].reason.is_some());
+            exact
+                .into_iter()
+                .find(|x| x.reason.is_some())
+                .unwrap_or_else(|| t.clone())
+        },
+        |t| state.failing_cell_soc_bound(a, t.duration, t.starts.lo, t.starts.hi),
+    );
     #[cfg(debug_assertions)]
     debug_assert_eq!(tries, all_exact, "pruned cells changed the reported tries");
     step.outcome = match &found {
@@ -662,8 +669,11 @@ pub(super) struct Part {
     /// ring by ring outward from its preferred time, only as far as the search
     /// needs ([`try_rings`]).
     pub bare: bool,
-    /// With `bare`, only `found` counts: [`Tried::any`] may be false where a
-    /// part the state-of-charge bound skipped had starts passing phase 1.
+    /// No record of the rejected starts (`Tried::rejected` comes back empty):
+    /// each cell is searched for its passing start nearest the preferred time
+    /// only. With `bare`, only `found` counts: [`Tried::any`] may be false
+    /// where a part the state-of-charge bound skipped had starts passing
+    /// phase 1.
     pub found_only: bool,
 }
 

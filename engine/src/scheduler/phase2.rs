@@ -17,7 +17,7 @@
 //! boundaries of the feasible part.
 
 use super::Scope;
-use super::cells::{cells, concave_feasible, concave_nearest};
+use super::cells::{cells, concave_feasible, concave_nearest, tangent_bound};
 use super::problem::Problem;
 use super::state::{Placement, State, uncovered};
 use super::trace::{Phase2Reason, Rejected, Try};
@@ -32,6 +32,10 @@ use crate::timeline::{Interval, IntervalSet};
 const SPAN_MIN_SECONDS: i64 = if cfg!(debug_assertions) { 2 } else { 64 };
 /// See [`SPAN_MIN_SECONDS`].
 const SPAN_LEAF_BREAKPOINTS: usize = if cfg!(debug_assertions) { 1 } else { 8 };
+/// [`State::failing_cell_soc_bound`] bounds a cell at least this many seconds
+/// wide (shorter ones cost about as much to search exactly). Debug builds bound
+/// every cell of four starts, so that the cross-checks see the bound at work.
+const TANGENT_CELL_SECONDS: i64 = if cfg!(debug_assertions) { 3 } else { 16 };
 
 /// Whether the span of starts `[lo, hi]` is halved before its cells are
 /// searched: it is at least [`SPAN_MIN_SECONDS`] long and more than
@@ -971,6 +975,43 @@ impl State<'_> {
         // Structural and peak results are constant within a cell; they are
         // evaluated only when the bound would prune it.
         (bound < problem.min_soc && self.structurally_ok(a, cell_lo, d)).then_some(bound)
+    }
+
+    /// For a cell `[cell_lo, cell_hi]` that [`State::failing_soc_bound`]
+    /// proved to fail on `min_soc` at every start (so every start's reason is
+    /// `min_soc`): an upper bound on the lowest state of charge of every start,
+    /// from its values at the cell's two first and two last starts. The lowest
+    /// state of charge is concave in the start on a cell (module docs), so it
+    /// lies below the tangents at both ends ([`tangent_bound`]); where it is a
+    /// minimum of two linear pieces, that is its maximum. Four evaluations
+    /// instead of the search for the maximum, which [`State::cell_tries`] makes;
+    /// `None` on a cell too short to gain from it.
+    pub(super) fn failing_cell_soc_bound(
+        &self,
+        a: usize,
+        d: i64,
+        cell_lo: i64,
+        cell_hi: i64,
+    ) -> Option<i64> {
+        if cell_hi - cell_lo < TANGENT_CELL_SECONDS {
+            return None;
+        }
+        let soc = |s: i64| match self.evaluate(a, s, d) {
+            Ok(Evaluated {
+                soc_reason: Some(Phase2Reason::MinSoc { soc_mj, .. }),
+                ..
+            }) => Some(i128::from(soc_mj)),
+            _ => None,
+        };
+        let bound = tangent_bound(
+            cell_lo,
+            cell_hi,
+            soc(cell_lo)?,
+            soc(cell_lo + 1)?,
+            soc(cell_hi - 1)?,
+            soc(cell_hi)?,
+        );
+        Some(clamp_i64(bound))
     }
 
     /// The start in the cell `[cell_lo, cell_hi]` nearest `preferred` at which

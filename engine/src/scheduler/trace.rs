@@ -201,18 +201,24 @@ impl Phase2Reason {
 /// trace O(ranges of distinct outcome) instead of O(cells).
 #[cfg_attr(not(debug_assertions), allow(dead_code))]
 pub fn merge_tries(tries: Vec<Try>) -> Vec<Try> {
-    merge_tries_with(tries.into_iter().map(|t| (t, None)).collect(), |t| {
-        t.clone()
-    })
+    merge_tries_with(
+        tries.into_iter().map(|t| (t, None)).collect(),
+        |t| t.clone(),
+        |_| None,
+    )
 }
 
 /// [`merge_tries`] where some tries carry only an upper bound on their closeness
 /// (`Some(bound)`: numbers not computed yet). Within a range, tries are looked at
 /// from the highest bound down, and `exact` computes a try's numbers only while it
 /// could still be the closest (ties: the earliest start, as in [`merge_tries`]).
+/// Once a range has a closest try, `tighter` may give a bounded try a second,
+/// dearer upper bound on its closeness (`None`: none), asked before `exact`: a
+/// try it proves unable to come closer is not computed.
 pub fn merge_tries_with(
     mut tries: Vec<(Try, Option<i64>)>,
     mut exact: impl FnMut(&Try) -> Try,
+    mut tighter: impl FnMut(&Try) -> Option<i64>,
 ) -> Vec<Try> {
     tries.sort_by_key(|(t, _)| (std::cmp::Reverse(t.duration), t.starts.lo, t.starts.hi));
     let mut out: Vec<Try> = Vec::with_capacity(tries.len().min(64));
@@ -220,7 +226,7 @@ pub fn merge_tries_with(
     // The highest start of the run so far.
     let mut hi = i64::MIN;
     let mut flush = |run: &mut Vec<(Try, Option<i64>)>, out: &mut Vec<Try>| {
-        if let Some(merged) = merge_run(std::mem::take(run), &mut exact) {
+        if let Some(merged) = merge_run(std::mem::take(run), &mut exact, &mut tighter) {
             out.push(merged);
         }
     };
@@ -243,7 +249,11 @@ pub fn merge_tries_with(
 }
 
 /// One merged range: the span of the run, with the numbers of its closest try.
-fn merge_run(run: Vec<(Try, Option<i64>)>, exact: &mut impl FnMut(&Try) -> Try) -> Option<Try> {
+fn merge_run(
+    run: Vec<(Try, Option<i64>)>,
+    exact: &mut impl FnMut(&Try) -> Try,
+    tighter: &mut impl FnMut(&Try) -> Option<i64>,
+) -> Option<Try> {
     let lo = run.first()?.0.starts.lo;
     let hi = run.iter().map(|r| r.0.starts.hi).max()?;
     // (closeness or its bound, start, index), highest first, then earliest.
@@ -265,7 +275,16 @@ fn merge_run(run: Vec<(Try, Option<i64>)>, exact: &mut impl FnMut(&Try) -> Try) 
             }
         }
         let t = match run[i].1 {
-            Some(_) => exact(&run[i].0),
+            Some(_) => {
+                // A dearer bound, once there is a closest try to beat.
+                let beaten = |c: i64, (bc, bs): (i64, i64)| c < bc || (c == bc && start > bs);
+                if let Some((bc, bs, _)) = &best
+                    && tighter(&run[i].0).is_some_and(|c| beaten(c, (*bc, *bs)))
+                {
+                    continue;
+                }
+                exact(&run[i].0)
+            }
             None => run[i].0.clone(),
         };
         let tc = t.reason.as_ref().map_or(0, Phase2Reason::closeness);
