@@ -589,7 +589,7 @@ pub fn starved_plan_text() -> impl Strategy<Value = String> {
 
 /// Moves a drawn plan's battery near its minimum (see [`starved_plan_text`]).
 fn starve(g: &mut PlanG) {
-    g.min_pct = 40 + g.min_pct;
+    g.min_pct += 40;
     g.init_pct /= 10;
     g.rtg = g.rtg.min(g.asleep);
     if let Some((_, Some(pct), _)) = g.handover.as_mut() {
