@@ -243,7 +243,7 @@ fn solscope(args: &[&str]) -> Output {
 
 #[test]
 fn generate_refuses_zero_sols() {
-    for profile in ["standard", "realistic"] {
+    for profile in ["standard", "realistic", "starved"] {
         let out = solscope(&["generate", "--sols", "0", "--profile", profile]);
         assert_eq!(out.status.code(), Some(2), "{profile}");
         assert!(out.stdout.is_empty(), "{profile}");
