@@ -596,3 +596,124 @@ fn invalid_execution_additions_are_refused_at_their_path() {
         assert!(se.contains(want), "{name}: {se}");
     }
 }
+
+#[test]
+fn a_named_pipe_without_a_writer_is_refused_in_time_and_one_with_a_writer_is_read() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli_check_fifo");
+    std::fs::create_dir_all(&dir).unwrap();
+    let fifo = dir.join("plan.fifo");
+    if fifo.exists() {
+        std::fs::remove_file(&fifo).unwrap();
+    }
+    let made = Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .expect("mkfifo runs");
+    assert!(made.success());
+    // Nothing opens it for writing: refused after the wait, not blocked forever.
+    let started = std::time::Instant::now();
+    let out = solscope_within_a_minute(
+        &["check", fifo.to_str().unwrap()],
+        std::process::Stdio::piped(),
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(out.stdout.is_empty());
+    assert_eq!(
+        stderr(&out),
+        format!(
+            "error: {}: a named pipe that nothing opened for writing within 5 s\n",
+            fifo.display()
+        )
+    );
+    assert!(started.elapsed() < std::time::Duration::from_secs(30));
+    // A writer (as a shell's `<(...)` has): read as any file.
+    let plan =
+        std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/examples/pitfall.json"))
+            .unwrap();
+    let writer = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || std::fs::write(&fifo, plan))
+    };
+    let out = solscope(&["check", fifo.to_str().unwrap()]);
+    writer.join().unwrap().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(stdout(&out).contains("is a valid plan with 2 activities"));
+    std::fs::remove_file(&fifo).unwrap();
+}
+
+#[test]
+fn two_byte_order_marks_are_refused() {
+    let plan =
+        std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/examples/pitfall.json"))
+            .unwrap();
+    let mut one = b"\xEF\xBB\xBF".to_vec();
+    one.extend_from_slice(&plan);
+    let path = write_scratch("one-bom.json", &one);
+    assert_eq!(solscope_check(&path).status.code(), Some(0));
+    let mut two = b"\xEF\xBB\xBF".to_vec();
+    two.extend_from_slice(&one);
+    let path = write_scratch("two-boms.json", &two);
+    let out = solscope_check(&path);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    assert_eq!(
+        stderr(&out),
+        format!(
+            "error: $: {} starts with two byte-order marks; a UTF-8 file has at most one\n",
+            path.display()
+        )
+    );
+}
+
+#[test]
+fn nesting_of_exactly_128_levels_is_said_as_it_is() {
+    // The plan object, then 126 arrays in `activities`: 127 levels pass the
+    // parser (and fail as a wrong type), 128 are refused as too deep.
+    let nested = |levels: usize| {
+        let arrays = levels - 1;
+        format!(
+            r#"{{"activities":{}{}}}"#,
+            "[".repeat(arrays),
+            "]".repeat(arrays)
+        )
+    };
+    let out = solscope_check(&write_scratch("nest127.json", nested(127).as_bytes()));
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        !stderr(&out).contains("nested too deeply"),
+        "{}",
+        stderr(&out)
+    );
+    let out = solscope_check(&write_scratch("nest128.json", nested(128).as_bytes()));
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(
+        stderr(&out),
+        "error: activities[0]: nested too deeply: the JSON nests 128 levels or more here (a plan nests at most 5)\n"
+    );
+}
+
+#[test]
+fn a_number_below_the_smallest_float_is_rounded_as_the_smallest_one() {
+    // 1e-400 is no 64-bit float: read as 0 it would lose the rounding to the
+    // safe side (and its warning) that 5e-324 gets.
+    let plan = plan_with(json!([
+        { "id": "a", "priority": 1, "duration": 60, "energy_rate": 5e-324 }
+    ]));
+    let text = serde_json::to_string_pretty(&plan).unwrap();
+    let tiny = write_scratch("tiny.json", text.as_bytes());
+    let expected = [
+        "activities[0].energy_rate: 5e-324 W is more precise than 1 mW and is rounded up to \
+         0.001 W (the safe side)",
+    ];
+    let out = solscope_check(&tiny);
+    assert!(stdout(&out).starts_with(&format!("warning: {}\n", expected[0])));
+    assert!(text.contains("5e-324"));
+    let under = write_scratch("under.json", text.replace("5e-324", "1e-400").as_bytes());
+    let out = solscope_check(&under);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        stdout(&out).starts_with(&format!("warning: {}\n", expected[0])),
+        "{}",
+        stdout(&out)
+    );
+}

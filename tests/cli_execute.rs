@@ -406,3 +406,22 @@ fn merge_refuses_a_run_given_twice() {
         "{err}"
     );
 }
+
+#[test]
+fn an_activity_listed_twice_in_actuals_is_refused() {
+    // A plan refuses a duplicate id; so do actuals (a map would keep the last).
+    let twice = scratch(
+        "twice.json",
+        r#"{ "format": "solscope.actuals/1", "durations": { "drive": 6300, "drive": 4000 } }"#,
+    );
+    let err = refused(&["execute", EXAMPLE, "--actuals", twice.to_str().unwrap()]);
+    assert!(
+        err.contains("twice.json: durations") && err.contains("duplicate id \"drive\""),
+        "{err}"
+    );
+    let once = scratch(
+        "once.json",
+        r#"{ "format": "solscope.actuals/1", "durations": { "drive": 6300, "arm_science": 2000 } }"#,
+    );
+    ok_json(&["execute", EXAMPLE, "--actuals", once.to_str().unwrap()]);
+}

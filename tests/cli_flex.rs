@@ -164,3 +164,79 @@ fn campaigns_of_the_three_policies_share_their_samples() {
     let summary: Value = serde_json::from_slice(&campaign("dispatch", false)).unwrap();
     assert_eq!(summary["policy"], "dispatch");
 }
+
+/// A plan of `n` activities, each meeting the one before it: one rigid chain.
+fn meets_chain(n: usize) -> String {
+    let activities: Vec<String> = (0..n)
+        .map(|i| {
+            let after = if i == 0 {
+                String::new()
+            } else {
+                format!(
+                    r#", "after": [ {{ "activity": "a{}", "meets": true }} ]"#,
+                    i - 1
+                )
+            };
+            format!(r#"{{ "id": "a{i}", "priority": {i}, "duration": 10{after} }}"#)
+        })
+        .collect();
+    format!(
+        r#"{{ "format": "solscope.plan/1", "name": "chain",
+  "horizon": {{ "start": 0, "end": {} }},
+  "battery": {{ "capacity": 1000.0, "initial": 900.0, "min_soc": 100.0 }},
+  "power": {{ "rtg": 100.0, "asleep": 10.0, "awake": 60.0 }},
+  "activities": [ {} ] }}"#,
+        20 * n,
+        activities.join(",\n")
+    )
+}
+
+/// A rigid chain lists each member's leader as its neighbour, the leader every
+/// member: the neighbour lists are as long as the dispatchable network (a chain
+/// of 2,000 once listed the whole chain for every member, 4 million entries).
+#[test]
+fn neighbours_of_a_rigid_chain_are_linear_in_the_dispatchable_network() {
+    let dir = std::env::temp_dir().join(format!("solscope-chain-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let n = 2000;
+    let path = dir.join("chain.json");
+    std::fs::write(&path, meets_chain(n)).unwrap();
+    let doc = json(&["flex", path.to_str().unwrap()]);
+    std::fs::remove_dir_all(&dir).unwrap();
+    let activities = doc["activities"].as_array().unwrap();
+    assert_eq!(activities.len(), n);
+    // The neighbours are exactly the activities one dispatchable edge away.
+    let mut adjacent: std::collections::BTreeMap<&str, std::collections::BTreeSet<&str>> =
+        Default::default();
+    for e in doc["dispatchable"].as_array().unwrap() {
+        let (from, to) = (e["from"]["activity"].as_str(), e["to"]["activity"].as_str());
+        if let (Some(f), Some(t)) = (from, to) {
+            if f != t {
+                adjacent.entry(f).or_default().insert(t);
+                adjacent.entry(t).or_default().insert(f);
+            }
+        }
+    }
+    let mut total = 0;
+    let mut leaders = 0;
+    for a in activities {
+        let id = a["id"].as_str().unwrap();
+        let listed: std::collections::BTreeSet<&str> = a["neighbours"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_str().unwrap())
+            .collect();
+        let expected = adjacent.get(id).cloned().unwrap_or_default();
+        assert_eq!(listed, expected, "{id}");
+        total += listed.len();
+        if listed.len() > 1 {
+            leaders += 1;
+        }
+    }
+    // One leader for the whole chain: every other activity lists it alone.
+    assert_eq!(leaders, 1);
+    assert_eq!(total, 2 * (n - 1));
+    let edges = doc["dispatchable"].as_array().unwrap().len();
+    assert!(total <= 2 * edges, "{total} neighbours, {edges} edges");
+}

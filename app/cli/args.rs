@@ -51,6 +51,17 @@ impl InputLimit {
     }
 }
 
+/// Where a command's output goes: standard output, or `--output FILE`.
+#[derive(clap::Args, Debug, Clone, Default)]
+pub struct OutputFile {
+    /// Write the output to FILE instead of standard output, whole or not at
+    /// all: into a new file beside it, renamed over it once complete (a
+    /// failed or killed run leaves FILE as it was). Nothing is printed on
+    /// standard output.
+    #[arg(long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+}
+
 // The commands; each variant's doc comment is its help text, each one's flags
 // are in its own struct below.
 #[derive(Subcommand, Debug)]
@@ -89,6 +100,27 @@ pub enum Command {
     Screenshot(ScreenshotArgs),
 }
 
+impl Command {
+    /// The command's `--output FILE`, if it has the flag and it was given.
+    pub fn output(&self) -> Option<&std::path::Path> {
+        let output = match self {
+            Command::Schedule(a) => &a.output,
+            Command::Explain(a) => &a.output,
+            Command::Execute(a) => &a.output,
+            Command::Montecarlo(a) => match &a.merge {
+                Some(MonteCarloCommand::Merge { output, .. }) => output,
+                None => &a.output,
+            },
+            Command::Flex(a) => &a.output,
+            Command::Tune(a) => &a.output,
+            Command::Check(a) => &a.output,
+            Command::Generate(a) => &a.output,
+            Command::Screenshot(_) => return None,
+        };
+        output.output.as_deref()
+    }
+}
+
 // `solscope schedule`.
 #[derive(clap::Args, Debug)]
 pub struct ScheduleArgs {
@@ -96,6 +128,8 @@ pub struct ScheduleArgs {
     pub plan: PathBuf,
     #[command(flatten)]
     pub input: InputLimit,
+    #[command(flatten)]
+    pub output: OutputFile,
 }
 
 // `solscope explain`.
@@ -105,6 +139,8 @@ pub struct ExplainArgs {
     pub plan: PathBuf,
     #[command(flatten)]
     pub input: InputLimit,
+    #[command(flatten)]
+    pub output: OutputFile,
     /// Explain this activity (by id), whatever its outcome.
     #[arg(long)]
     pub activity: Option<String>,
@@ -124,6 +160,8 @@ pub struct ExecuteArgs {
     pub plan: PathBuf,
     #[command(flatten)]
     pub input: InputLimit,
+    #[command(flatten)]
+    pub output: OutputFile,
     /// Actual durations (solscope.actuals/1 JSON); without it and without
     /// --sample every activity runs exactly its duration.
     #[arg(long, conflicts_with = "sample")]
@@ -155,6 +193,8 @@ pub struct MontecarloArgs {
     pub plan: Option<PathBuf>,
     #[command(flatten)]
     pub input: InputLimit,
+    #[command(flatten)]
+    pub output: OutputFile,
     /// Number of runs in the campaign (one process runs at most 100000 of them;
     /// --shard splits more).
     #[arg(long, default_value_t = 1000)]
@@ -186,6 +226,8 @@ pub enum MonteCarloCommand {
         parts: Vec<PathBuf>,
         #[command(flatten)]
         input: InputLimit,
+        #[command(flatten)]
+        output: OutputFile,
         /// Print one CSV row per run instead of the summary.
         #[arg(long)]
         csv: bool,
@@ -199,6 +241,8 @@ pub struct FlexArgs {
     pub plan: PathBuf,
     #[command(flatten)]
     pub input: InputLimit,
+    #[command(flatten)]
+    pub output: OutputFile,
     /// Print planner-facing text instead of JSON.
     #[arg(long)]
     pub text: bool,
@@ -217,6 +261,8 @@ pub struct TuneArgs {
     pub plan: PathBuf,
     #[command(flatten)]
     pub input: InputLimit,
+    #[command(flatten)]
+    pub output: OutputFile,
     /// Runs of the tuning sample, on which the search scores each order (at
     /// least 1). The defaults (20 runs, 40 held out, budget 60) tune the bundled
     /// plan in about 20 s on two cores; more runs and a larger budget search
@@ -253,6 +299,8 @@ pub struct CheckArgs {
     pub plan: PathBuf,
     #[command(flatten)]
     pub input: InputLimit,
+    #[command(flatten)]
+    pub output: OutputFile,
 }
 
 // `solscope generate`.
@@ -270,6 +318,8 @@ pub struct GenerateArgs {
     /// Shape of the plan.
     #[arg(long, value_enum, default_value_t = Profile::Standard)]
     pub profile: Profile,
+    #[command(flatten)]
+    pub output: OutputFile,
 }
 
 // `solscope screenshot`.
@@ -366,7 +416,10 @@ mod tests {
         else {
             panic!("not montecarlo")
         };
-        let Some(MonteCarloCommand::Merge { input, parts, csv }) = args.merge else {
+        let Some(MonteCarloCommand::Merge {
+            input, parts, csv, ..
+        }) = args.merge
+        else {
             panic!("not merge")
         };
         assert_eq!(input.bytes().ok(), Some(3 << 20));

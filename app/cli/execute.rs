@@ -38,7 +38,7 @@ pub fn run(args: &ExecuteArgs, limit: usize) -> Result<String, Failure> {
     let out = to_json(&doc)?;
     if let Some(path) = &args.write_actuals {
         let text = to_json(&actuals)?;
-        std::fs::write(path, text)
+        crate::write::write_whole(path, text.as_bytes())
             .map_err(|e| Failure::Output(format!("{}: could not write: {e}", path.display())))?;
     }
     Ok(out)

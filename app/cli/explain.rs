@@ -2,6 +2,7 @@
 //! written as it is made: a large plan's explanation is hundreds of megabytes.
 
 use std::io::Write;
+use std::path::Path;
 
 use super::args::ExplainArgs;
 use super::failure::Failure;
@@ -10,8 +11,9 @@ use super::progress::Progress;
 /// Loads and schedules the plan (a failure prints nothing on standard output),
 /// then writes the explanations one at a time as the engine hands them on, byte
 /// for byte the document `explain_document` would make, with a progress bar on
-/// standard error (after a second, on a terminal).
-pub fn run(args: &ExplainArgs, limit: usize) -> Result<(), Failure> {
+/// standard error (after a second, on a terminal). With `output`, the same
+/// bytes go to that file, which is put in place only once complete.
+pub fn run(args: &ExplainArgs, limit: usize, output: Option<&Path>) -> Result<(), Failure> {
     let opts = solscope_engine::ExplainOptions {
         activity: args.activity.clone(),
         no_suggestions: args.no_suggestions,
@@ -26,7 +28,21 @@ pub fn run(args: &ExplainArgs, limit: usize) -> Result<(), Failure> {
         }
     }
     let progress = Progress::new(schedule.steps.len() as u64);
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    let mut file = match output {
+        Some(path) => {
+            Some(crate::write::WholeFile::create(path).map_err(|e| super::unwritable(path, &e))?)
+        }
+        None => None,
+    };
+    let mut stdout;
+    let sink: &mut dyn Write = match &mut file {
+        Some(f) => f,
+        None => {
+            stdout = std::io::stdout().lock();
+            &mut stdout
+        }
+    };
+    let mut out = std::io::BufWriter::new(sink);
     // Pieces written so far (the header is the first), or the first error.
     let mut written: Result<usize, std::io::Error> = Ok(0);
     let mut write = |piece: &str, written: &mut Result<usize, std::io::Error>| {
@@ -96,5 +112,12 @@ pub fn run(args: &ExplainArgs, limit: usize) -> Result<(), Failure> {
         };
         write(end, &mut written);
     }
-    written.and_then(|_| out.flush()).map_err(Failure::Stdout)
+    let written = written.and_then(|_| out.flush());
+    drop(out);
+    match (file, output) {
+        (Some(file), Some(path)) => written
+            .and_then(|()| file.commit())
+            .map_err(|e| super::unwritable(path, &e)),
+        _ => written.map_err(Failure::Stdout),
+    }
 }

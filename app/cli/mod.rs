@@ -4,9 +4,11 @@
 //! module, one per command, and ends it through [`failure`]: a command makes its
 //! whole output first and prints it only once it has succeeded, so that a failure
 //! prints nothing on standard output (`explain` streams its output, once the plan
-//! has loaded and scheduled). Invalid input prints a path-named message on
-//! standard error and exits with status 2; an output that could not be made or
-//! written exits with status 1 (a reader that stopped early: status 0, quietly).
+//! has loaded and scheduled), or with `--output FILE` writes it to that file,
+//! whole or not at all ([`crate::write`]). Invalid input prints a path-named
+//! message on standard error and exits with status 2; an output that could not
+//! be made or written exits with status 1 (a reader that stopped early: status
+//! 0, quietly).
 
 pub mod args;
 mod check;
@@ -37,12 +39,17 @@ pub fn run(command: Command) -> ExitCode {
 }
 
 /// Runs a command; the commands that print one output make it whole before it
-/// is printed.
+/// is printed, or written to `--output FILE` (whole or not at all).
 fn dispatch(command: Command) -> Result<ExitCode, Failure> {
+    let output = command.output().map(Path::to_path_buf);
+    if let Some(path) = &output {
+        // Checked first, so that a long run does not end in nothing.
+        crate::write::check_target(path).map_err(|e| unwritable(path, &e))?;
+    }
     let text = match command {
         Command::Screenshot(args) => return screenshot::run(&args),
         Command::Explain(args) => {
-            explain::run(&args, args.input.bytes()?)?;
+            explain::run(&args, args.input.bytes()?, output.as_deref())?;
             return Ok(ExitCode::SUCCESS);
         }
         Command::Schedule(args) => schedule::run(&args, args.input.bytes()?)?,
@@ -53,8 +60,18 @@ fn dispatch(command: Command) -> Result<ExitCode, Failure> {
         Command::Check(args) => check::run(&args, args.input.bytes()?)?,
         Command::Generate(args) => generate::run(&args)?,
     };
-    failure::print(&text)?;
+    match &output {
+        Some(path) => {
+            crate::write::write_whole(path, text.as_bytes()).map_err(|e| unwritable(path, &e))?
+        }
+        None => failure::print(&text)?,
+    }
     Ok(ExitCode::SUCCESS)
+}
+
+/// A file that could not be written (exit status 1), named.
+fn unwritable(path: &Path, e: &std::io::Error) -> Failure {
+    Failure::Output(format!("{}: could not write: {e}", path.display()))
 }
 
 /// Reads and loads a plan file of at most `limit` bytes.

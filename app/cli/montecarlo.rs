@@ -20,7 +20,9 @@ const MAX_RECORDS_MERGED: u64 = 1_000_000;
 /// The campaign's output, or the merged parts'.
 pub fn run(args: &MontecarloArgs) -> Result<String, Failure> {
     match &args.merge {
-        Some(MonteCarloCommand::Merge { parts, input, csv }) => merge(parts, input.bytes()?, *csv),
+        Some(MonteCarloCommand::Merge {
+            parts, input, csv, ..
+        }) => merge(parts, input.bytes()?, *csv),
         None => campaign(args, args.input.bytes()?),
     }
 }

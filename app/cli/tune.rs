@@ -3,9 +3,7 @@
 //! written whole or not at all. Ctrl+C stops the search; the best order found so
 //! far is still confirmed and printed, marked as stopped early.
 
-use std::fs::{self, OpenOptions};
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use serde_json::Value;
@@ -52,7 +50,8 @@ pub fn run(args: &TuneArgs, limit: usize) -> Result<String, Failure> {
     out.push('\n');
     if let Some(target) = &args.write_plan {
         let tuned = tuned_plan_text(&text, &plan, &tuning, limit)?;
-        write_whole(target, &tuned)?;
+        crate::write::write_whole(target, tuned.as_bytes())
+            .map_err(|e| Failure::Output(format!("{}: could not write: {e}", target.display())))?;
     }
     Ok(out)
 }
@@ -86,27 +85,11 @@ fn flag_named(e: Error) -> Error {
     }
 }
 
-/// The directory `--write-plan` writes into must exist before the search
-/// starts, so that a long search does not end in nothing.
+/// The file `--write-plan` writes must be writable as far as can be told
+/// before the search starts, so that a long search does not end in nothing.
 fn check_target(target: &Path) -> Result<(), Failure> {
-    let dir = parent(target);
-    if dir.is_dir() {
-        Ok(())
-    } else {
-        Err(Failure::Output(format!(
-            "{}: could not write: the directory {} does not exist",
-            target.display(),
-            dir.display()
-        )))
-    }
-}
-
-/// The directory a file is in (`.` for a bare file name).
-fn parent(target: &Path) -> PathBuf {
-    match target.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    }
+    crate::write::check_target(target)
+        .map_err(|e| Failure::Output(format!("{}: could not write: {e}", target.display())))
 }
 
 /// The input plan's JSON with the tuning's priorities set, and nothing else
@@ -142,32 +125,4 @@ fn tuned_plan_text(
         return Err(broken("its priorities are not the tuned ones".into()));
     }
     Ok(out)
-}
-
-/// Writes `text` to `target` whole or not at all: into a new file beside it,
-/// then renamed over it. On any error the temporary file is removed and
-/// `target` is as it was.
-fn write_whole(target: &Path, text: &str) -> Result<(), Failure> {
-    let failed =
-        |e: std::io::Error| Failure::Output(format!("{}: could not write: {e}", target.display()));
-    let name = target
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .ok_or_else(|| failed(std::io::Error::other("not a file name")))?;
-    let temp = parent(target).join(format!(".{name}.{}.tmp", std::process::id()));
-    let mut file = OpenOptions::new()
-        .write(true)
-        .create_new(true)
-        .open(&temp)
-        .map_err(failed)?;
-    let written = file
-        .write_all(text.as_bytes())
-        .and_then(|()| file.sync_all())
-        .and_then(|()| fs::rename(&temp, target));
-    drop(file);
-    written.map_err(|e| {
-        // The temporary file is ours (created new above): nothing is left behind.
-        let _ = fs::remove_file(&temp);
-        failed(e)
-    })
 }

@@ -175,7 +175,7 @@ pub fn save_color_image(img: &egui::ColorImage, path: &Path) -> Result<(), Strin
         .flat_map(|c| c.to_srgba_unmultiplied())
         .collect();
     let buf = image::RgbaImage::from_raw(w as u32, h as u32, rgba).ok_or("bad image size")?;
-    buf.save(path).map_err(|e| e.to_string())
+    super::screenshot::write_png(&buf, path)
 }
 
 /// Runs the desktop app.

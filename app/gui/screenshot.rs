@@ -60,9 +60,17 @@ pub fn render_png(
 ) -> Result<(), String> {
     let mut harness = harness(app, size, view)?;
     let image = harness.render()?;
+    write_png(&image, out).map_err(|e| format!("{}: {e}", out.display()))
+}
+
+/// Writes an image as a PNG file, whole or not at all
+/// ([`crate::write::write_whole`]).
+pub fn write_png(image: &image::RgbaImage, out: &Path) -> Result<(), String> {
+    let mut bytes = std::io::Cursor::new(Vec::new());
     image
-        .save(out)
-        .map_err(|e| format!("{}: {e}", out.display()))
+        .write_to(&mut bytes, image::ImageFormat::Png)
+        .map_err(|e| format!("could not encode the image: {e}"))?;
+    crate::write::write_whole(out, bytes.get_ref()).map_err(|e| format!("could not write: {e}"))
 }
 
 /// The one place that builds snapshot options for the regression tests: reference

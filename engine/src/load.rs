@@ -150,6 +150,7 @@ fn parse_plan(text: &str, limit: usize) -> Result<Plan, Error> {
             ),
         ));
     }
+    let text = &*read_underflow_as_smallest(text);
     // A plan that parses is read without tracking the path (a third faster on
     // large plans); one that does not is read again with it, for the error's
     // path. The tracker is a transparent wrapper: both reads accept the same
@@ -232,9 +233,69 @@ fn parse_plan(text: &str, limit: usize) -> Result<Plan, Error> {
     Ok(plan)
 }
 
+/// The text with every number literal too small for a 64-bit float but not zero
+/// (`1e-400`, which the JSON parser reads as 0) written as the smallest float of
+/// its sign (`5e-324`): it is then rounded to the fixed-point resolution on the
+/// safe side, with the warning any tiny value gets, instead of silently
+/// becoming 0. Borrowed unchanged when there is none (almost always).
+fn read_underflow_as_smallest(text: &str) -> std::borrow::Cow<'_, str> {
+    let bytes = text.as_bytes();
+    let mut out: Option<String> = None;
+    // Bytes of `text` copied into `out` so far.
+    let mut copied = 0;
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'"' => {
+                // Skip the string, escapes included.
+                i += 1;
+                while i < bytes.len() && bytes[i] != b'"' {
+                    i += if bytes[i] == b'\\' { 2 } else { 1 };
+                }
+                i += 1;
+            }
+            b'-' | b'0'..=b'9' => {
+                let start = i;
+                while i < bytes.len()
+                    && matches!(bytes[i], b'-' | b'+' | b'.' | b'e' | b'E' | b'0'..=b'9')
+                {
+                    i += 1;
+                }
+                let token = &text[start..i];
+                // Only an exponent or a long fraction can underflow.
+                let may_underflow = token.len() > 300 || token.contains(['e', 'E']);
+                let underflows = may_underflow
+                    && token.parse::<f64>().is_ok_and(|x| x == 0.0)
+                    && token
+                        .split(['e', 'E'])
+                        .next()
+                        .is_some_and(|m| m.bytes().any(|b| matches!(b, b'1'..=b'9')));
+                if underflows {
+                    let o = out.get_or_insert_with(|| String::with_capacity(text.len()));
+                    o.push_str(&text[copied..start]);
+                    o.push_str(if token.starts_with('-') {
+                        "-5e-324"
+                    } else {
+                        "5e-324"
+                    });
+                    copied = i;
+                }
+            }
+            _ => i += 1,
+        }
+    }
+    match out {
+        None => std::borrow::Cow::Borrowed(text),
+        Some(mut o) => {
+            o.push_str(&text[copied..]);
+            std::borrow::Cow::Owned(o)
+        }
+    }
+}
+
 /// The reason given for JSON nested past serde_json's recursion limit.
 const NESTED_TOO_DEEPLY: &str =
-    "nested too deeply: the JSON nests more than 128 levels here (a plan nests at most 5)";
+    "nested too deeply: the JSON nests 128 levels or more here (a plan nests at most 5)";
 
 /// Reads and loads a plan file (at most [`MAX_PLAN_BYTES`]; see [`read_plan_text`]).
 pub fn load_plan_file(path: &std::path::Path) -> Result<LoadedPlan, Error> {
@@ -252,7 +313,7 @@ pub fn read_plan_text(path: &std::path::Path, limit: usize) -> Result<String, Er
         path: path.display().to_string(),
         source,
     };
-    let file = std::fs::File::open(path).map_err(io)?;
+    let file = open_input(path).map_err(io)?;
     let mut bytes = Vec::new();
     file.take(u64::try_from(limit).unwrap_or(u64::MAX).saturating_add(1))
         .read_to_end(&mut bytes)
@@ -282,6 +343,15 @@ pub fn read_plan_text(path: &std::path::Path, limit: usize) -> Result<String, Er
         0
     };
     bytes.drain(..bom);
+    if bom > 0 && bytes.starts_with(b"\xEF\xBB\xBF") {
+        return Err(Error::invalid(
+            "$",
+            format!(
+                "{} starts with two byte-order marks; a UTF-8 file has at most one",
+                path.display()
+            ),
+        ));
+    }
     String::from_utf8(bytes).map_err(|e| {
         Error::invalid(
             "$",
@@ -292,6 +362,49 @@ pub fn read_plan_text(path: &std::path::Path, limit: usize) -> Result<String, Er
             ),
         )
     })
+}
+
+/// How long [`read_plan_text`] waits for a named pipe (FIFO) to get a writer.
+const FIFO_WAIT: std::time::Duration = std::time::Duration::from_secs(5);
+
+/// Opens an input file for reading. Opening a named pipe waits until
+/// something opens it for writing, which may be never: it waits at most
+/// [`FIFO_WAIT`], then says so (a pipe a writer already holds, such as a
+/// shell's `<(...)`, opens at once).
+fn open_input(path: &std::path::Path) -> std::io::Result<std::fs::File> {
+    use std::os::unix::fs::FileTypeExt;
+    if !std::fs::metadata(path)?.file_type().is_fifo() {
+        return std::fs::File::open(path);
+    }
+    let (tx, rx) = std::sync::mpsc::channel();
+    let fifo = path.to_path_buf();
+    std::thread::spawn(move || {
+        if tx.send(std::fs::File::open(&fifo)).is_err() {
+            // The receiver is gone only when the wait timed out: the file
+            // closes here, unread.
+        }
+    });
+    match rx.recv_timeout(FIFO_WAIT) {
+        Ok(opened) => opened,
+        Err(_) => {
+            // Release the waiting open by being its writer for an instant (a
+            // waiting reader lets a writer open at once), off this thread in
+            // case the reader left in the meantime.
+            let fifo = path.to_path_buf();
+            std::thread::spawn(move || {
+                if std::fs::OpenOptions::new().write(true).open(&fifo).is_err() {
+                    // Nothing waits for this answer: the caller has its error.
+                }
+            });
+            Err(std::io::Error::new(
+                std::io::ErrorKind::TimedOut,
+                format!(
+                    "a named pipe that nothing opened for writing within {} s",
+                    FIFO_WAIT.as_secs()
+                ),
+            ))
+        }
+    }
 }
 
 #[cfg(test)]
@@ -401,6 +514,22 @@ mod tests {
                 .starts_with("activities[0]: nested too deeply"),
             "{err}"
         );
+    }
+
+    #[test]
+    fn numbers_below_the_smallest_float_are_read_as_it() {
+        let text = r#"{"a": 1e-400, "b": "1e-400", "c": -0.5e-999, "d": 0e-999, "e": 2.5e-10}"#;
+        assert_eq!(
+            read_underflow_as_smallest(text),
+            r#"{"a": 5e-324, "b": "1e-400", "c": -5e-324, "d": 0e-999, "e": 2.5e-10}"#
+        );
+        let long = format!("[0.{}1]", "0".repeat(400));
+        assert_eq!(read_underflow_as_smallest(&long), "[5e-324]");
+        let plain = r#"{"a": "x\"1e-400", "b": 3}"#;
+        assert!(matches!(
+            read_underflow_as_smallest(plain),
+            std::borrow::Cow::Borrowed(_)
+        ));
     }
 
     #[test]

@@ -280,7 +280,7 @@ impl AppState {
     /// Writes the schedule CSV to `path`; a failed write is shown.
     fn export_csv_to(&mut self, path: &Path) {
         let csv = solscope_engine::schedule_csv(&self.doc.plan, &self.analysis.schedule);
-        if let Err(e) = std::fs::write(path, csv) {
+        if let Err(e) = crate::write::write_whole(path, csv.as_bytes()) {
             self.ui.messages.error = Some(format!("Could not write {}: {e}", path.display()));
         }
     }
@@ -294,5 +294,5 @@ pub(in crate::state) fn write_json<T: serde::Serialize>(
 ) -> Result<(), String> {
     let text =
         serde_json::to_string_pretty(value).map_err(|e| format!("cannot serialise it: {e}"))?;
-    std::fs::write(path, text + "\n").map_err(|e| e.to_string())
+    crate::write::write_whole(path, (text + "\n").as_bytes()).map_err(|e| e.to_string())
 }

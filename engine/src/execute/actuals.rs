@@ -20,8 +20,38 @@ pub const ACTUALS_FORMAT: &str = "solscope.actuals/1";
 pub struct Actuals {
     /// Must be [`ACTUALS_FORMAT`].
     pub format: String,
-    /// Actual duration (s) by activity id.
+    /// Actual duration (s) by activity id (an id listed twice is refused, as
+    /// a plan refuses a duplicate id).
+    #[serde(deserialize_with = "unique_ids")]
     pub durations: BTreeMap<String, i64>,
+}
+
+/// Reads `durations`, refusing an id listed twice (a map would keep the last
+/// silently).
+fn unique_ids<'de, D: serde::Deserializer<'de>>(d: D) -> Result<BTreeMap<String, i64>, D::Error> {
+    struct Durations;
+    impl<'de> serde::de::Visitor<'de> for Durations {
+        type Value = BTreeMap<String, i64>;
+        fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.write_str("a map from activity id to duration")
+        }
+        fn visit_map<M: serde::de::MapAccess<'de>>(
+            self,
+            mut m: M,
+        ) -> Result<Self::Value, M::Error> {
+            let mut out = BTreeMap::new();
+            while let Some((id, d)) = m.next_entry::<String, i64>()? {
+                if out.contains_key(&id) {
+                    return Err(serde::de::Error::custom(format!(
+                        "duplicate id \"{id}\" (each activity is listed at most once)"
+                    )));
+                }
+                out.insert(id, d);
+            }
+            Ok(out)
+        }
+    }
+    d.deserialize_map(Durations)
 }
 
 impl Actuals {

@@ -102,7 +102,10 @@ pub struct FlexActivity {
     pub end: EventBounds,
     /// Its start condition (skip once `min(ub, within...)` passes).
     pub condition: StartCondition,
-    /// Activities adjacent to it in the minimum dispatchable network, sorted.
+    /// Activities adjacent to it in the minimum dispatchable network (one of
+    /// its events is an end of one of [`Flex::dispatchable`]'s edges whose
+    /// other end is theirs), sorted: a member of a rigid component has its
+    /// leader, the leader every member.
     pub neighbours: Vec<usize>,
     /// Free slack: starts every check of the scheduler (both phases) accepts with
     /// every other placement fixed, and dependents' dependencies kept. `None`
@@ -407,19 +410,13 @@ pub fn flex_with(plan: &Plan, sched: &Schedule, opts: FlexOptions) -> Flex {
             }
             condition.after.sort_unstable();
             condition.within.sort_unstable();
+            // The activities one edge away in the dispatchable network: a member
+            // of a rigid component is linked to its leader only (the leader's
+            // own edges are not repeated for each member), so the lists together
+            // are as long as the network. The origin is no activity.
             let mut neighbours: Vec<usize> = [s, e]
                 .iter()
-                .flat_map(|&x| {
-                    // An event fixed in time (rigid with the origin) has no
-                    // neighbours through the origin: nothing propagates there.
-                    let l = disp.leader[x].0;
-                    let via = if l == 0 { x } else { l };
-                    adjacent[via]
-                        .iter()
-                        .copied()
-                        .chain(adjacent[x].iter().copied())
-                        .chain([l])
-                })
+                .flat_map(|&x| adjacent[x].iter().copied())
                 .filter_map(act_of)
                 .filter(|&b| b != a)
                 .collect();
