@@ -3194,11 +3194,18 @@ fn every_failed_or_skipped_activity_looked_at_has_a_row_of_its_own() {
         let id = h.state().doc.plan.activities[a].id.clone();
         h.state_mut().apply(Command::Select(Some(a)));
         h.run_steps(3);
-        // Its row, scrolled into view, is labelled with its id (the list's
-        // row reads `x  123 id`).
+        // Its row, scrolled into view, is labelled with its id on the Gantt
+        // (the list's row reads `x  123 id`, the inspector's id field holds
+        // it as text to edit).
+        let gantt = h.get_by_label("Gantt chart").rect();
+        let row_labels: Vec<_> = h
+            .query_all_by_label(&id)
+            .filter(|n| n.accesskit_node().role() == eframe::egui::accesskit::Role::Label)
+            .map(|n| n.rect())
+            .collect();
         assert!(
-            h.query_all_by_label(&id).next().is_some(),
-            "{id} has no row of its own"
+            row_labels.iter().any(|r| gantt.contains_rect(*r)),
+            "{id} has no row of its own: {row_labels:?} outside {gantt:?}"
         );
     }
 }
