@@ -24,7 +24,7 @@ fn main() -> ExitCode {
 
 /// Opens the desktop app.
 fn run_app(plan: Option<&std::path::Path>) -> ExitCode {
-    let app = match solscope::gui::SolscopeApp::open_or_default(plan) {
+    let app = match solscope::gui::SolscopeApp::opening(plan) {
         Ok(app) => app,
         Err(e) => return Failure::Input(e).report(),
     };

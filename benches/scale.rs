@@ -25,8 +25,10 @@
 //! slider is dragged across 1,000 and 10,000 activities (60 frames each
 //! moving the step, as a slider drag gives one new step per frame; the same with
 //! five step changes arriving between two frames; 30 frames zooming the time
-//! range in then out), with the median and worst frame, and how long the plots
-//! take to catch up with the last step once the drag stops. `--growth` measures
+//! range in then out; 40 frames panning a one-sol view), with the median and
+//! worst frame in wall time and in UI-thread CPU time (the thread's run time,
+//! apart from waits for a core), and how long the plots take to catch up with
+//! the last step once the drag stops. `--growth` measures
 //! how time grows with the plan: 1,000 to 30,000 activities at the same density,
 //! the median of 3 seeds (`--sweep N`: N seeds), with the exponent of each size
 //! against 1,000.
@@ -471,25 +473,6 @@ fn navigation(profiles: &[(&str, Profile)], quick: bool) {
     }
 }
 
-/// CPU time (user + system) of the calling thread so far, from
-/// `/proc/thread-self/stat` (clock ticks of 10 ms: good over many frames).
-fn thread_cpu() -> Option<Duration> {
-    let stat = std::fs::read_to_string("/proc/thread-self/stat").ok()?;
-    // The fields after the command name (which is in parentheses).
-    let rest = stat.rsplit_once(')')?.1;
-    let f: Vec<&str> = rest.split_whitespace().collect();
-    let ticks: u64 = f.get(11)?.parse::<u64>().ok()? + f.get(12)?.parse::<u64>().ok()?;
-    Some(Duration::from_millis(ticks * 10))
-}
-
-/// Mean CPU time a frame of `frames` took on this thread since `since`.
-fn cpu_per_frame(since: Option<Duration>, frames: u32) -> String {
-    match (since, thread_cpu()) {
-        (Some(a), Some(b)) => ms((b - a) / frames),
-        _ => "n/a".into(),
-    }
-}
-
 /// Median and worst of `times`.
 fn median_max(times: &mut [Duration]) -> (Duration, Duration) {
     times.sort();
@@ -509,7 +492,7 @@ fn drag(profiles: &[(&str, Profile)], quick: bool) {
         &[(1000, 3), (10_000, 30)]
     };
     println!(
-        "| profile | activities | sols | drag, 1 step change a frame: median | worst | UI thread CPU a frame | drag, 5 step changes a frame: median | worst | zoom: median | worst | UI thread CPU a frame | plots at the last step after |"
+        "| profile | activities | sols | drag, 1 step a frame: wall median / worst | UI-thread CPU median / worst | drag, 5 steps a frame: wall | UI CPU | zoom: wall | UI CPU | pan: wall | UI CPU | plots at the last step after |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for &(name, profile) in profiles {
@@ -525,23 +508,28 @@ fn drag(profiles: &[(&str, Profile)], quick: bool) {
             }
             frame(&ctx, &mut app);
             let steps = app.analysis.steps();
+            // A frame's wall time and its UI-thread CPU time.
             let timed = |app: &mut SolscopeApp, cmds: Vec<Command>| {
+                let cpu = thread_run_time();
                 let t = Instant::now();
                 for c in cmds {
                     app.apply(c);
                 }
                 frame(&ctx, app);
-                t.elapsed()
+                let wall = t.elapsed();
+                let cpu = match (cpu, thread_run_time()) {
+                    (Some(a), Some(b)) => b.saturating_sub(a),
+                    _ => Duration::ZERO,
+                };
+                (wall, cpu)
             };
             // A drag from the first step to the last, one new step a frame.
-            let cpu = thread_cpu();
-            let mut one: Vec<Duration> = (0..60)
+            let one: Vec<(Duration, Duration)> = (0..60)
                 .map(|i| timed(&mut app, vec![Command::SetStep(steps * i / 59)]))
                 .collect();
-            let one_cpu = cpu_per_frame(cpu, 60);
             // Back, with five changes between two frames (a fast pointer, or
             // key repeats): only the last should cost.
-            let mut five: Vec<Duration> = (0..60)
+            let five: Vec<(Duration, Duration)> = (0..60)
                 .map(|i| {
                     let cmds = (0..5)
                         .map(|j| Command::SetStep(steps - (steps * (5 * i + j)) / 299))
@@ -564,8 +552,7 @@ fn drag(profiles: &[(&str, Profile)], quick: bool) {
                 frame(&ctx, &mut app);
             }
             let bounds = (plan.horizon.start as f64, plan.horizon.end as f64);
-            let cpu = thread_cpu();
-            let mut zoom: Vec<Duration> = (0..30)
+            let zoom: Vec<(Duration, Duration)> = (0..30)
                 .map(|i| {
                     let mut axis: TimeAxis = app.ui.nav.axis;
                     let factor = if i < 15 { 1.25 } else { 0.8 };
@@ -573,22 +560,47 @@ fn drag(profiles: &[(&str, Profile)], quick: bool) {
                     timed(&mut app, vec![Command::SetAxis(axis)])
                 })
                 .collect();
-            let zoom_cpu = cpu_per_frame(cpu, 30);
-            let (om, ow) = median_max(&mut one);
-            let (fm, fw) = median_max(&mut five);
-            let (zm, zw) = median_max(&mut zoom);
+            // Pan a view of one sol across the plan's middle, a twentieth of
+            // it a frame (what a drag of the Gantt does), at the last step.
+            let mut axis: TimeAxis = app.ui.nav.axis;
+            let sol = (bounds.1 - bounds.0) / sols as f64;
+            axis.zoom_about((bounds.0 + bounds.1) / 2.0, axis.span() / sol, bounds);
+            app.apply(Command::SetAxis(axis));
+            frame(&ctx, &mut app);
+            let pan: Vec<(Duration, Duration)> = (0..40)
+                .map(|i| {
+                    let mut axis: TimeAxis = app.ui.nav.axis;
+                    let dir = if i < 20 { 1.0 } else { -1.0 };
+                    axis.pan(dir * axis.span() / 20.0, bounds);
+                    timed(&mut app, vec![Command::SetAxis(axis)])
+                })
+                .collect();
+            let cells: Vec<String> = [one, five, zoom, pan]
+                .into_iter()
+                .map(|frames| {
+                    let (mut wall, mut cpu): (Vec<Duration>, Vec<Duration>) =
+                        frames.into_iter().unzip();
+                    let (wm, ww) = median_max(&mut wall);
+                    let (cm, cw) = median_max(&mut cpu);
+                    format!("{} / {} | {} / {}", ms(wm), ms(ww), ms(cm), ms(cw))
+                })
+                .collect();
             println!(
-                "| {name} | {n} | {sols} | {} | {} | {one_cpu} | {} | {} | {} | {} | {zoom_cpu} | {} |",
-                ms(om),
-                ms(ow),
-                ms(fm),
-                ms(fw),
-                ms(zm),
-                ms(zw),
+                "| {name} | {n} | {sols} | {} | {} |",
+                cells.join(" | "),
                 ms(caught_up)
             );
         }
     }
+}
+
+/// Run time of the calling thread so far, in nanoseconds
+/// (`/proc/thread-self/schedstat`): a frame's UI-thread CPU time, apart from
+/// the time it waited for a core on a loaded machine.
+fn thread_run_time() -> Option<Duration> {
+    let stat = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: u64 = stat.split_whitespace().next()?.parse().ok()?;
+    Some(Duration::from_nanos(ns))
 }
 
 /// Executions and Monte Carlo (`--execution`).

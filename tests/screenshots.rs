@@ -444,3 +444,14 @@ fn guided_tour_on_why_the_tutorials_failure_did_not_fit() {
     app.apply(Command::TourPage(2));
     check("tour_why", app, View::default());
 }
+
+/// A generated plan of 1,000 activities (standard profile, seed 1) at its
+/// last step: the packed lanes, the failed activities folded into one row,
+/// the flexibility layer inside the lanes.
+#[test]
+fn a_thousand_generated_activities_at_the_last_step() {
+    let plan = solscope_engine::generate_plan(1000, 3, 1);
+    let text = serde_json::to_string(&plan).unwrap();
+    let app = SolscopeApp::from_text(&text, None).expect("generated plan");
+    check("generated_1000_last_step", app, View::default());
+}

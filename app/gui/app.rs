@@ -74,6 +74,12 @@ impl SolscopeApp {
         AppState::open_or_default(path).map(Self::from)
     }
 
+    /// The app on the bundled default plan, opening `path` (if given) on a
+    /// worker: the first frame comes at once, with the open's progress line.
+    pub fn opening(path: Option<&Path>) -> Result<Self, solscope_engine::Error> {
+        AppState::opening(path).map(Self::from)
+    }
+
     /// Draws one frame and applies the commands it produced.
     pub fn frame_ui(&mut self, ui: &mut egui::Ui) {
         // Plan files may hold any text: draw a box for a missing glyph, never panic.

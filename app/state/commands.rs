@@ -68,6 +68,8 @@ ui_commands! {
     DuplicateActivity,
     /// Delete the selected activity (and the dependencies on it).
     DeleteActivity,
+    /// Stop opening the plan file being opened; the plan open before stays.
+    CancelOpen,
     /// Repair view: check the plan text again; once it has no error it opens.
     RecheckRepair,
     /// Repair view: put the value typed for the error looked at in place of the
@@ -159,6 +161,7 @@ impl UiCommand {
             Self::AddActivity => "Add activity",
             Self::DuplicateActivity => "Duplicate activity",
             Self::DeleteActivity => "Delete activity",
+            Self::CancelOpen => "Cancel opening",
             Self::RecheckRepair => "Re-check",
             Self::ReplaceAtError => "Replace and re-check",
             Self::CancelRepair => "Back to the open plan",
@@ -225,6 +228,7 @@ impl UiCommand {
             Self::AddActivity
             | Self::DuplicateActivity
             | Self::DeleteActivity
+            | Self::CancelOpen
             | Self::RecheckRepair
             | Self::ReplaceAtError
             | Self::CancelRepair => None,

@@ -38,6 +38,10 @@ impl AppState {
     /// should be drawn again while something is still coming in.
     pub fn prepare(&mut self, now: f64, cmds: &mut Vec<Command>) -> Option<Duration> {
         let mut repaint = Repaint::default();
+        if self.reap_opening() {
+            // The progress line counts the seconds.
+            repaint.ask(100);
+        }
         // Take what the execution workers finished (in any mode, so they are
         // not polled for longer than they run).
         if let Err(e) = self.execution.reap(self.exec_key()) {

@@ -1,20 +1,22 @@
 //! One job on a worker thread, the one way the state derives a value off the
 //! frame: spawned with a key (what it is for: a plan revision, an activity),
-//! polled for its result, with a progress count and a cancel flag its work
-//! reads ([`Signal`]). Dropping the job cancels it: nobody will read what it
+//! polled for its result, with a progress count, a line saying what it is
+//! doing and a cancel flag its work reads ([`Signal`]). Dropping the job cancels it: nobody will read what it
 //! goes on computing, so a replaced or abandoned job stops as soon as its work
 //! looks at the flag.
 
-use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, TryRecvError};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-/// What a job's work and the job share: a cancel flag and a progress count.
+/// What a job's work and the job share: a cancel flag, a progress count and
+/// what it is doing.
 #[derive(Debug, Default)]
 pub struct Signal {
     cancel: AtomicBool,
     done: AtomicU64,
+    note: Mutex<String>,
 }
 
 impl Signal {
@@ -27,6 +29,15 @@ impl Signal {
     /// Counts one more unit of work done (for a progress bar).
     pub fn tick(&self) {
         self.done.fetch_add(1, Ordering::Relaxed);
+    }
+
+    /// Says what the work is doing now (for a progress line).
+    pub fn say(&self, note: impl Into<String>) {
+        // A worker that panicked while holding the lock poisons it: its last
+        // word is kept, nothing else depends on it.
+        if let Ok(mut n) = self.note.lock() {
+            *n = note.into();
+        }
     }
 }
 
@@ -94,6 +105,15 @@ impl<K: Copy, T> Job<K, T> {
         self.signal.done.load(Ordering::Relaxed)
     }
 
+    /// What the work last said it was doing (empty before it said anything).
+    pub fn note(&self) -> String {
+        self.signal
+            .note
+            .lock()
+            .map(|n| n.clone())
+            .unwrap_or_default()
+    }
+
     /// How long it has run.
     pub fn elapsed(&self) -> Duration {
         self.started.elapsed()
@@ -127,11 +147,13 @@ mod tests {
             for _ in 0..5 {
                 s.tick();
             }
+            s.say("finishing");
             "done"
         });
         assert_eq!(job.key(), (7, 3));
         assert_eq!(wait(&job), Ok("done"));
         assert_eq!(job.done(), 5);
+        assert_eq!(job.note(), "finishing");
         assert!(!job.cancelling());
     }
 

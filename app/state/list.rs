@@ -26,7 +26,13 @@ pub struct Listed {
     /// Bumped each time the list is computed again (the list re-scrolls to
     /// the selection then).
     pub generation: u64,
+    /// Which opened plan it lists (one number per plan opened in the
+    /// process): the list of a plan just opened starts at its top.
+    pub opened: u64,
 }
+
+/// Plans opened so far in the process (each one's [`Listed::opened`]).
+static OPENED: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
 impl Listed {
     /// Whether activity `a` is shown.
@@ -114,6 +120,8 @@ pub struct ListCache {
     listed: Option<Arc<Listed>>,
     /// Lower-case ids and names, resources and sols of one plan revision.
     search: Option<Arc<SearchIndex>>,
+    /// This plan's [`Listed::opened`] (0 until first listed).
+    opened: u64,
 }
 
 impl ListCache {
@@ -145,7 +153,12 @@ impl ListCache {
         }
         let index = self.search_index(plan, revision);
         let generation = self.listed.as_ref().map_or(0, |l| l.generation + 1);
-        let listed = Arc::new(compute(plan, analysis, &index, key, generation));
+        if self.opened == 0 {
+            self.opened = OPENED.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        }
+        let mut listed = compute(plan, analysis, &index, key, generation);
+        listed.opened = self.opened;
+        let listed = Arc::new(listed);
         self.listed = Some(Arc::clone(&listed));
         listed
     }
@@ -215,6 +228,7 @@ fn compute(
         shown,
         matches,
         generation,
+        opened: 0,
     }
 }
 

@@ -10,7 +10,8 @@
 //! Modules, lowest first (each uses only those before it): `axis`, `job`
 //! → `document`, `repair` → `persisted`, `ui` → `commands`,
 //! `status`, `execution` → `extent`, `list`, `tour`, `montecarlo` →
-//! `exec_model`, `derived` → this module (`AppState`), `frame`, `reduce`.
+//! `exec_model`, `derived` → this module (`AppState`), `frame`, `opening`,
+//! `reduce`.
 
 mod axis;
 pub mod commands;
@@ -23,6 +24,7 @@ mod frame;
 mod job;
 mod list;
 pub mod montecarlo;
+mod opening;
 mod persisted;
 mod reduce;
 pub mod repair;
@@ -115,6 +117,11 @@ pub struct AppState {
     /// the persisted settings).
     offer_tour: bool,
     commands: Vec<Command>,
+    /// A plan file being opened on a worker (the plan above stays until it
+    /// is in).
+    opening: Option<opening::Opening>,
+    /// Opens started (each worker's key).
+    opens: u64,
 }
 
 impl std::fmt::Debug for AppState {
@@ -131,11 +138,16 @@ impl AppState {
     pub fn from_text(text: &str, path: Option<PathBuf>) -> Result<Self, solscope_engine::Error> {
         let doc = Document::from_text(text, path)?;
         let analysis = Analysis::of(&doc.plan)?;
+        Ok(Self::from_analysis(doc, analysis))
+    }
+
+    /// The app on a validated plan and its schedule.
+    fn from_analysis(doc: Document, analysis: Analysis) -> Self {
         let axis = TimeAxis::new(doc.plan.horizon.start as f64, doc.plan.horizon.end as f64);
         let steps = analysis.steps();
         let step_view = step_view(&analysis, steps);
         let ui = UiState::new(steps, axis, &doc.plan.local_time);
-        Ok(Self {
+        Self {
             doc,
             analysis,
             ui,
@@ -159,7 +171,9 @@ impl AppState {
             reveal: false,
             offer_tour: false,
             commands: Vec::new(),
-        })
+            opening: None,
+            opens: 0,
+        }
     }
 
     /// The app on the bundled default plan.

@@ -577,6 +577,8 @@ pub struct Messages {
     pub repair: Option<Repair>,
     /// The guided tour, while it is shown.
     pub tour: Option<Tour>,
+    /// The progress line of a plan file being opened on a worker.
+    pub opening: Option<String>,
 }
 
 /// Where the guided tour is (see `gui::tour`).

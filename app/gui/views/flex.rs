@@ -198,10 +198,14 @@ pub fn envelope(fa: &FlexActivity, d: i64) -> (f64, f64) {
     (lo as f64, hi.saturating_add(d) as f64)
 }
 
-/// Draws `fa`'s slack behind its bar (lane `[y, y + h]`, scheduled duration
-/// `d`): where it can sit with every check passing (free slack), where only
-/// temporally (the phase-1 part), then the whisker from `lb` to `ub + d` with
-/// ticks at both ends.
+/// The part of a lane's height the free slack band takes, at its bottom.
+const SLACK_BAND: f32 = 0.4;
+
+/// Draws `fa`'s slack behind its bar, inside its own lane `[y, y + h]`
+/// (scheduled duration `d`; the bars of the lane are drawn over it): a band
+/// along the lane's bottom where it can sit with every check passing (free
+/// slack) and where only temporally (the phase-1 part), then the whisker
+/// from `lb` to `ub + d` with ticks at both ends.
 #[allow(clippy::too_many_arguments)]
 pub fn underlay(
     painter: &Painter,
@@ -221,7 +225,8 @@ pub fn underlay(
         for iv in set.intervals() {
             let (x0, x1) = (x(iv.lo), x(iv.hi.saturating_add(d)));
             if x1 > x0 {
-                let r = Rect::from_min_max(Pos2::new(x0, y), Pos2::new(x1, y + h));
+                let top = y + h * (1.0 - SLACK_BAND);
+                let r = Rect::from_min_max(Pos2::new(x0, top), Pos2::new(x1, y + h));
                 painter.rect_filled(r, 0.0, color);
             }
         }

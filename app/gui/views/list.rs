@@ -248,6 +248,13 @@ pub(super) fn activities_ui(
     // Only the visible rows are laid out, so 10k activities stay cheap.
     let row_height = ui.spacing().interact_size.y;
     let mut area = egui::ScrollArea::vertical().auto_shrink([false; 2]);
+    if cache.list_opened != listed.opened {
+        // A plan just opened: its list starts at the top (or at its
+        // selection, below), not where the plan before was scrolled.
+        cache.list_opened = listed.opened;
+        cache.list_selected = None;
+        area = area.vertical_scroll_offset(0.0);
+    }
     let now = (m.nav.selected, listed.generation);
     if cache.list_selected != Some(now) {
         // The list changed under the rows in view: they say nothing of it.

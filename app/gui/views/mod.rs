@@ -17,6 +17,7 @@ mod inspector;
 mod list;
 mod model;
 mod montecarlo;
+mod opening;
 mod plots;
 mod repair;
 mod steps;
@@ -68,6 +69,7 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
             }
         }
         dialogs::banner_ui(ui, m, cmds);
+        opening::opening_ui(ui, m, cmds);
     });
     w.cache.tour_anchors.top = Some(top.response.rect);
     let list = egui::Panel::left("activities")

@@ -71,6 +71,9 @@ pub struct ViewCache {
     /// The selection the activity list last scrolled to, and the
     /// [`Listed::generation`] it was in.
     pub list_selected: Option<(Option<usize>, u64)>,
+    /// The [`Listed::opened`] of the plan the activity list showed last
+    /// frame.
+    pub list_opened: u64,
     /// What the search and filters select this frame (set by the frame
     /// before drawing, from the state), for the list and the Gantt alike.
     pub listed: Option<std::sync::Arc<Listed>>,
@@ -79,6 +82,9 @@ pub struct ViewCache {
     pub search: Option<std::sync::Arc<SearchIndex>>,
     /// The selection the Gantt last scrolled its row into view for.
     pub gantt_revealed: Option<Option<usize>>,
+    /// The Gantt gives every failed or skipped activity its own row however
+    /// many there are (else more than a few are folded into one row).
+    pub failed_unfolded: bool,
     /// How each activity bar drawn last frame looked with the search and
     /// filters (every bar plain without them).
     pub looks: Vec<(usize, Look)>,

@@ -22,6 +22,7 @@ impl AppState {
             UiCommand::ExportScheduleCsv => self.dialog = Some(Dialog::ExportScheduleCsv),
             UiCommand::ExportPng => self.dialog = Some(Dialog::ExportPng),
             UiCommand::OpenActuals => self.dialog = Some(Dialog::OpenActuals),
+            UiCommand::CancelOpen => self.cancel_opening(),
             UiCommand::Quit => {
                 if self.doc.dirty {
                     self.ui.messages.confirm = Some(Pending::Quit);
@@ -126,8 +127,14 @@ impl AppState {
     }
 
     /// Opens `path` now: as the plan when it loads (the tour offered with the
-    /// tutorial plan), else in the repair view, or its error shown.
+    /// tutorial plan), else in the repair view, or its error shown. With
+    /// `background` (the desktop app) on a worker, the plan open staying
+    /// until it is in.
     pub(in crate::state) fn open_now(&mut self, path: &Path) {
+        if self.background {
+            self.open_on_worker(path);
+            return;
+        }
         let text = match solscope_engine::read_plan_text(path, solscope_engine::MAX_PLAN_BYTES) {
             Ok(t) => t,
             Err(e) => {
@@ -135,7 +142,20 @@ impl AppState {
                 return;
             }
         };
-        match Self::from_text(&text, Some(path.to_path_buf())) {
+        let state = Self::from_text(&text, Some(path.to_path_buf()));
+        self.opened(path, text, state);
+    }
+
+    /// Takes the plan read from `path` (its `text`, and the app on it or why
+    /// it did not load): as the plan (the tour offered with the tutorial
+    /// plan), else in the repair view, or its error shown.
+    pub(in crate::state) fn opened(
+        &mut self,
+        path: &Path,
+        text: String,
+        state: Result<Self, solscope_engine::Error>,
+    ) {
+        match state {
             Ok(fresh) => {
                 self.become_(fresh);
                 // The guided tour opens with the tutorial plan.

@@ -98,6 +98,7 @@ impl AppState {
             | U::ExportScheduleCsv
             | U::ExportPng
             | U::OpenActuals
+            | U::CancelOpen
             | U::Quit => self.run_file(cmd),
             U::RecheckRepair => self.recheck_repair(),
             U::ReplaceAtError => self.replace_at_error(),

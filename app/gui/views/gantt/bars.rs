@@ -60,6 +60,8 @@ struct Strip {
     steps: bool,
     /// The activity outlined as current in this row.
     current: Option<usize>,
+    /// Its bars are labelled where they have room.
+    bar_labels: bool,
     /// Bars narrower than a pixel merged so far (one colour).
     merged: Option<(f64, f64, Color32)>,
     /// The contiguous span `[lo, hi]` that the last bars of one colour
@@ -81,6 +83,7 @@ impl Strip {
             h: row.height,
             steps: row.steps,
             current: if row.steps { current } else { None },
+            bar_labels: row.bar_labels,
             merged: None,
             painted: (f64::INFINITY, f64::NEG_INFINITY, Color32::TRANSPARENT),
             faded: None,
@@ -180,25 +183,55 @@ impl<'a, 'm> Canvas<'a, 'm> {
         }
     }
 
-    /// Every row, top to bottom from `rect`'s top, labelled at its left.
-    pub(super) fn rows_ui(&mut self, rows: &[Row], rect: Rect) {
+    /// Every row in view, top to bottom from `rect`'s top, labelled at its
+    /// left (the label kept to the label column; a row of one activity's
+    /// label is given to screen readers too). Rows scrolled out of view are
+    /// skipped: a chart of thousands of rows costs what its visible ones do.
+    pub(super) fn rows_ui(&mut self, ui: &egui::Ui, rows: &[&Row], rect: Rect) {
+        let clip = self.painter.clip_rect();
+        let labels = self
+            .painter
+            .with_clip_rect(clip.intersect(Rect::from_x_y_ranges(
+                rect.left()..=self.timeline.left() - 2.0,
+                rect.y_range(),
+            )));
         let mut offset = 0.0_f32;
-        for row in rows {
+        // The lanes of a group carry its label: drawn on the first one.
+        let mut above = "";
+        for &row in rows {
             let y = rect.top() + offset;
             offset += row.height + LANE_GAP;
-            if !row.label.is_empty() {
-                self.painter.text(
+            let first = row.label != above;
+            above = &row.label;
+            if y + row.height < clip.top() || y > clip.bottom() {
+                continue;
+            }
+            if first && !row.label.is_empty() {
+                let r = labels.text(
                     Pos2::new(rect.left() + 2.0, y + row.height / 2.0),
                     Align2::LEFT_CENTER,
                     &row.label,
                     self.font.clone(),
                     self.m.theme.muted,
                 );
+                if let Some(a) = row.activity {
+                    let id = ui.scope_id().with(("gantt row", a));
+                    let resp =
+                        ui.interact(r.intersect(labels.clip_rect()), id, egui::Sense::hover());
+                    resp.widget_info(|| {
+                        egui::WidgetInfo::labeled(egui::Role::Label, true, &row.label)
+                    });
+                    // The label column may cut a long id.
+                    resp.on_hover_text(&row.label);
+                }
             }
             self.flex_ui(row, y);
             let mut strip = Strip::new(row, y, self.current);
-            for bar in &row.bars {
-                self.bar_ui(&mut strip, bar);
+            let (axis, k) = (self.m.nav.axis, self.m.nav.step);
+            for bar in row.bars_in(axis.start, axis.end) {
+                if bar.shown_at(k) {
+                    self.bar_ui(&mut strip, bar);
+                }
             }
             strip.flush_merged(&self.painter);
             strip.flush_faded(&self.painter);
@@ -211,7 +244,8 @@ impl<'a, 'm> Canvas<'a, 'm> {
             return;
         };
         let (m, axis, h) = (self.m, self.m.nav.axis, row.height);
-        for bar in row.bars.iter().filter(|b| b.placed) {
+        let k = m.nav.step;
+        for bar in row.bars.iter().filter(|b| b.placed && b.shown_at(k)) {
             if bar.extent.1 < axis.start || bar.extent.0 > axis.end {
                 continue;
             }
@@ -271,7 +305,9 @@ impl<'a, 'm> Canvas<'a, 'm> {
         }
         let r = Rect::from_min_max(Pos2::new(x0 as f32, s.y), Pos2::new(x1 as f32, s.y + s.h));
         self.paint_bar(bar, r, look, color, s.current);
-        self.label_ui(bar, r, look, s.h);
+        if s.bar_labels {
+            self.label_ui(bar, r, look, s.h);
+        }
         self.hover(bar, r, s.steps);
     }
 

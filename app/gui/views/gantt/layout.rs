@@ -28,13 +28,26 @@ pub(super) struct Bar {
     /// The bar of `activity`'s placement (schedule mode): it carries the
     /// flexibility layer and can be dragged.
     pub(super) placed: bool,
-    /// What it takes in its lane: `[start, end]`, or with the flexibility layer
-    /// its whiskers and free slack too.
+    /// How far it reaches with its flexibility layer (whiskers and free
+    /// slack; `[start, end]` without one): the layer is drawn while that is in
+    /// view. The layer is drawn inside the bar's lane, so lanes are packed by
+    /// `[start, end]` alone.
     pub(super) extent: (f64, f64),
     /// Where an activity could have run, not where it ran (a failed, skipped,
     /// pending or never-run activity's window): drawn hatched and outlined, so
     /// a window over the whole plan does not read as a bar across the chart.
     pub(super) outline: bool,
+    /// The steps `[from, until)` after which it is drawn (schedule mode lays
+    /// the rows out once per schedule: a placement from its step on, a
+    /// window while its activity is pending or once it failed).
+    pub(super) steps: (usize, usize),
+}
+
+impl Bar {
+    /// Whether it is drawn after step `k`.
+    pub(super) fn shown_at(&self, k: usize) -> bool {
+        self.steps.0 <= k && k < self.steps.1
+    }
 }
 
 impl Bar {
@@ -57,6 +70,7 @@ impl Bar {
             placed: false,
             extent: (start, end),
             outline: false,
+            steps: (0, usize::MAX),
         }
     }
 
@@ -84,16 +98,65 @@ pub(super) struct Row {
     pub(super) height: f32,
     /// Its bars follow the step slider (the current step's activity is outlined).
     pub(super) steps: bool,
+    /// The one activity the row is for (a failed or skipped activity's own
+    /// row): its label names it, for screen readers too.
+    pub(super) activity: Option<usize>,
+    /// Its bars are labelled where they have room (not in a folded row of
+    /// overlapping windows, whose labels would cover each other).
+    pub(super) bar_labels: bool,
+    /// The steps of the failed or skipped activities folded into it, sorted.
+    pub(super) folded: Vec<usize>,
+    /// The steps `[from, until)` after which any of its bars is drawn.
+    pub(super) steps_shown: (usize, usize),
+    /// With bars sorted by start: the latest end of each bar and those
+    /// before it, so the bars in a time range are found by bisection.
+    pub(super) reach: Vec<f64>,
 }
 
 impl Row {
     pub(super) fn new(label: String, bars: Vec<Bar>) -> Self {
+        let steps_shown = bars.iter().fold((usize::MAX, 0), |(lo, hi), b| {
+            (lo.min(b.steps.0), hi.max(b.steps.1))
+        });
+        let sorted = bars.windows(2).all(|w| w[0].start <= w[1].start);
+        let reach = if sorted {
+            bars.iter()
+                .scan(f64::NEG_INFINITY, |r, b| {
+                    *r = r.max(b.end);
+                    Some(*r)
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         Self {
             label,
             bars,
+            steps_shown,
+            reach,
             height: LANE_HEIGHT,
             steps: true,
+            activity: None,
+            bar_labels: true,
+            folded: Vec::new(),
         }
+    }
+
+    /// Whether any of its bars is drawn after step `k` (a row without bars,
+    /// such as an empty awake row, is always drawn).
+    pub(super) fn shown_at(&self, k: usize) -> bool {
+        self.bars.is_empty() || (self.steps_shown.0 <= k && k < self.steps_shown.1)
+    }
+
+    /// Its bars that may meet `[t0, t1]` (plan seconds): found by bisection
+    /// when they are sorted by start, else all of them.
+    pub(super) fn bars_in(&self, t0: f64, t1: f64) -> &[Bar] {
+        if self.reach.len() != self.bars.len() {
+            return &self.bars;
+        }
+        let first = self.reach.partition_point(|&r| r < t0);
+        let last = self.bars.partition_point(|b| b.start <= t1);
+        self.bars.get(first..last.max(first)).unwrap_or_default()
     }
 }
 
@@ -143,31 +206,120 @@ pub(super) fn lane_label(i: usize, label: &str) -> String {
     }
 }
 
-/// Packs bars into as few lanes as possible (by start; first lane that is free).
-pub(super) fn pack(bars: Vec<Bar>, label: &str, max_lanes: usize) -> Vec<Row> {
-    lanes(bars, |b| b.extent, max_lanes)
-        .into_iter()
-        .enumerate()
-        .map(|(i, bars)| Row::new(lane_label(i, label), bars))
+/// Packs bars into lanes, each lane carrying the group's label (drawn once,
+/// on the first lane drawn), at most `max_lanes` (the last takes the
+/// overflow). A bar goes to the first lane where it overlaps nothing, taken
+/// in the order the steps show them: those drawn from an earlier step first
+/// (placements), those drawn until a later step first (pending windows),
+/// then by start. So the bars drawn after any step fill the first lanes as
+/// they would packed on their own (first fit), and a bar keeps its lane at
+/// every step. Each lane's bars end up sorted by start.
+pub(super) fn pack(mut bars: Vec<Bar>, label: &str, max_lanes: usize) -> Vec<Row> {
+    bars.sort_by(|a, b| {
+        a.steps
+            .0
+            .cmp(&b.steps.0)
+            .then(b.steps.1.cmp(&a.steps.1))
+            .then(a.start.total_cmp(&b.start))
+            .then(a.end.total_cmp(&b.end))
+    });
+    // Each lane's spans by (start, index) → end, in whole seconds.
+    let mut taken: Vec<std::collections::BTreeMap<(i64, usize), i64>> = Vec::new();
+    let mut out: Vec<Vec<Bar>> = Vec::new();
+    for (i, bar) in bars.into_iter().enumerate() {
+        let (s, e) = (bar.start.floor() as i64, bar.end.ceil() as i64);
+        let free = |lane: &std::collections::BTreeMap<(i64, usize), i64>| {
+            let before = lane.range(..(s, usize::MAX)).next_back();
+            let after = lane.range((s, 0)..).next();
+            before.is_none_or(|(_, &end)| end <= s)
+                && after.is_none_or(|(&(start, _), _)| start >= e)
+        };
+        let lane = match taken.iter().position(free) {
+            Some(l) => l,
+            None if taken.len() < max_lanes => {
+                taken.push(std::collections::BTreeMap::new());
+                out.push(Vec::new());
+                taken.len() - 1
+            }
+            None => taken.len() - 1,
+        };
+        taken[lane].insert((s, i), e);
+        out[lane].push(bar);
+    }
+    if out.is_empty() {
+        out.push(Vec::new());
+    }
+    out.into_iter()
+        .map(|mut lane| {
+            lane.sort_by(|a, b| a.start.total_cmp(&b.start));
+            Row::new(label.to_string(), lane)
+        })
         .collect()
 }
 
-/// The rows of schedule mode after step `k`: the generated awake and
-/// heating rows, comm passes, scheduled activities packed into lanes (or one
-/// row per unit resource), failed or skipped ones and pending ones as their
-/// windows.
-pub(super) fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
+/// More failed or skipped activities than this are folded into one row
+/// until unfolded.
+pub(super) const FOLD_FAILED_OVER: usize = 12;
+
+/// How many failed or skipped activities `rows` show after step `k` (folded
+/// or in rows of their own).
+pub(super) fn failed_shown(rows: &[Row], k: usize) -> usize {
+    rows.iter()
+        .map(|r| match r.activity {
+            Some(_) => usize::from(r.shown_at(k)),
+            None => r.folded.partition_point(|&s| s <= k),
+        })
+        .sum()
+}
+
+/// The rows of schedule mode as of step `k`, as drawn: the generated rows
+/// and those of [`schedule_rows`] shown after `k`, with only their bars shown
+/// then.
+#[cfg(test)]
+pub(super) fn rows(m: &Model<'_>, k: usize, unfold: bool) -> Vec<Row> {
+    let mut rows = generated_rows(m, k);
+    rows.extend(
+        schedule_rows(m, unfold)
+            .into_iter()
+            .filter(|r| r.shown_at(k))
+            .map(|r| {
+                let bars = r.bars.into_iter().filter(|b| b.shown_at(k)).collect();
+                Row { bars, ..r }
+            }),
+    );
+    rows
+}
+
+/// The rows of schedule mode, laid out once per schedule (each bar drawn
+/// from or until its activity's step): comm passes, scheduled activities
+/// packed into lanes over the whole run (or one row per unit resource), so a
+/// bar keeps its lane at every step; failed or skipped ones as their
+/// windows, one row each (folded into one unlabelled row when there are more
+/// than [`FOLD_FAILED_OVER`], unless `unfold`); and pending ones as their
+/// windows. The generated rows change with the step ([`generated_rows`]).
+pub(super) fn schedule_rows(m: &Model<'_>, unfold: bool) -> Vec<Row> {
     let plan = &m.doc.plan;
     let t = &m.theme;
-    let mut rows = generated_rows(m, k);
+    let mut rows = Vec::new();
     let (mut comm, mut scheduled, mut failed, mut pending) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    // With the flexibility layer, a placed bar takes its whiskers and free slack
-    // in its lane, so no other bar hides them.
+        (Vec::new(), Vec::new(), Vec::<Vec<Bar>>::new(), Vec::new());
+    // With the flexibility layer, how far a placed bar's whiskers and free
+    // slack reach (drawn inside its lane, under the bars).
     let flex = m.flex_layer();
     for (a, act) in plan.activities.iter().enumerate() {
         let label = act.id.clone();
-        match m.status(a, k) {
+        // Its step (none: pending throughout).
+        let step = m.analysis.step(a).map_or(usize::MAX, |s| s.step);
+        let windows = |color| {
+            window_spans(plan, act)
+                .into_iter()
+                .map(move |(lo, hi)| Bar::window(lo, hi, color, a, act.id.clone()))
+        };
+        pending.extend(windows(t.pending).map(|b| Bar {
+            steps: (0, step),
+            ..b
+        }));
+        match m.status(a, usize::MAX) {
             Status::Scheduled(s, e) => {
                 let color = if act.comm_kind.is_some() {
                     t.comm
@@ -176,6 +328,7 @@ pub(super) fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
                 };
                 let mut bar = Bar::new(s as f64, e as f64, color, Some(a), label);
                 bar.placed = true;
+                bar.steps = (step, usize::MAX);
                 if let Some(fa) = flex.and_then(|f| f.activity(a)) {
                     bar.extent = flex::envelope(fa, e - s);
                 }
@@ -185,20 +338,18 @@ pub(super) fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
                     scheduled.push(bar);
                 }
             }
+            Status::Pending => {}
             status => {
-                let color = match status {
-                    Status::Failed => t.failed,
-                    Status::Skipped => t.skipped,
-                    _ => t.pending,
-                };
-                let bars = window_spans(plan, act)
-                    .into_iter()
-                    .map(|(lo, hi)| Bar::window(lo, hi, color, a, label.clone()));
-                if status == Status::Pending {
-                    pending.extend(bars);
+                let color = if status == Status::Failed {
+                    t.failed
                 } else {
-                    failed.extend(bars);
-                }
+                    t.skipped
+                };
+                let bars = windows(color).map(|b| Bar {
+                    steps: (step, usize::MAX),
+                    ..b
+                });
+                failed.push(bars.collect());
             }
         }
     }
@@ -208,14 +359,47 @@ pub(super) fn rows(m: &Model<'_>, k: usize) -> Vec<Row> {
     } else {
         rows.extend(pack(scheduled, "Scheduled", 64));
     }
-    rows.extend(pack(failed, "Failed / skipped", 8));
+    rows.extend(failed_rows(failed, unfold));
     rows.extend(pack(pending, "Pending (windows)", 8));
     rows
 }
 
+/// The failed or skipped activities' windows (each activity's bars), in
+/// order of their first window: one row each, labelled with the activity's
+/// id, or with more than [`FOLD_FAILED_OVER`] and not `unfold` one row
+/// holding them all (`Failed / skipped`, its bars unlabelled).
+fn failed_rows(mut failed: Vec<Vec<Bar>>, unfold: bool) -> Vec<Row> {
+    failed.retain(|bars| !bars.is_empty());
+    if failed.len() > FOLD_FAILED_OVER && !unfold {
+        let mut steps: Vec<usize> = failed.iter().map(|bars| bars[0].steps.0).collect();
+        steps.sort_unstable();
+        let bars = failed.into_iter().flatten().collect();
+        return pack(bars, "Failed / skipped", 1)
+            .into_iter()
+            .map(|r| Row {
+                bar_labels: false,
+                folded: steps.clone(),
+                ..r
+            })
+            .collect();
+    }
+    failed.sort_by(|a, b| a[0].start.total_cmp(&b[0].start));
+    failed
+        .into_iter()
+        .map(|mut bars| {
+            bars.sort_by(|a, b| a.start.total_cmp(&b.start));
+            let activity = bars[0].activity;
+            Row {
+                activity,
+                ..Row::new(bars[0].label.clone(), bars)
+            }
+        })
+        .collect()
+}
+
 /// The generated activities alive after step `k`: the awake periods with
 /// their wakeup and shutdown, and each thermal zone's heating.
-fn generated_rows(m: &Model<'_>, k: usize) -> Vec<Row> {
+pub(super) fn generated_rows(m: &Model<'_>, k: usize) -> Vec<Row> {
     let plan = &m.doc.plan;
     let problem = &m.analysis.schedule.problem;
     let t = &m.theme;
@@ -268,7 +452,7 @@ fn generated_rows(m: &Model<'_>, k: usize) -> Vec<Row> {
 fn by_resource(plan: &solscope_engine::Plan, scheduled: Vec<Bar>) -> Vec<Row> {
     let mut groups: std::collections::BTreeMap<&str, Vec<Bar>> = std::collections::BTreeMap::new();
     let mut none = Vec::new();
-    for mut bar in scheduled {
+    for bar in scheduled {
         let held = bar
             .activity
             .and_then(|a| plan.activities.get(a))
@@ -278,9 +462,6 @@ fn by_resource(plan: &solscope_engine::Plan, scheduled: Vec<Bar>) -> Vec<Row> {
             none.push(bar);
             continue;
         }
-        // One row per resource with the flexibility layer too: a whisker
-        // reaching past the next bar on the resource runs under it.
-        bar.extent = (bar.start, bar.end);
         for r in held {
             groups.entry(r.as_str()).or_default().push(bar.clone());
         }

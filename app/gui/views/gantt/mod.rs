@@ -28,30 +28,51 @@ use eframe::egui::{self, Color32, Pos2, Rect, Sense};
 use crate::gui::theme::LANE_GAP;
 use crate::gui::views::{Model, ViewCache, flex};
 use crate::state::Command;
-use crate::state::Mode;
 use crate::state::execution::ExecutionRun;
+use crate::state::{Mode, Status};
 use bars::Canvas;
 use layout::Row;
 
-/// What the rows were built for: revision, step, grouping, palette and, in
-/// execution mode, the actuals, cycle, its step, and which parts were derived.
+/// What the rows were built for: revision, grouping, palette, the
+/// flexibility layer, the failed rows unfolded and, in execution mode, the
+/// step, the actuals, cycle, its step, and which parts were derived.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct RowsKey {
     revision: u64,
     step: usize,
     by_resource: bool,
     palette: Color32,
-    /// The flexibility layer was shown (it widens what a bar takes in a lane).
+    /// The flexibility layer was shown (how far each bar's layer reaches).
     flex: bool,
+    /// The failed and skipped activities have a row each however many.
+    unfold: bool,
     exec: Option<(u64, usize, usize, bool, bool)>,
 }
 
-/// The rows as of one step, kept between frames: building them sorts and packs
-/// every activity, which at 10k activities costs more than drawing them.
+/// The rows, kept between frames: building them sorts and packs every
+/// activity, which at 10k activities costs more than drawing them. In
+/// schedule mode they are laid out once per schedule (each bar knows the
+/// steps it is drawn after), so moving the step builds only the generated
+/// rows again.
 #[derive(Clone, Debug)]
 pub struct GanttRows {
     key: RowsKey,
     rows: Vec<Row>,
+    /// Schedule mode's generated rows (awake, heating) and the step they
+    /// are of.
+    generated: (Option<usize>, Vec<Row>),
+}
+
+impl GanttRows {
+    /// The rows drawn after step `k`, top to bottom.
+    fn shown(&self, k: usize) -> Vec<&Row> {
+        self.generated
+            .1
+            .iter()
+            .chain(&self.rows)
+            .filter(|r| r.shown_at(k))
+            .collect()
+    }
 }
 
 /// The Gantt chart.
@@ -64,7 +85,21 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
     } else if !m.persisted.hide_flex {
         flex::legend_ui(ui, m);
     }
-    let (key, rows) = rows_of(m, run, cache);
+    if run.is_none() && cache.gantt_revealed != Some(m.nav.selected) {
+        // A failed or skipped activity selected (from the list, a search, a
+        // link) is shown in a row of its own.
+        let k = m.nav.step;
+        if m.nav
+            .selected
+            .is_some_and(|a| matches!(m.status(a, k), Status::Failed | Status::Skipped))
+        {
+            cache.failed_unfolded = true;
+        }
+    }
+    let gantt = rows_of(m, run, cache);
+    let k = m.nav.step;
+    fold_ui(ui, &gantt.rows, k, cache);
+    let rows = gantt.shown(k);
     let height: f32 = rows.iter().map(|r| r.height + LANE_GAP).sum::<f32>() + 4.0;
     let (rect, response) = ui.allocate_exact_size(
         egui::vec2(ui.available_width(), height),
@@ -86,15 +121,33 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
         (timeline, response.hover_pos()),
         run,
     );
-    canvas.rows_ui(&rows, rect);
+    canvas.rows_ui(ui, &rows, rect);
     ruler::time_lines(&painter, m, run, timeline);
     hover::tooltip_ui(m, &response, canvas.hovered.take(), quiet, cmds);
     let frame = (&painter, timeline);
     drag::drag_ui(ui, m, cache, &response, frame, &canvas.drawn, cmds);
     drag::pan_zoom(ui, m, &response, cache.drag.is_some(), timeline, cmds);
-    cache.gantt = Some(GanttRows { key, rows });
+    cache.gantt = Some(gantt);
     cache.bars = canvas.drawn;
     cache.looks = canvas.looks;
+}
+
+/// With more failed or skipped activities than fit a glance, the button that
+/// gives each its own row, or folds them into one again.
+fn fold_ui(ui: &mut egui::Ui, rows: &[Row], k: usize, cache: &mut ViewCache) {
+    let n = layout::failed_shown(rows, k);
+    if n <= layout::FOLD_FAILED_OVER {
+        return;
+    }
+    let text = if cache.failed_unfolded {
+        format!("Fold the {n} failed and skipped activities into one row")
+    } else {
+        format!("Show each of the {n} failed and skipped activities in its own row")
+    };
+    if ui.button(text).clicked() {
+        cache.failed_unfolded = !cache.failed_unfolded;
+        ui.ctx().request_repaint();
+    }
 }
 
 /// The execution drawn in execution mode (`Some(None)` in schedule mode),
@@ -119,20 +172,18 @@ fn execution_ui<'a>(ui: &mut egui::Ui, m: &Model<'a>) -> Option<Option<&'a Execu
     }
 }
 
-/// The rows to draw and what they are for: those kept from the last frame
-/// when they were built for the same, else built again.
-fn rows_of(
-    m: &Model<'_>,
-    run: Option<&ExecutionRun>,
-    cache: &mut ViewCache,
-) -> (RowsKey, Vec<Row>) {
+/// The rows to draw: those kept from the last frame when they were built
+/// for the same, else built again (in schedule mode the generated rows
+/// whenever the step moved).
+fn rows_of(m: &Model<'_>, run: Option<&ExecutionRun>, cache: &mut ViewCache) -> GanttRows {
     let k = m.nav.step;
     let key = RowsKey {
         revision: m.revision,
-        step: k,
+        step: run.map_or(0, |_| k),
         by_resource: m.persisted.by_resource,
         palette: m.theme.scheduled,
         flex: m.flex_layer().is_some(),
+        unfold: cache.failed_unfolded,
         exec: run.map(|_| {
             (
                 m.exec.actuals_rev,
@@ -143,14 +194,26 @@ fn rows_of(
             )
         }),
     };
-    let rows = match cache.gantt.take() {
-        Some(cached) if cached.key == key => cached.rows,
+    let (rows, generated) = match cache.gantt.take() {
+        Some(cached) if cached.key == key => (cached.rows, cached.generated),
         _ => match run {
-            Some(run) => execution::execution_rows(m, run),
-            None => layout::rows(m, k),
+            Some(run) => (execution::execution_rows(m, run), (None, Vec::new())),
+            None => (
+                layout::schedule_rows(m, cache.failed_unfolded),
+                (None, Vec::new()),
+            ),
         },
     };
-    (key, rows)
+    let generated = match generated {
+        (Some(g), rows) if g == k => (Some(g), rows),
+        _ if run.is_some() => (None, Vec::new()),
+        _ => (Some(k), layout::generated_rows(m, k)),
+    };
+    GanttRows {
+        key,
+        rows,
+        generated,
+    }
 }
 
 /// A new selection: its row scrolled into view (its time range was moved to
@@ -159,7 +222,7 @@ fn reveal_ui(
     ui: &egui::Ui,
     m: &Model<'_>,
     cache: &mut ViewCache,
-    rows: &[Row],
+    rows: &[&Row],
     (top, timeline): (f32, Rect),
 ) {
     if cache.gantt_revealed == Some(m.nav.selected) {
@@ -178,14 +241,19 @@ fn reveal_ui(
 /// Where activity `a`'s row is on screen (the Gantt's top at `top`), at its
 /// bar when that is in view: its placement, else its first window, else any
 /// bar of its own (not a heater's).
-fn row_of(m: &Model<'_>, rows: &[Row], a: usize, top: f32, timeline: Rect) -> Option<Rect> {
+fn row_of(m: &Model<'_>, rows: &[&Row], a: usize, top: f32, timeline: Rect) -> Option<Rect> {
     let id = &m.doc.plan.activities.get(a)?.id;
     let mut best: Option<(u8, Rect)> = None;
     let mut offset = 0.0_f32;
     for row in rows {
         let y = top + offset;
         offset += row.height + LANE_GAP;
-        for bar in row.bars.iter().filter(|b| b.activity == Some(a)) {
+        let k = m.nav.step;
+        for bar in row
+            .bars
+            .iter()
+            .filter(|b| b.activity == Some(a) && b.shown_at(k))
+        {
             let rank = match (bar.placed, bar.outline) {
                 (true, _) => 0,
                 (_, true) => 1,
