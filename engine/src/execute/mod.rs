@@ -156,6 +156,10 @@ pub enum Guard {
     Dependency(usize),
     /// An activity sharing a unit resource was still executing.
     Resource(usize),
+    /// Too few sequence engines were free: those held by the executing
+    /// activities plus its own exceed `sequence_engines` (the first such
+    /// executing activity in file order).
+    Engines(usize),
     /// A required state did not hold (state index, value index).
     State(usize, usize),
     /// Dispatch policy: its skip condition passed before its start condition held.

@@ -508,6 +508,22 @@ pub(super) fn guard(
             return Some(Guard::Resource(b));
         }
     }
+    if let (Some(cap), true) = (problem.engines, act.engines > 0) {
+        // Engines are hardware: those held by the activities executing at `s`
+        // (for as long as they actually run) plus its own stay within the cap.
+        let mut held = 0i64;
+        let mut first = None;
+        for (b, r) in runs.iter().enumerate() {
+            let Some(r) = r else { continue };
+            if b != a && r.start <= s && s < r.end && problem.acts[b].engines > 0 {
+                held = held.saturating_add(problem.acts[b].engines);
+                first.get_or_insert(b);
+            }
+        }
+        if let Some(b) = first.filter(|_| held.saturating_add(act.engines) > cap) {
+            return Some(Guard::Engines(b));
+        }
+    }
     if !act.requires.is_empty() {
         let values = state_values(problem, plan, runs, s);
         for req in &act.requires {
