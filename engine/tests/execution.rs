@@ -445,6 +445,39 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 96,
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+
+    /// Keeping only the plans the loss explanations read changes nothing else,
+    /// and explains every loss as keeping them all does.
+    #[test]
+    fn failed_plans_only_explain_the_same_losses(
+        text in plangen::plan_text(),
+        factors in proptest::collection::vec(50u32..=200, 1..8),
+    ) {
+        let plan = load_plan(&text).map_err(|e| TestCaseError::fail(e.to_string()))?.plan;
+        let acts = random_actuals(&plan, &factors);
+        let full = execute(&plan, &acts).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let lean = execute_with(&plan, &acts, ExecuteOptions { failed_plans_only: true, ..ExecuteOptions::default() })
+            .map_err(|e| TestCaseError::fail(e.to_string()))?;
+        prop_assert_eq!(full.cycles.len(), lean.cycles.len());
+        for (f, l) in full.cycles.iter().zip(&lean.cycles) {
+            prop_assert_eq!(&f.placements, &l.placements);
+            prop_assert_eq!(&f.events, &l.events);
+            // Only a cycle that left something unplaced keeps its plan.
+            prop_assert!(l.plan.is_none() || f.placements.iter().any(Option::is_none));
+        }
+        prop_assert_eq!(&full.activities, &lean.activities);
+        let a = solscope_engine::losses(&plan, &full).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let b = solscope_engine::losses(&plan, &lean).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        prop_assert_eq!(a, b);
+    }
+}
+
 #[test]
 fn a_mandatory_sequence_running_long_holds_the_next_one_back() {
     // One engine: seq1 is placed after seq0's predicted end, and seq0 runs long.
