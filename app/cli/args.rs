@@ -5,6 +5,7 @@
 use std::path::PathBuf;
 
 use clap::{Parser, Subcommand, ValueEnum};
+use solscope_engine::TuneOptions;
 
 /// Largest `--max-input-mib` (1 TiB).
 const MAX_INPUT_MIB: u64 = 1 << 20;
@@ -252,9 +253,9 @@ pub struct FlexArgs {
     pub free_slack: bool,
 }
 
-// `solscope tune`. The defaults keep a tuning of the bundled plan (70
-// activities, one order scored in about 20 ms per run) to about 20 s on two
-// cores; the engine's own defaults (100 runs, budget 300) take several minutes.
+// `solscope tune`. The defaults are the engine's (`TuneOptions::default()`):
+// a tuning of the bundled plan (70 activities, one order scored in about 20 ms
+// per run) takes about 20 s on two cores.
 #[derive(clap::Args, Debug)]
 pub struct TuneArgs {
     /// The plan file (solscope.plan/1 JSON).
@@ -267,21 +268,21 @@ pub struct TuneArgs {
     /// least 1). The defaults (20 runs, 40 held out, budget 60) tune the bundled
     /// plan in about 20 s on two cores; more runs and a larger budget search
     /// longer and better.
-    #[arg(long, default_value_t = 20)]
+    #[arg(long, default_value_t = TuneOptions::DEFAULT_RUNS)]
     pub runs: u64,
     /// Seed of the tuning sample (run i draws the durations `montecarlo --seed
     /// SEED` draws in run i).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = TuneOptions::DEFAULT_SEED)]
     pub seed: u64,
     /// Runs of the held-out sample the result is confirmed on (at least --runs).
-    #[arg(long, default_value_t = 40)]
+    #[arg(long, default_value_t = TuneOptions::DEFAULT_CONFIRM_RUNS)]
     pub confirm_runs: u64,
     /// Seed of the held-out sample (not --seed).
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = TuneOptions::DEFAULT_CONFIRM_SEED)]
     pub confirm_seed: u64,
     /// Orders the search may score on the tuning sample, the original's
     /// included (at least 1).
-    #[arg(long, value_name = "EVALS", default_value_t = 60)]
+    #[arg(long, value_name = "EVALS", default_value_t = TuneOptions::DEFAULT_BUDGET)]
     pub budget: u64,
     /// Keep this activity's priority (and place); repeat for more.
     #[arg(long, value_name = "ID")]

@@ -22,8 +22,11 @@ pub fn run(args: &ExecuteArgs, limit: usize) -> Result<String, Failure> {
         (None, Some(seed)) => solscope_engine::sample_run(&loaded.plan, seed, args.run),
         (None, None) => solscope_engine::Actuals::nominal(),
     };
+    // The document explains the losses, which read only the plans of the
+    // cycles that first left an activity unplaced.
     let options = solscope_engine::ExecuteOptions {
         policy: args.policy.into(),
+        failed_plans_only: true,
         ..Default::default()
     };
     let execution = solscope_engine::execute_with(&loaded.plan, &actuals, options)?;

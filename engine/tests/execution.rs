@@ -8,7 +8,7 @@
 //!    drop optional activities it was placed after; docs/semantics.md).
 //! 2. With random actual durations, an independent replay of the executed
 //!    timeline finds no two activities sharing a unit resource at once, no
-//!    dependency started early, no start outside the activity's windows or
+//!    start while too few sequence engines were free, no dependency started early, no start outside the activity's windows or
 //!    before its required states hold, at most one member of a group run, and
 //!    each started activity dispatched by exactly one cycle.
 //! 3. Scenarios: an optional activity aborted; a mandatory one running long and
@@ -21,11 +21,12 @@ mod plangen;
 
 use std::collections::BTreeMap;
 
+use proptest::option;
 use proptest::prelude::*;
 use serde_json::{Value, json};
 use solscope_engine::{
-    ACTUALS_FORMAT, Actuals, AwakeMode, Event, Execution, Plan, RunOutcome, Trigger, ViolationKind,
-    execute, load_plan,
+    ACTUALS_FORMAT, Actuals, AwakeMode, Event, ExecuteOptions, Execution, Guard, Plan, Policy,
+    RunOutcome, Trigger, ViolationKind, execute, execute_with, load_plan,
 };
 
 fn load(v: &Value) -> Plan {
@@ -237,6 +238,22 @@ fn replay_clean(plan: &Plan, ex: &Execution) -> Result<(), String> {
                 ));
             }
         }
+        // Sequence engines: those of the activities running at its start plus
+        // its own stay within the cap (engines are only taken at starts, so
+        // every instant is checked).
+        if let (Some(cap), true) = (plan.sequence_engines, act(a).sequence_engines > 0) {
+            let held: u32 = ran
+                .iter()
+                .filter(|&&(b, s2, e2)| b != a && s2 <= s && s < e2)
+                .map(|&(b, ..)| act(b).sequence_engines)
+                .sum();
+            if held + act(a).sequence_engines > cap {
+                return Err(format!(
+                    "{id} started at {s} needing {} engines while {held} of {cap} were held",
+                    act(a).sequence_engines
+                ));
+            }
+        }
         // Dependencies: the target ran and ended `min_delay` before.
         for d in &act(a).after {
             let Some(&(_, _, te)) = ran.iter().find(|x| act(x.0).id == d.activity) else {
@@ -369,6 +386,120 @@ proptest! {
         prop_assert_eq!(&again.activities, &ex.activities);
         prop_assert_eq!(&again.profile, &ex.profile);
     }
+}
+
+/// A plan of sequences competing for `cap` sequence engines: activity `i` has
+/// `(duration, engines, mandatory, window start)`; cycles every `period` (if
+/// any) and on every end.
+fn engine_plan(cap: u32, acts: &[(i64, u32, bool, i64)], period: Option<i64>) -> Plan {
+    let activities: Vec<Value> = acts
+        .iter()
+        .enumerate()
+        .map(|(i, &(d, e, mandatory, w))| {
+            json!({ "id": format!("seq{i}"), "priority": i + 1, "duration": d,
+                    "mandatory": mandatory, "sequence_engines": e,
+                    "windows": [{ "start": w, "end": 4000 }] })
+        })
+        .collect();
+    let mut plan = json!({
+        "format": "solscope.plan/1",
+        "horizon": { "start": 0, "end": 6000 },
+        "battery": { "capacity": 2000.0, "initial": 1500.0, "min_soc": 100.0 },
+        "power": { "rtg": 110.0, "asleep": 25.0, "awake": 50.0 },
+        "sequence_engines": cap,
+        "activities": activities,
+    });
+    if let Some(p) = period {
+        plan["execution"] = json!({ "replan_period": p });
+    }
+    load(&plan)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 256,
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+
+    /// Sequences that run long keep their engines: nothing starts on an engine
+    /// still held, under any policy, and a limit broken is still reported.
+    #[test]
+    fn a_sequence_running_long_keeps_its_engines(
+        cap in 1u32..=3,
+        acts in proptest::collection::vec((20i64..400, 0u32..=3, prop::bool::ANY, 0i64..600), 2..9),
+        factors in proptest::collection::vec(50u32..=250, 1..9),
+        period in option::of(30i64..500),
+    ) {
+        let acts: Vec<_> = acts.into_iter().map(|(d, e, m, w)| (d, e.min(cap), m, w)).collect();
+        let plan = engine_plan(cap, &acts, period);
+        let actuals = random_actuals(&plan, &factors);
+        for policy in [Policy::Replan, Policy::Fixed, Policy::Dispatch] {
+            let options = ExecuteOptions { policy, ..ExecuteOptions::default() };
+            let ex = execute_with(&plan, &actuals, options)
+                .map_err(|e| TestCaseError::fail(e.to_string()))?;
+            if let Err(e) = replay_clean(&plan, &ex) {
+                return Err(TestCaseError::fail(format!("{policy:?}: {e}\nactuals: {:?}", actuals.durations)));
+            }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 96,
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+
+    /// Keeping only the plans the loss explanations read changes nothing else,
+    /// and explains every loss as keeping them all does.
+    #[test]
+    fn failed_plans_only_explain_the_same_losses(
+        text in plangen::plan_text(),
+        factors in proptest::collection::vec(50u32..=200, 1..8),
+    ) {
+        let plan = load_plan(&text).map_err(|e| TestCaseError::fail(e.to_string()))?.plan;
+        let acts = random_actuals(&plan, &factors);
+        let full = execute(&plan, &acts).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let lean = execute_with(&plan, &acts, ExecuteOptions { failed_plans_only: true, ..ExecuteOptions::default() })
+            .map_err(|e| TestCaseError::fail(e.to_string()))?;
+        prop_assert_eq!(full.cycles.len(), lean.cycles.len());
+        for (f, l) in full.cycles.iter().zip(&lean.cycles) {
+            prop_assert_eq!(&f.placements, &l.placements);
+            prop_assert_eq!(&f.events, &l.events);
+            // Only a cycle that left something unplaced keeps its plan.
+            prop_assert!(l.plan.is_none() || f.placements.iter().any(Option::is_none));
+        }
+        prop_assert_eq!(&full.activities, &lean.activities);
+        let a = solscope_engine::losses(&plan, &full).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let b = solscope_engine::losses(&plan, &lean).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        prop_assert_eq!(a, b);
+    }
+}
+
+#[test]
+fn a_mandatory_sequence_running_long_holds_the_next_one_back() {
+    // One engine: seq1 is placed after seq0's predicted end, and seq0 runs long.
+    let plan = engine_plan(1, &[(300, 1, true, 0), (200, 1, true, 0)], None);
+    let ex = execute(&plan, &actuals(&[("seq0", 500)])).unwrap();
+    let first = &ex.cycles[0];
+    assert_eq!(first.placement(0), Some((0, 300)));
+    assert_eq!(first.placement(1), Some((300, 500)));
+    // Due at 300 while seq0 still holds the engine: held back, and started by
+    // the cycle at seq0's actual end.
+    assert!(first.events.contains(&Event::Held {
+        activity: 1,
+        time: 300,
+        guard: Guard::Engines(0),
+    }));
+    assert_eq!(ex.activities[0].actual, Some((0, 500)));
+    assert_eq!(ex.activities[1].actual, Some((500, 700)));
+    assert_eq!(ex.cycles[1].trigger, Trigger::End(0));
+    // Engines 0 use none: they start whatever is held.
+    let free = engine_plan(1, &[(300, 1, true, 0), (200, 0, true, 0)], None);
+    let ex = execute(&free, &actuals(&[("seq0", 500)])).unwrap();
+    assert_eq!(ex.activities[1].actual, Some((0, 200)));
 }
 
 /// A one-sol-fragment plan: a drive, then science that depends on it.

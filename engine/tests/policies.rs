@@ -146,6 +146,22 @@ fn check(plan: &Plan, seed: u64) -> Result<(), String> {
                 ));
             }
         }
+        // Sequence engines held at its start (by what actually ran) plus its own.
+        let own = plan.activities[a].sequence_engines;
+        if let (Some(cap), true) = (plan.sequence_engines, own > 0) {
+            let held: u32 = ex
+                .activities
+                .iter()
+                .enumerate()
+                .filter(|&(c, rc)| c != a && rc.actual.is_some_and(|(cs, ce)| cs <= s && s < ce))
+                .map(|(c, _)| plan.activities[c].sequence_engines)
+                .sum();
+            if held + own > cap {
+                return Err(format!(
+                    "dispatch started {id} at {s} with {held} of {cap} engines held"
+                ));
+            }
+        }
     }
     Ok(())
 }

@@ -85,7 +85,8 @@ pub struct Cycle {
     pub trigger: Trigger,
     /// The plan it scheduled (its activities are those not yet started, and the
     /// ones still executing, placed first); `None` when the execution was run
-    /// without keeping them (Monte Carlo).
+    /// without keeping them (Monte Carlo), or with
+    /// [`ExecuteOptions::failed_plans_only`] when no loss is explained there.
     pub plan: Option<Plan>,
     /// State of charge it started from (mJ).
     pub soc: i128,
@@ -124,6 +125,12 @@ impl Cycle {
 pub struct ExecuteOptions {
     /// Drop each cycle's plan (a Monte Carlo run needs only the outcomes).
     pub outcomes_only: bool,
+    /// Keep the plan only of the first cycle, if it left an activity unplaced,
+    /// and of a later cycle that left unplaced an activity the latest cycle
+    /// before it that had it placed: all that [`losses`] reads, without a plan
+    /// per cycle (what makes a long execution's memory grow with its cycles
+    /// times its activities). Other cycles' plans are `None`.
+    pub failed_plans_only: bool,
     /// How activities are started (default: replanning every cycle).
     pub policy: Policy,
 }
@@ -156,6 +163,10 @@ pub enum Guard {
     Dependency(usize),
     /// An activity sharing a unit resource was still executing.
     Resource(usize),
+    /// Too few sequence engines were free: those held by the executing
+    /// activities plus its own exceed `sequence_engines` (the first such
+    /// executing activity in file order).
+    Engines(usize),
     /// A required state did not hold (state index, value index).
     State(usize, usize),
     /// Dispatch policy: its skip condition passed before its start condition held.

@@ -190,6 +190,7 @@ pub(crate) fn runs_of(
     let options = ExecuteOptions {
         policy,
         outcomes_only: !explain_losses,
+        failed_plans_only: true,
     };
     let (prefix, prepared) = if policy.is_replan() {
         (Some(Prefix::nominal(&problem, plan, options)?), None)
@@ -229,6 +230,7 @@ pub fn run_record(plan: &Plan, campaign: &Campaign, run: u64) -> Result<RunRecor
     let actuals = sample_run(plan, campaign.seed, run);
     let options = ExecuteOptions {
         policy: campaign.policy,
+        failed_plans_only: true,
         ..ExecuteOptions::default()
     };
     let ex = execute_with(plan, &actuals, options)?;

@@ -72,6 +72,9 @@ pub(super) struct Sim {
     pub runs: Vec<Option<Started>>,
     /// The last cycle whose plan had each activity not yet started.
     pub last_cycle: Vec<Option<usize>>,
+    /// Whether the latest cycle whose plan had each activity placed it (`true`
+    /// before the first cycle).
+    pub placed: Vec<bool>,
     pub record: Record,
     pub integ: Integrator,
     pub cycles: Vec<Cycle>,
@@ -93,6 +96,7 @@ impl Sim {
             status: vec![Status::Waiting; n],
             runs: vec![None; n],
             last_cycle: vec![None; n],
+            placed: vec![true; n],
             record: Record::default(),
             integ: Integrator::new(problem),
             cycles: Vec::new(),
@@ -140,15 +144,26 @@ impl Sim {
             dropped,
             outcomes,
         } = schedule;
+        let placements = match outcomes {
+            Cow::Owned(o) => o.placements,
+            Cow::Borrowed(o) => o.placements.clone(),
+        };
+        // A loss is explained at the first cycle that left unplaced an
+        // activity the cycle before had placed (any, at the first cycle).
+        let newly_failed = activity_of
+            .iter()
+            .zip(&placements)
+            .any(|(&a, p)| p.is_none() && self.placed[a]);
+        for (&a, p) in activity_of.iter().zip(&placements) {
+            self.placed[a] = p.is_some();
+        }
+        let keep = !options.outcomes_only && (!options.failed_plans_only || newly_failed);
         self.cycles.push(Cycle {
             time: t,
             trigger: self.trigger,
-            plan: (!options.outcomes_only).then(|| cycle_plan.into_owned()),
+            plan: keep.then(|| cycle_plan.into_owned()),
             soc,
-            placements: match outcomes {
-                Cow::Owned(o) => o.placements,
-                Cow::Borrowed(o) => o.placements.clone(),
-            },
+            placements,
             activity_of,
             dropped,
             events,
@@ -506,6 +521,22 @@ pub(super) fn guard(
                 .any(|x| act.resources.contains(x))
         {
             return Some(Guard::Resource(b));
+        }
+    }
+    if let (Some(cap), true) = (problem.engines, act.engines > 0) {
+        // Engines are hardware: those held by the activities executing at `s`
+        // (for as long as they actually run) plus its own stay within the cap.
+        let mut held = 0i64;
+        let mut first = None;
+        for (b, r) in runs.iter().enumerate() {
+            let Some(r) = r else { continue };
+            if b != a && r.start <= s && s < r.end && problem.acts[b].engines > 0 {
+                held = held.saturating_add(problem.acts[b].engines);
+                first.get_or_insert(b);
+            }
+        }
+        if let Some(b) = first.filter(|_| held.saturating_add(act.engines) > cap) {
+            return Some(Guard::Engines(b));
         }
     }
     if !act.requires.is_empty() {

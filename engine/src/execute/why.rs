@@ -84,7 +84,9 @@ impl Dropped {
 
 /// Why each activity that the first cycle placed did not complete, in plan
 /// order. Needs the cycle plans (an execution run without
-/// `ExecuteOptions::outcomes_only`).
+/// `ExecuteOptions::outcomes_only`; those kept by
+/// `ExecuteOptions::failed_plans_only` suffice: a loss is explained at the
+/// first cycle that left the activity unplaced after one that placed it).
 pub fn losses(plan: &Plan, ex: &Execution) -> Result<Vec<Loss>, Error> {
     // Losses often share the cycle that decided them: its trace is rebuilt once.
     let mut traces = BTreeMap::new();

@@ -305,6 +305,7 @@ pub fn execution_document(
                             let (name, by) = match guard {
                                 Guard::Dependency(b) => ("dependency", id(b)),
                                 Guard::Resource(b) => ("resource", id(b)),
+                                Guard::Engines(b) => ("sequence_engines", id(b)),
                                 Guard::Skipped => ("skip_condition", String::new()),
                                 Guard::State(s, v) => {
                                     let (state, def) = plan

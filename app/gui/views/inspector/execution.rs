@@ -388,6 +388,10 @@ fn guard_text(m: &Model<'_>, guard: Guard) -> String {
             id(b)
         ),
         Guard::Resource(b) => format!("unit resource: {} was still executing", id(b)),
+        Guard::Engines(b) => format!(
+            "sequence engines: too few free while {} was executing",
+            id(b)
+        ),
         Guard::Skipped => "skip condition: its latest start passed first".to_string(),
         Guard::State(s, v) => {
             let (name, value) = m
