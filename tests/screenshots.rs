@@ -4,6 +4,7 @@
 
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
+use egui_kittest::kittest::Queryable;
 use serde_json::json;
 use solscope::gui::SolscopeApp;
 use solscope::gui::screenshot::{SNAPSHOT_SIZE, View, harness, snapshot_options};
@@ -454,4 +455,36 @@ fn a_thousand_generated_activities_at_the_last_step() {
     let text = serde_json::to_string(&plan).unwrap();
     let app = SolscopeApp::from_text(&text, None).expect("generated plan");
     check("generated_1000_last_step", app, View::default());
+}
+
+/// Execution mode after the 200-run campaign with the activity lost most
+/// often (the first in the inspector's list) selected: the inspector beside
+/// the Gantt and plots, never under them.
+#[test]
+fn execution_with_a_lost_activity_selected() {
+    let mut app = app();
+    app.apply(UiCommand::ShowExecution.into());
+    app.apply(Command::RunCampaign { runs: 200, seed: 1 });
+    check(
+        "execution_lost_activity",
+        app,
+        View {
+            select: Some("zcam_mosaic_small_413".into()),
+            ..View::default()
+        },
+    );
+}
+
+/// The peak-power plot hovered well above its curve: the readout is the
+/// profile's value at the time under the pointer.
+#[test]
+fn hover_readout_on_the_peak_plot() {
+    let mut h = harness(app(), SNAPSHOT_SIZE.into(), &View::default()).expect("harness");
+    let top = h.get_by_label("Peak power (W)").rect();
+    h.hover_at(eframe::egui::pos2(
+        top.center().x + 100.0,
+        top.bottom() + 12.0,
+    ));
+    h.run_steps(3);
+    h.snapshot_options("peak_hover_readout", &snapshot_options());
 }

@@ -94,3 +94,9 @@ pub fn category(category: Category) -> &'static str {
 /// The "all together" row.
 pub const ALL_TOGETHER: &str = "Where every row above is green at once: the starts left \
     for the power, energy, sleep and heating checks.";
+
+/// The LMST clock every sol time reads in.
+pub const LMST: &str = "Times read as Sol N hh:mm:ss in local mean solar time (LMST): a \
+    24-hour Mars clock, midnight to midnight of each sol, whose second is a little longer \
+    than an Earth second (the sol's length / 86,400). Plan seconds (t=...) are the plan's \
+    own numbers; either can be typed.";

@@ -46,13 +46,12 @@ impl SolscopeHost {
         }
         let suggested = self.app.suggested_path(dialog);
         let mut fd = rfd::FileDialog::new().add_filter(filter_name(dialog), &[dialog.extension()]);
-        if let Some(dir) = suggested.parent().filter(|_| dialog.saves()) {
+        let (dir, name) = dialog_start(dialog, &suggested, has_session_bus());
+        if let Some(dir) = dir {
             fd = fd.set_directory(dir);
-        } else {
-            fd = fd.set_directory(&suggested);
         }
-        if let Some(name) = suggested.file_name().filter(|_| dialog.saves()) {
-            fd = fd.set_file_name(name.to_string_lossy());
+        if let Some(name) = name {
+            fd = fd.set_file_name(name);
         }
         let asked = std::time::Instant::now();
         let chosen = if dialog.saves() {
@@ -88,6 +87,47 @@ impl SolscopeHost {
             }
         });
     }
+}
+
+/// Where the file dialog for `dialog` starts, given the suggested path (an
+/// absolute one: `AppState::suggested_path`): the folder and file name
+/// to give rfd. The desktop portal (`portal`: a D-Bus session bus is there)
+/// takes the folder and the name apart; zenity, rfd's other way, takes no
+/// folder, so the whole path goes in its file name (a folder ending in `/`
+/// for the open dialogs).
+pub fn dialog_start(
+    dialog: Dialog,
+    suggested: &Path,
+    portal: bool,
+) -> (Option<PathBuf>, Option<String>) {
+    let (dir, name) = if dialog.saves() {
+        (
+            suggested.parent().map(Path::to_path_buf),
+            suggested
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned()),
+        )
+    } else {
+        (Some(suggested.to_path_buf()), None)
+    };
+    if portal {
+        return (dir, name);
+    }
+    let whole = match (dir, name) {
+        (Some(d), Some(n)) => d.join(n).to_string_lossy().into_owned(),
+        (Some(d), None) => {
+            let d = d.to_string_lossy().into_owned();
+            if d.ends_with('/') { d } else { format!("{d}/") }
+        }
+        (None, n) => n.unwrap_or_default(),
+    };
+    (None, Some(whole))
+}
+
+/// Whether a D-Bus session bus is there for the desktop portal.
+fn has_session_bus() -> bool {
+    std::env::var_os("DBUS_SESSION_BUS_ADDRESS").is_some_and(|a| !a.is_empty())
+        || std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| Path::new(&d).join("bus").exists())
 }
 
 /// A file dialog that returns with nothing sooner than this was never shown.

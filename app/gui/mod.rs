@@ -26,6 +26,6 @@ pub mod time_axis;
 mod views;
 
 pub use app::SolscopeApp;
-pub use host::{SolscopeHost, run, save_color_image};
+pub use host::{SolscopeHost, dialog_start, run, save_color_image};
 pub use theme::Theme;
 pub use views::Look;

@@ -136,6 +136,13 @@ pub const INSPECTOR_WIDTH: f32 = 380.0;
 pub const LABEL_MIN_WIDTH: f32 = 40.0;
 /// Width of the activity list side panel.
 pub const LIST_WIDTH: f32 = 230.0;
+/// The narrowest the activity list can be dragged.
+pub const LIST_MIN_WIDTH: f32 = 160.0;
+/// The narrowest the inspector can be dragged.
+pub const INSPECTOR_MIN_WIDTH: f32 = 280.0;
+/// What the side panels always leave to the Gantt and plots between them (the
+/// smallest window, 900 points wide, holds all three at their narrowest).
+pub const CENTRAL_MIN_WIDTH: f32 = 380.0;
 /// Text size of labels inside Gantt bars and rows.
 pub const BAR_FONT_SIZE: f32 = 11.0;
 /// Corner radius of Gantt bars.

@@ -1,16 +1,17 @@
 //! The one place where plan time and screen x are mapped to each other (in `f64`),
 //! shared by the Gantt rows and the plots, and where the time ticks are chosen:
-//! round local times of day, and sol boundaries. The visible range itself,
+//! round LMST times of day, and sol boundaries. The visible range itself,
 //! [`TimeAxis`], is state (`crate::state::TimeAxis`: zoom, pan, reveal); the
 //! pixel mapping is added to it here, where the pixels are.
 
 use eframe::egui::Rect;
-use solscope_engine::{LocalTime, format_time_of_day};
+use solscope_engine::{LMST_SECONDS_PER_SOL, LocalTime, format_lmst, time_of_day_of_lmst};
 
 pub use crate::state::TimeAxis;
 
-/// Local-time tick steps (seconds), finest first: a tick sits where the local
-/// time of day is a multiple of the step, so they restart at every midnight.
+/// Local-time tick steps (LMST seconds), finest first: a tick sits where the
+/// LMST time of day is a multiple of the step, so they restart at every
+/// midnight.
 const TICK_STEPS: [i64; 13] = [
     10,
     30,
@@ -43,11 +44,12 @@ pub struct Tick {
 }
 
 /// The label of a tick at plan time `t` on a grid of `step` seconds: `Sol 412`
-/// at local midnight, else the time of day, `14:00`, with seconds (`14:05:30`)
-/// when the step is under a minute. The ruler and the plots' axes both label so.
+/// at local midnight, else the LMST time of day, `14:00`, with seconds
+/// (`14:05:30`) when the step is under a minute (of LMST). The ruler and the
+/// plots' axes both label so.
 pub fn tick_label(clock: &LocalTime, t: i64, step: f64) -> String {
     let tod = clock.time_of_day(t);
-    let text = format_time_of_day(tod);
+    let text = format_lmst(clock, t);
     if tod == 0 {
         format!("Sol {}", clock.sol(t))
     } else if step < 60.0 {
@@ -63,9 +65,11 @@ pub fn tick_label(clock: &LocalTime, t: i64, step: f64) -> String {
 pub fn ticks(axis: &TimeAxis, width: f64, clock: &LocalTime, min_gap: f64) -> Vec<Tick> {
     let per_px = axis.seconds_per_pixel(width);
     let sol = clock.sol_length.max(1);
+    // Plan seconds per LMST second.
+    let mars = sol as f64 / LMST_SECONDS_PER_SOL as f64;
     let step = TICK_STEPS
         .into_iter()
-        .find(|&s| s >= sol || (s as f64) / per_px >= min_gap)
+        .find(|&s| s >= LMST_SECONDS_PER_SOL || (s as f64) * mars / per_px >= min_gap)
         .unwrap_or(i64::MAX);
     let label_every = ((min_gap * per_px) / sol as f64).ceil().max(1.0) as i64;
     let (lo, hi) = (axis.start.floor() as i64, axis.end.ceil() as i64);
@@ -86,24 +90,25 @@ pub fn ticks(axis: &TimeAxis, width: f64, clock: &LocalTime, min_gap: f64) -> Ve
                 step: sol as f64,
             });
         }
-        if step < sol {
-            // The first step in the visible part of this sol.
-            let from = ((lo - midnight).max(step) + step - 1) / step * step;
-            let mut tod = from;
-            while tod < sol && midnight + tod <= hi {
-                // The last step of a sol is shorter (a sol is 24:39:35 of
-                // Earth seconds): skip a tick whose label would run into the
-                // sol's (`24:00` over `Sol 413`).
-                if (sol - tod) as f64 / per_px >= min_gap {
-                    let t = midnight + tod;
+        if step < LMST_SECONDS_PER_SOL {
+            // The first LMST step in the visible part of this sol.
+            let lmst_lo = ((lo - midnight) as f64 / mars).floor().max(0.0) as i64;
+            let mut lmst = (lmst_lo.max(step) + step - 1) / step * step;
+            while lmst < LMST_SECONDS_PER_SOL {
+                let t = midnight + time_of_day_of_lmst(sol, lmst);
+                if t > hi {
+                    break;
+                }
+                // No tick whose label would run into the next sol's.
+                if t >= lo && (midnight + sol - t) as f64 / per_px >= min_gap {
                     out.push(Tick {
                         t: t as f64,
                         label: tick_label(clock, t, step as f64),
                         sol_start: false,
-                        step: step as f64,
+                        step: step as f64 * mars,
                     });
                 }
-                tod += step;
+                lmst += step;
             }
         }
         midnight += sol;
@@ -139,8 +144,8 @@ mod tests {
 
     #[test]
     fn no_tick_runs_into_a_sol_label() {
-        // Around a local midnight at zooms where the last hour of the sol
-        // (24:00 to 24:39:35) is shorter than a label.
+        // Around a local midnight at zooms where the last tick step of the
+        // sol is shorter than a label.
         for width in [600.0, 1000.0, 1400.0, 2600.0] {
             for span in [20_000.0, 40_000.0, 88_775.0] {
                 let axis = TimeAxis::new(23_975.0 - span / 2.0, 23_975.0 + span / 2.0);
@@ -169,8 +174,9 @@ mod tests {
             .map(|k| k.label.as_str())
             .collect();
         assert_eq!(sols, ["Sol 412", "Sol 413"]);
-        assert_eq!((t[0].t, t[0].label.as_str()), (0.0, "18:00"), "{t:?}");
-        assert_eq!((t[1].t, t[1].label.as_str()), (10_800.0, "21:00"));
+        // Plan time 0 is 17:31:06 LMST; 18:00 LMST is 1782 s later.
+        assert_eq!((t[0].t, t[0].label.as_str()), (1_782.0, "18:00"), "{t:?}");
+        assert_eq!((t[1].t, t[1].label.as_str()), (12_879.0, "21:00"));
         let first_sol = t.iter().position(|k| k.sol_start).expect("a sol");
         assert_eq!(t[first_sol].t, 23_975.0, "local midnight");
         assert_eq!(t[first_sol + 1].label, "03:00");
@@ -179,8 +185,9 @@ mod tests {
             let gap = (pair[1].t - pair[0].t) / axis.seconds_per_pixel(1000.0);
             assert!(gap >= 30.0, "not crowded: {pair:?}");
         }
-        // Zoomed to 20 minutes: ticks every five minutes, labelled hh:mm.
-        let axis = TimeAxis::new(23_975.0 + 36_000.0, 23_975.0 + 37_200.0);
+        // Zoomed to 20 minutes (10:00 to 10:20 LMST): ticks every five
+        // minutes, labelled hh:mm.
+        let axis = TimeAxis::new(60_965.0, 62_198.0);
         let t = ticks(&axis, 1000.0, &clock(), 60.0);
         assert!(t.iter().all(|k| !k.sol_start));
         assert_eq!(t[0].label, "10:00");

@@ -389,6 +389,9 @@ pub enum Command {
     ProbePlot(Option<i64>),
     /// Energy consumers since the last full battery instead of since the start.
     SetSinceFull(bool),
+    /// The side panels' widths as dragged: the activity list's and the
+    /// inspector's (points; kept across restarts).
+    SetPanelWidths([f32; 2]),
     /// Draw the profile of energy or peak-power reason `index` of `activity`'s
     /// explanation (what it would have caused at that reason's start) over the
     /// plots.

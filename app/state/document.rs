@@ -390,6 +390,8 @@ pub struct OutcomeDiff {
     pub moved: Vec<(String, i64, i64)>,
     /// The edit left the plan as it was (nothing rescheduled or recorded).
     pub unchanged: bool,
+    /// The plan's clock after the edit, which the moves are said in.
+    pub clock: solscope_engine::LocalTime,
 }
 
 impl OutcomeDiff {
@@ -401,6 +403,7 @@ impl OutcomeDiff {
     ) -> Self {
         let mut diff = OutcomeDiff {
             description: description.to_string(),
+            clock: after.0.local_time,
             ..Default::default()
         };
         for st in &after.1.schedule.steps {
@@ -431,8 +434,9 @@ impl OutcomeDiff {
         }
     }
 
-    /// One line for the banner.
+    /// One line for the banner, its times in sol time (LMST).
     pub fn summary(&self) -> String {
+        let clock = &self.clock;
         if self.unchanged {
             return format!(
                 "{}: the plan is unchanged (nothing rescheduled, nothing to undo)",
@@ -456,7 +460,14 @@ impl OutcomeDiff {
             } else {
                 self.moved
                     .iter()
-                    .map(|m| format!("{} ({} → {})", m.0, m.1, m.2))
+                    .map(|m| {
+                        format!(
+                            "{} ({} → {})",
+                            m.0,
+                            solscope_engine::format_plan_time(clock, m.1),
+                            solscope_engine::format_plan_time(clock, m.2)
+                        )
+                    })
                     .collect::<Vec<_>>()
                     .join(", ")
             }

@@ -28,6 +28,12 @@ pub struct Persisted {
     /// tour makes it open by itself again).
     #[serde(default)]
     pub tour_dismissed: bool,
+    /// Width of the activity list panel (points), as last dragged.
+    #[serde(default)]
+    pub list_width: Option<f32>,
+    /// Width of the inspector panel (points), as last dragged.
+    #[serde(default)]
+    pub inspector_width: Option<f32>,
 }
 
 impl Persisted {

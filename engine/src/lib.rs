@@ -44,7 +44,8 @@ pub use explain::{
     Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,
     Suggestion, energy_consumers, explain, explain_each, explain_rendered, explain_text,
     explanation_notes, explanation_notes_and_lead, explanation_text, involved, minimal_conflicts,
-    peak_users, reason_line, reasons_in_reading_order, suggestion_line, verified_suggestions,
+    peak_users, reason_line, reasons_in_reading_order, suggestion_description, suggestion_line,
+    verified_suggestions,
 };
 pub use flex::{
     Bound, Constraint, Controllability, DispatchEdge, EventBounds, Flex, FlexActivity, FlexOptions,
@@ -87,9 +88,11 @@ pub use tune::{
     TuneOptions, TuneProgress, Tuning, ValueMeasure, change_line, tune,
 };
 pub use units::{
-    BIT_PER_MBIT, MJ_PER_WH, MW_PER_W, ParseUnitError, format_local, format_mbit,
-    format_mbit_value, format_plan_time, format_span, format_time_difference, format_time_of_day,
-    format_watts, format_wh, format_wh_value, mbit, parse_local, parse_mbit, parse_span,
-    parse_time_difference, parse_time_of_day, parse_watts, parse_wh, watts, wh,
+    BIT_PER_MBIT, LMST_SECONDS_PER_SOL, MJ_PER_WH, MW_PER_W, ParseUnitError, Unit,
+    format_document_time, format_lmst, format_local, format_mbit, format_mbit_value,
+    format_plan_time, format_span, format_time_difference, format_time_of_day, format_watts,
+    format_wh, format_wh_value, lmst_of_day, lmst_sentence, mbit, parse_local, parse_mbit,
+    parse_span, parse_time_difference, parse_time_of_day, parse_watts, parse_wh,
+    time_of_day_of_lmst, watts, wh,
 };
 pub use validate::{validate, validate_all};

@@ -5,12 +5,14 @@
 //! them in prose.
 
 use crate::model::LocalTime;
-use crate::units::{format_plan_time, format_span};
+use crate::units::{format_document_time, format_span};
 
 /// A time in a sentence: its sol and local time with the plan second it is,
-/// `Sol 413 14:15:00 (t=600)`.
+/// `Sol 413 14:15:00 (t=600)`, as the documents write it
+/// ([`format_document_time`]; the text outputs and the app say it in LMST
+/// through `units::lmst_sentence`).
 pub(crate) fn time(clock: &LocalTime, t: i64) -> String {
-    format_plan_time(clock, t)
+    format_document_time(clock, t)
 }
 
 /// A range of times in a list, both ends included:

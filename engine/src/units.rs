@@ -159,9 +159,44 @@ fn parse_scaled(text: &str, unit: &str, scale: f64, max: f64) -> Option<i128> {
     (v.abs() <= max).then_some(v as i128)
 }
 
+/// A planner unit of a quantity, with the one rounding rule it is read with
+/// (one decimal for each: `474.9 Wh`, `750.0 W`, `16666.7 Mbit`), whatever
+/// shows it: a plot's limit line and hover readout, a table, a sentence.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Unit {
+    /// Energy (state of charge) in Wh.
+    Wh,
+    /// Power in W.
+    W,
+    /// Data volume in Mbit.
+    Mbit,
+}
+
+impl Unit {
+    /// Its symbol: `Wh`, `W`, `Mbit`.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Unit::Wh => "Wh",
+            Unit::W => "W",
+            Unit::Mbit => "Mbit",
+        }
+    }
+
+    /// How many decimals a value in it is read with.
+    pub fn decimals(self) -> usize {
+        1
+    }
+
+    /// A value in this unit for reading, rounded by its rule: `474.9 Wh` for
+    /// `474.8990713381222`.
+    pub fn format(self, value: f64) -> String {
+        format!("{value:.*} {}", self.decimals(), self.symbol())
+    }
+}
+
 /// Energy for reading: `1034.2 Wh`.
 pub fn format_wh(mj: i128) -> String {
-    format_wh_value(wh(mj), 1)
+    Unit::Wh.format(wh(mj))
 }
 
 /// Energy in Wh with `decimals` decimals: `format_wh_value(1034.25, 0)` is
@@ -180,7 +215,7 @@ pub fn parse_wh(text: &str) -> Result<i128, ParseUnitError> {
 
 /// Power for reading: `750.0 W`.
 pub fn format_watts(mw: i64) -> String {
-    format!("{:.1} W", watts(mw))
+    Unit::W.format(watts(mw))
 }
 
 /// Reads a power as [`format_watts`] writes it (`750.0 W`; the unit may be left
@@ -193,7 +228,7 @@ pub fn parse_watts(text: &str) -> Result<i64, ParseUnitError> {
 
 /// Data volume for reading: `12.5 Mbit`.
 pub fn format_mbit(bit: i128) -> String {
-    format_mbit_value(mbit(bit), 1)
+    Unit::Mbit.format(mbit(bit))
 }
 
 /// Data volume in Mbit with `decimals` decimals: `format_mbit_value(12.46, 1)`
@@ -209,7 +244,32 @@ pub fn parse_mbit(text: &str) -> Result<i128, ParseUnitError> {
         .ok_or_else(|| ParseUnitError::new(text, "a data volume in Mbit (12.5 Mbit)"))
 }
 
-/// A time of day (seconds after local midnight) as `hh:mm:ss`.
+/// Seconds of the local mean solar time clock (LMST) in a sol: a 24-hour
+/// clock whose second is `sol_length / 86400` plan seconds.
+pub const LMST_SECONDS_PER_SOL: i64 = 86_400;
+
+/// The LMST second of the day (`0..86400`) that `time_of_day` plan seconds
+/// after local midnight fall in, in a sol of `sol_length` plan seconds
+/// (rounded down: the clock reads `09:45:05` for the whole of that Mars
+/// second).
+pub fn lmst_of_day(sol_length: i64, time_of_day: i64) -> i64 {
+    let len = i128::from(sol_length.max(1));
+    let lmst = (i128::from(time_of_day) * i128::from(LMST_SECONDS_PER_SOL)).div_euclid(len);
+    i64::try_from(lmst).unwrap_or(if lmst < 0 { i64::MIN } else { i64::MAX })
+}
+
+/// The first plan second after local midnight whose LMST second (see
+/// [`lmst_of_day`]) is `lmst`, in a sol of `sol_length` plan seconds: what a
+/// typed LMST time reads as.
+pub fn time_of_day_of_lmst(sol_length: i64, lmst: i64) -> i64 {
+    let len = i128::from(sol_length.max(1));
+    let n = i128::from(LMST_SECONDS_PER_SOL);
+    let plan = (i128::from(lmst) * len + n - 1).div_euclid(n);
+    i64::try_from(plan).unwrap_or(if plan < 0 { i64::MIN } else { i64::MAX })
+}
+
+/// A time of day in seconds after midnight (LMST seconds for a sol time:
+/// see [`lmst_of_day`]) as `hh:mm:ss`.
 pub fn format_time_of_day(time_of_day: i64) -> String {
     format!(
         "{:02}:{:02}:{:02}",
@@ -219,10 +279,35 @@ pub fn format_time_of_day(time_of_day: i64) -> String {
     )
 }
 
-/// Reads a time of day as [`format_time_of_day`] writes it (`14:15:00`, or
-/// `14:15`), in seconds after local midnight. The hours are not bounded (a
-/// Mars sol's last second is `24:39:34`: check the sol's length where it
-/// matters); minutes and seconds are below 60.
+/// Reads `hh:mm:ss` as [`format_time_of_day`] writes any count of seconds
+/// (hours unbounded: a document's local time of day in plan seconds runs
+/// past 24:00 on a Mars sol), in seconds.
+pub(crate) fn parse_clock_seconds(text: &str) -> Result<i64, ParseUnitError> {
+    let bad = || ParseUnitError::new(text, "a clock time (14:15:00)");
+    let parts: Vec<&str> = text.trim().split(':').collect();
+    let [h, m, s] = parts.as_slice() else {
+        return Err(bad());
+    };
+    let n = |x: &str| x.parse::<i64>().ok().filter(|v| *v >= 0);
+    match (n(h), n(m), n(s)) {
+        (Some(h), Some(m), Some(s)) if m < 60 && s < 60 => h
+            .checked_mul(3600)
+            .and_then(|x| x.checked_add(m * 60 + s))
+            .ok_or_else(bad),
+        _ => Err(bad()),
+    }
+}
+
+/// The LMST clock of plan time `t`, `09:45:05`: its local time of day on the
+/// 24-hour Mars clock.
+pub fn format_lmst(clock: &LocalTime, t: i64) -> String {
+    format_time_of_day(lmst_of_day(clock.sol_length, clock.time_of_day(t)))
+}
+
+/// Reads a time of day on a 24-hour clock as [`format_time_of_day`] writes it
+/// (`14:15:00`, or `14:15`), in seconds after midnight (LMST seconds for a sol
+/// time: [`time_of_day_of_lmst`] gives its plan second). Hours are below 24,
+/// minutes and seconds below 60.
 pub fn parse_time_of_day(text: &str) -> Result<i64, ParseUnitError> {
     let bad = || ParseUnitError::new(text, "a time of day (14:15 or 14:15:00)");
     let mut parts = text.trim().split(':').map(|p| p.parse::<i64>().ok());
@@ -234,12 +319,14 @@ pub fn parse_time_of_day(text: &str) -> Result<i64, ParseUnitError> {
         Some(s) => s.ok_or_else(bad)?,
         None => 0,
     };
-    if parts.next().is_some() || h < 0 || !(0..60).contains(&m) || !(0..60).contains(&s) {
+    if parts.next().is_some()
+        || !(0..24).contains(&h)
+        || !(0..60).contains(&m)
+        || !(0..60).contains(&s)
+    {
         return Err(bad());
     }
-    h.checked_mul(3600)
-        .and_then(|x| x.checked_add(m * 60 + s))
-        .ok_or_else(bad)
+    Ok(h * 3600 + m * 60 + s)
 }
 
 /// A signed difference of two times (one minus the other, as an actual start
@@ -271,33 +358,101 @@ pub fn parse_time_difference(text: &str) -> Result<i64, ParseUnitError> {
     i64::try_from(if late { n } else { -n }).map_err(|_| bad())
 }
 
-/// Plan time `t` as a planner reads it: its sol and local time of day,
-/// `Sol 413 14:15:00`.
+/// Plan time `t` as a planner reads it: its sol and local mean solar time
+/// (LMST, see [`lmst_of_day`]), `Sol 413 14:15:00`.
 pub fn format_local(clock: &LocalTime, t: i64) -> String {
+    format!("Sol {} {}", clock.sol(t), format_lmst(clock, t))
+}
+
+/// Plan time `t` in sol and LMST, with the plan second it is (what the JSON
+/// documents hold): `Sol 413 14:15:00 (t=600)`.
+pub fn format_plan_time(clock: &LocalTime, t: i64) -> String {
+    format!("{} (t={t})", format_local(clock, t))
+}
+
+/// Plan time `t` as the sentences inside the JSON documents (notes,
+/// `why.text`) have always written it: the sol, the local time of day in plan
+/// seconds after local midnight as `hh:mm:ss` (past `24:00` on a Mars sol), and
+/// the plan second, `Sol 412 24:38:35 (t=112714)`. Kept so that the documents
+/// stay as they were; what a planner reads (text outputs, the app) goes
+/// through [`lmst_sentence`], which says the same time in LMST.
+pub fn format_document_time(clock: &LocalTime, t: i64) -> String {
     format!(
-        "Sol {} {}",
+        "Sol {} {} (t={t})",
         clock.sol(t),
         format_time_of_day(clock.time_of_day(t))
     )
 }
 
-/// Plan time `t` in sol and local time, with the plan second it is (what the
-/// JSON documents hold): `Sol 413 14:15:00 (t=600)`.
-pub fn format_plan_time(clock: &LocalTime, t: i64) -> String {
-    format!("{} (t={t})", format_local(clock, t))
+/// `text` with every time written as [`format_document_time`] writes it
+/// said as [`format_plan_time`] says it (sol and LMST, with the same plan
+/// second): how a document's sentence reads for a planner. Anything else is
+/// left as it is.
+pub fn lmst_sentence(clock: &LocalTime, text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(i) = rest.find("Sol ") {
+        out.push_str(&rest[..i]);
+        let at = &rest[i..];
+        match document_time_at(at) {
+            Some((t, len)) => {
+                out.push_str(&format_plan_time(clock, t));
+                rest = &at[len..];
+            }
+            None => {
+                out.push_str("Sol ");
+                rest = &at[4..];
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+/// The plan second and length of a time as [`format_document_time`] writes
+/// it at the start of `text` (`Sol 412 24:38:35 (t=112714)`), if one is there.
+fn document_time_at(text: &str) -> Option<(i64, usize)> {
+    let after_sol = text.strip_prefix("Sol ")?;
+    let sol_len = after_sol
+        .bytes()
+        .enumerate()
+        .take_while(|&(i, b)| b.is_ascii_digit() || (i == 0 && b == b'-'))
+        .count();
+    let after_number = after_sol.get(sol_len..)?.strip_prefix(' ')?;
+    if sol_len == 0 || after_sol[..sol_len].parse::<i64>().is_err() {
+        return None;
+    }
+    let clock_len = after_number
+        .bytes()
+        .take_while(|b| b.is_ascii_digit() || *b == b':')
+        .count();
+    let after_clock = after_number.get(clock_len..)?.strip_prefix(" (t=")?;
+    let close = after_clock.find(')')?;
+    let t = after_clock[..close].parse::<i64>().ok()?;
+    if clock_len < 5 {
+        return None;
+    }
+    let len = text.len() - after_clock.len() + close + 1;
+    Some((t, len))
 }
 
 /// Reads a time as [`format_local`] and [`format_plan_time`] write it
 /// (`Sol 413 14:15:00`, `sol 413 14:15`, with or without the `(t=...)`), or as
 /// plan seconds (`600`, `t=600`). A time of day without a sol (`14:15`) is in
-/// sol `sol`, and refused without one. `None` for anything else: hours past the
-/// sol's length, minutes or seconds past 59, or a time out of range.
+/// sol `sol`, and refused without one. An LMST time reads as the first plan
+/// second of that Mars second; written with its plan second (as
+/// [`format_plan_time`] writes it), as that second. `None` for anything else:
+/// hours past 23, minutes or seconds past 59, or a time out of range.
 pub fn parse_local(clock: &LocalTime, text: &str, sol: Option<i64>) -> Option<i64> {
     let text = text.trim();
-    // The plan time written after a sol time is the same time: read the sol time.
-    let text = match text.find(" (t=") {
-        Some(i) if text.ends_with(')') => &text[..i],
-        _ => text,
+    // The plan time written after a sol time: that second, when the sol time
+    // is its own (else the sol time, as typed over it).
+    let (text, written) = match text.find(" (t=") {
+        Some(i) if text.ends_with(')') => (
+            &text[..i],
+            text[i + 4..text.len() - 1].trim().parse::<i64>().ok(),
+        ),
+        _ => (text, None),
     };
     let plain = text.strip_prefix("t=").unwrap_or(text).trim();
     if let Ok(t) = plain.parse::<i64>() {
@@ -314,16 +469,23 @@ pub fn parse_local(clock: &LocalTime, text: &str, sol: Option<i64>) -> Option<i6
         }
         None => (sol?, text),
     };
-    let tod = parse_time_of_day(clock_text).ok()?;
+    let lmst = parse_time_of_day(clock_text).ok()?;
     let len = clock.sol_length.max(1);
-    if tod >= len {
-        return None;
-    }
+    let tod = time_of_day_of_lmst(len, lmst);
     // offset + t = (sol - first_sol) * sol_length + time of day.
-    sol.checked_sub(clock.first_sol.unwrap_or(0))?
+    let t = sol
+        .checked_sub(clock.first_sol.unwrap_or(0))?
         .checked_mul(len)?
         .checked_add(tod)?
-        .checked_sub(clock.offset)
+        .checked_sub(clock.offset)?;
+    match written {
+        Some(w)
+            if clock.sol(w) == clock.sol(t) && format_lmst(clock, w) == format_lmst(clock, t) =>
+        {
+            Some(w)
+        }
+        _ => Some(t),
+    }
 }
 
 /// A length of time for reading: `45 s`, `12 min 05 s`, `3 h 07 min` (to the
@@ -395,30 +557,89 @@ mod tests {
     use super::*;
 
     #[test]
-    fn times_read_in_plan_seconds_and_local_time() {
+    fn times_read_in_plan_seconds_and_lmst() {
         let clock = LocalTime {
             sol_length: 88_775,
             offset: 64_800,
             first_sol: Some(411),
         };
-        assert_eq!(format_local(&clock, 0), "Sol 411 18:00:00");
-        assert_eq!(format_plan_time(&clock, 600), "Sol 411 18:10:00 (t=600)");
+        // 64,800 plan seconds after local midnight: 64,800 * 86,400 / 88,775
+        // Mars seconds, 17:31:06 LMST.
+        assert_eq!(format_local(&clock, 0), "Sol 411 17:31:06");
+        assert_eq!(format_plan_time(&clock, 600), "Sol 411 17:40:50 (t=600)");
         // Past local midnight the day wraps at the sol length, and the sol counts on.
         assert_eq!(format_local(&clock, 88_775 - 64_800), "Sol 412 00:00:00");
+        // The clock never reads 24:00: the sol's last second is 23:59:59.
         assert_eq!(
             format_local(&clock, 88_775 - 64_800 - 1),
-            "Sol 411 24:39:34"
+            "Sol 411 23:59:59"
         );
-        assert_eq!(format_local(&clock, -64_801), "Sol 410 24:39:34");
+        assert_eq!(format_local(&clock, -64_801), "Sol 410 23:59:59");
         let unnamed = LocalTime {
             first_sol: None,
             ..clock
         };
-        assert_eq!(format_local(&unnamed, 88_775 * 3), "Sol 3 18:00:00");
-        assert_eq!(format_time_of_day(88_774), "24:39:34");
+        assert_eq!(format_local(&unnamed, 88_775 * 3), "Sol 3 17:31:06");
+        // Noon is half a sol after midnight.
+        assert_eq!(
+            format_local(&unnamed, 88_775 / 2 + 1 - 64_800),
+            "Sol 0 12:00:00"
+        );
+        // An Earth-length sol reads as plan seconds.
+        let earth = LocalTime {
+            sol_length: 86_400,
+            offset: 0,
+            first_sol: None,
+        };
+        assert_eq!(format_local(&earth, 35_105), "Sol 0 09:45:05");
+        assert_eq!(format_time_of_day(86_399), "23:59:59");
         assert_eq!(format_span(45), "45 s");
         assert_eq!(format_span(725), "12 min 05 s");
         assert_eq!(format_span(-3600 * 3 - 420 - 9), "-3 h 07 min");
+    }
+
+    #[test]
+    fn document_sentences_read_in_lmst() {
+        let clock = LocalTime {
+            sol_length: 88_775,
+            offset: 64_800,
+            first_sol: Some(411),
+        };
+        // The documents keep their clock (past 24:00 on a Mars sol).
+        assert_eq!(
+            format_document_time(&clock, 23_974),
+            "Sol 411 24:39:34 (t=23974)"
+        );
+        let doc = format!(
+            "at the cycle at {} (t=5) the scheduler, then {}–{}. Sol 3 rests; Sol 4 10:00 (t=x)",
+            format_document_time(&clock, 23_974),
+            format_document_time(&clock, -64_801),
+            format_document_time(&clock, 600)
+        );
+        assert_eq!(
+            lmst_sentence(&clock, &doc),
+            "at the cycle at Sol 411 23:59:59 (t=23974) (t=5) the scheduler, then \
+             Sol 410 23:59:59 (t=-64801)–Sol 411 17:40:50 (t=600). Sol 3 rests; Sol 4 10:00 (t=x)"
+        );
+    }
+
+    #[test]
+    fn lmst_seconds_cover_the_sol_once() {
+        for len in [88_775, 86_400, 80_000, 1, 2] {
+            assert_eq!(lmst_of_day(len, 0), 0);
+            assert!(lmst_of_day(len, len - 1) < LMST_SECONDS_PER_SOL);
+            let mut last = -1;
+            for tod in 0..len.min(100_000) {
+                let m = lmst_of_day(len, tod);
+                assert!(m >= last, "{len} {tod}");
+                if m != last {
+                    // The first plan second of each LMST second is what it
+                    // reads back as.
+                    assert_eq!(time_of_day_of_lmst(len, m), tod, "{len} {tod}");
+                }
+                last = m;
+            }
+        }
     }
 
     #[test]
@@ -431,25 +652,38 @@ mod tests {
         for t in [
             -200_000, -1, 0, 1, 23_974, 23_975, 59_080, 177_550, 3_000_000,
         ] {
-            assert_eq!(parse_local(&clock, &format_local(&clock, t), None), Some(t));
+            // A sol time reads back as the first plan second of its Mars
+            // second, which prints the same; with its plan second, exactly.
+            let back = parse_local(&clock, &format_local(&clock, t), None).unwrap();
+            assert!(back == t || back == t - 1, "{t} -> {back}");
+            assert_eq!(format_local(&clock, back), format_local(&clock, t));
             assert_eq!(
                 parse_local(&clock, &format_plan_time(&clock, t), None),
                 Some(t)
             );
             assert_eq!(parse_local(&clock, &t.to_string(), None), Some(t));
         }
+        // A sol time typed over its plan second is read as typed.
         assert_eq!(
-            parse_local(&clock, " sol 412 09:45 ", None),
-            Some(59_080 - 5)
+            parse_local(&clock, "Sol 412 00:00:00 (t=0)", None),
+            Some(88_775 - 64_800)
         );
+        assert_eq!(parse_local(&clock, " sol 412 09:45 ", None), Some(60_040));
+        assert_eq!(format_local(&clock, 60_040), "Sol 412 09:45:00");
+        assert_eq!(format_local(&clock, 60_039), "Sol 412 09:44:59");
         assert_eq!(parse_local(&clock, "t=42", None), Some(42));
         // A time of day alone is in the sol given.
-        assert_eq!(parse_local(&clock, "09:45:05", Some(412)), Some(59_080));
+        assert_eq!(parse_local(&clock, "09:45:05", Some(412)), Some(60_045));
+        assert_eq!(format_local(&clock, 60_045), "Sol 412 09:45:05");
         assert_eq!(parse_local(&clock, "09:45:05", None), None);
-        // 24:39:34 is the last second of a Mars sol; 24:39:35 is the next sol.
-        assert!(parse_local(&clock, "Sol 412 24:39:34", None).is_some());
+        // 23:59:59 is the last second of the 24-hour Mars clock.
+        assert_eq!(
+            parse_local(&clock, "Sol 412 23:59:59", None),
+            Some(2 * 88_775 - 64_800 - 1)
+        );
         for bad in [
-            "Sol 412 24:39:35",
+            "Sol 412 24:00:00",
+            "Sol 412 24:39:34",
             "Sol 412 10:60",
             "Sol 412 10:00:60",
             "Sol x 10:00",
@@ -463,6 +697,17 @@ mod tests {
         assert_eq!(
             parse_local(&clock, "Sol 9223372036854775807 10:00", None),
             None
+        );
+    }
+
+    #[test]
+    fn each_unit_rounds_by_its_one_rule() {
+        assert_eq!(Unit::Wh.format(474.8990713381222), "474.9 Wh");
+        assert_eq!(Unit::Mbit.format(16666.666666666664), "16666.7 Mbit");
+        assert_eq!(Unit::W.format(29.96), "30.0 W");
+        assert_eq!(
+            Unit::Wh.format(wh(3_600_000 * 1034 + 720_000)),
+            format_wh(3_600_000 * 1034 + 720_000)
         );
     }
 
@@ -546,8 +791,10 @@ mod tests {
     fn times_of_day_read_back_with_clear_errors() {
         assert_eq!(parse_time_of_day("00:00:00"), Ok(0));
         assert_eq!(parse_time_of_day(" 14:15 "), Ok(14 * 3600 + 15 * 60));
-        assert_eq!(parse_time_of_day("24:39:34"), Ok(88_774));
+        assert_eq!(parse_time_of_day("23:59:59"), Ok(86_399));
         for bad in [
+            "24:00",
+            "24:39:34",
             "",
             "14",
             "14:60",
@@ -672,7 +919,7 @@ mod tests {
     proptest::proptest! {
         /// A time of day reads back as the second it was.
         #[test]
-        fn time_of_day_round_trips(t in 0i64..1_000_000) {
+        fn time_of_day_round_trips(t in 0i64..86_400) {
             proptest::prop_assert_eq!(parse_time_of_day(&format_time_of_day(t)), Ok(t));
         }
 

@@ -22,7 +22,9 @@ pub(super) fn axis_ui(
         m.doc.plan.horizon.end as f64,
     );
     ui.horizontal_wrapped(|ui| {
-        ui.label("Time range");
+        // Every sol time in the app reads in LMST: said once, here.
+        ui.label("Time range (LMST)")
+            .on_hover_text(crate::gui::help::LMST);
         let l0 = ui.label("from");
         // The plan seconds of the range shown, on hover (the fields read either).
         let r0 = ui

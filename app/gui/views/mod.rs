@@ -31,7 +31,9 @@ pub use tour::TourAnchors;
 
 use eframe::egui;
 
-use crate::gui::theme::{INSPECTOR_WIDTH, LIST_WIDTH};
+use crate::gui::theme::{
+    CENTRAL_MIN_WIDTH, INSPECTOR_MIN_WIDTH, INSPECTOR_WIDTH, LIST_MIN_WIDTH, LIST_WIDTH,
+};
 use crate::state::{Command, Mode};
 
 // What the views below share: the state's types they read, and the controls
@@ -72,25 +74,38 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
         opening::opening_ui(ui, m, cmds);
     });
     w.cache.tour_anchors.top = Some(top.response.rect);
+    // The side panels are dragged to any width that leaves the Gantt and
+    // plots theirs; what they hold scrolls inside them (a wide line never
+    // widens a panel over its neighbour).
+    let total = ui.available_width();
+    let list_width = m.persisted.list_width.unwrap_or(LIST_WIDTH);
+    let inspector_width = m.persisted.inspector_width.unwrap_or(INSPECTOR_WIDTH);
+    let widest = |other: f32, min: f32| (total - other - CENTRAL_MIN_WIDTH).max(min);
     let list = egui::Panel::left("activities")
         .resizable(true)
-        .default_size(LIST_WIDTH)
+        .default_size(list_width)
+        .size_range(LIST_MIN_WIDTH..=widest(inspector_width, LIST_MIN_WIDTH))
         .show(ui, |ui| {
             list::activities_ui(ui, m, w, cmds);
         });
     w.cache.tour_anchors.list = Some(list.response.rect);
     let anchors = &mut w.cache.tour_anchors;
     let inspector = egui::Panel::right("inspector")
-        .resizable(false)
-        .exact_size(INSPECTOR_WIDTH)
+        .resizable(true)
+        .default_size(inspector_width)
+        .size_range(INSPECTOR_MIN_WIDTH..=widest(list.response.rect.width(), INSPECTOR_MIN_WIDTH))
         .show(ui, |ui| {
-            egui::ScrollArea::vertical()
+            egui::ScrollArea::both()
                 .auto_shrink([false; 2])
                 .show(ui, |ui| {
                     inspector::inspector_ui(ui, m, w.text, anchors, cmds);
                 });
         });
     w.cache.tour_anchors.inspector = Some(inspector.response.rect);
+    let widths = [list.response.rect.width(), inspector.response.rect.width()];
+    if (list_width - widths[0]).abs() >= 1.0 || (inspector_width - widths[1]).abs() >= 1.0 {
+        cmds.push(Command::SetPanelWidths(widths));
+    }
     if m.nav.mode == Mode::Execution {
         // Under the Gantt and plots, between the side panels.
         egui::Panel::bottom("monte_carlo")

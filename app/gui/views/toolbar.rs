@@ -99,7 +99,12 @@ pub(super) fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Comman
         let failed = m.analysis.failed();
         let n = m.doc.plan.activities.len();
         ui.label(format!("{} of {n} scheduled, {failed} not", n - failed));
-        // The mode switch, at the right end (the other tools keep their place).
+        // The mode switch, at the right end (the other tools keep their place),
+        // on a row of its own when the rest leaves it no room (it would be
+        // drawn over the counts).
+        if ui.available_width() < mode_switch_width(ui) {
+            ui.end_row();
+        }
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
             for (cmd, mode) in [
                 (UiCommand::ShowExecution, Mode::Execution),
@@ -110,4 +115,21 @@ pub(super) fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Comman
             ui.label("View");
         });
     });
+}
+
+/// The width the mode switch ("View", "Schedule", "Execution") takes.
+fn mode_switch_width(ui: &egui::Ui) -> f32 {
+    let font = egui::TextStyle::Button.resolve(ui.style());
+    let spacing = ui.spacing();
+    let text = |t: &str| {
+        ui.painter()
+            .layout_no_wrap(t.to_string(), font.clone(), egui::Color32::WHITE)
+            .size()
+            .x
+    };
+    let buttons: f32 = [UiCommand::ShowSchedule, UiCommand::ShowExecution]
+        .into_iter()
+        .map(|c| text(c.label()) + 2.0 * spacing.button_padding.x)
+        .sum();
+    text("View") + buttons + 3.0 * spacing.item_spacing.x
 }

@@ -113,8 +113,13 @@ impl AppState {
             .as_deref()
             .and_then(Path::parent)
             .map(Path::to_path_buf)
-            .or_else(|| std::env::current_dir().ok())
             .unwrap_or_default();
+        // The plan's folder as a whole path (a plan opened by a relative one,
+        // `solscope plan.json`, has an empty parent): the file dialogs take
+        // no relative folder.
+        let dir = std::path::absolute(&dir)
+            .or_else(|_| std::env::current_dir())
+            .unwrap_or(dir);
         let stem = self.doc.file_stem();
         let name = match dialog {
             Dialog::Open | Dialog::OpenActuals => return dir.join(""),

@@ -46,6 +46,10 @@ impl AppState {
             }
             Command::ProbePlot(t) => self.ui.nav.probe = t,
             Command::SetSinceFull(on) => self.ui.nav.since_full = on,
+            Command::SetPanelWidths([list, inspector]) => {
+                self.persisted.list_width = Some(list);
+                self.persisted.inspector_width = Some(inspector);
+            }
             Command::ShowReason { activity, index } => {
                 self.ui.nav.overlay_reason = Some((activity, index));
             }

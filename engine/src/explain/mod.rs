@@ -23,7 +23,7 @@ pub use conflicts::{Relaxation, minimal_conflicts};
 pub use culprits::{Blame, Consumer, energy_consumers, peak_users};
 pub use text::{
     explain_text, explanation_notes, explanation_notes_and_lead, explanation_text, involved,
-    reason_line, reasons_in_reading_order, suggestion_line,
+    reason_line, reasons_in_reading_order, suggestion_description, suggestion_line,
 };
 
 use crate::error::Error;

@@ -53,15 +53,59 @@ fn category_phrase(c: Category) -> &'static str {
 /// A suggestion as one line: its description, and the activities it would make
 /// fail (` (then fails: a, b)`) when there are any.
 pub fn suggestion_line(plan: &Plan, s: &super::Suggestion) -> String {
+    let description = suggestion_description(plan, &s.description);
     if s.side_effects.is_empty() {
-        return s.description.clone();
+        return description;
     }
     let ids: Vec<&str> = s
         .side_effects
         .iter()
         .map(|&x| plan.activities[x].id.as_str())
         .collect();
-    format!("{} (then fails: {})", s.description, ids.join(", "))
+    format!("{description} (then fails: {})", ids.join(", "))
+}
+
+/// A suggestion's description as a planner reads it: the times a widened
+/// window would reach said in sol time (LMST) with their plan second
+/// (`Widen window 1 of B to end at Sol 0 00:09:44 (t=600)`); the edit itself
+/// (and the description in the JSON document) keeps the plan seconds.
+pub fn suggestion_description(plan: &Plan, description: &str) -> String {
+    // "Allow Z heating from 14:05:30 local time (every sol)": a local time of
+    // day in plan seconds after midnight, said on the LMST clock.
+    if let Some((head, tail)) = description
+        .split_once(" heating from ")
+        .filter(|_| description.starts_with("Allow "))
+    {
+        if let Some((clock, rest)) = tail.split_once(" local time") {
+            if let Ok(tod) = crate::units::parse_clock_seconds(clock) {
+                let lmst = crate::units::lmst_of_day(plan.local_time.sol_length, tod);
+                return format!(
+                    "{head} heating from {} LMST{rest}",
+                    crate::units::format_time_of_day(lmst)
+                );
+            }
+        }
+    }
+    if !description.starts_with("Widen window ") {
+        return description.to_string();
+    }
+    let mut out = String::with_capacity(description.len() + 32);
+    let mut rest = description;
+    while let Some(i) = rest.find(" at ") {
+        out.push_str(&rest[..i + 4]);
+        rest = &rest[i + 4..];
+        let n = rest
+            .bytes()
+            .enumerate()
+            .take_while(|&(k, b)| b.is_ascii_digit() || (k == 0 && b == b'-'))
+            .count();
+        if let Ok(t) = rest[..n].parse::<i64>() {
+            out.push_str(&crate::units::format_plan_time(&plan.local_time, t));
+            rest = &rest[n..];
+        }
+    }
+    out.push_str(rest);
+    out
 }
 
 /// One range of failing starts in short form, with its numbers:
@@ -387,5 +431,6 @@ pub fn explanation_text(plan: &Plan, schedule: &Schedule, ex: &Explanation) -> S
         ));
     }
     out.push('\n');
-    out
+    // The notes are the document's sentences: said in LMST here.
+    crate::units::lmst_sentence(&plan.local_time, &out)
 }

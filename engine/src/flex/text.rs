@@ -181,7 +181,8 @@ pub fn flex_text(plan: &Plan, flex: &Flex) -> String {
             }
         }
     }
-    out
+    // Its sentences say times as the document does: in LMST here.
+    crate::units::lmst_sentence(clock, &out)
 }
 
 fn push(out: &mut String, line: String) {

@@ -9,7 +9,7 @@ use std::borrow::Cow;
 use crate::execute::{Campaign, RunRecord};
 use crate::model::{LocalTime, Plan};
 use crate::scheduler::{Outcome, Schedule};
-use crate::units::{format_time_of_day, wh};
+use crate::units::{format_lmst, wh};
 
 /// The header row of [`schedule_csv`].
 const SCHEDULE_HEADER: &str = "step,id,name,status,start,end,duration_s,start_sol,start_local,end_sol,end_local,priority,mandatory";
@@ -48,12 +48,9 @@ fn field(s: &str) -> Cow<'_, str> {
     }
 }
 
-/// Plan time `t` as its sol and local time of day, two fields.
+/// Plan time `t` as its sol and LMST time of day, two fields.
 fn sol_and_time(clock: &LocalTime, t: i64) -> [String; 2] {
-    [
-        clock.sol(t).to_string(),
-        format_time_of_day(clock.time_of_day(t)),
-    ]
+    [clock.sol(t).to_string(), format_lmst(clock, t)]
 }
 
 /// The schedule as CSV: one row per activity in step order (`step`, `id`,
@@ -195,8 +192,8 @@ mod tests {
         let plan = load_plan(include_str!("../../../assets/default-plan.json"))
             .expect("plan")
             .plan;
-        assert_eq!(sol_and_time(&plan.local_time, 600), ["411", "18:10:00"]);
-        assert_eq!(sol_and_time(&plan.local_time, 88_775), ["412", "18:00:00"]);
+        assert_eq!(sol_and_time(&plan.local_time, 600), ["411", "17:40:50"]);
+        assert_eq!(sol_and_time(&plan.local_time, 88_775), ["412", "17:31:06"]);
     }
 
     #[test]

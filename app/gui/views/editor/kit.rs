@@ -12,8 +12,8 @@ use std::collections::BTreeSet;
 use eframe::egui::{self, RichText};
 use serde_json::{Map, Value, json};
 use solscope_engine::{
-    Activity, LocalTime, Plan, format_local, format_span, format_time_of_day, parse_local,
-    parse_time_of_day,
+    Activity, LocalTime, Plan, format_local, format_span, format_time_of_day, lmst_of_day,
+    parse_local, parse_time_of_day, time_of_day_of_lmst,
 };
 
 use crate::gui::theme::{
@@ -59,9 +59,10 @@ impl Kind {
             (Kind::Time, Some(v)) => v
                 .as_i64()
                 .map_or_else(|| v.to_string(), |t| format_local(clock, t)),
-            (Kind::TimeOfDay, Some(v)) => {
-                v.as_i64().map_or_else(|| v.to_string(), format_time_of_day)
-            }
+            (Kind::TimeOfDay, Some(v)) => v.as_i64().map_or_else(
+                || v.to_string(),
+                |t| format_time_of_day(lmst_of_day(clock.sol_length, t)),
+            ),
             (Kind::Text, Some(Value::String(s))) => s.clone(),
             (_, Some(v)) => v.to_string(),
         }
@@ -78,6 +79,11 @@ impl Kind {
         let text = text.trim();
         if text.is_empty() {
             return Ok(None);
+        }
+        // A time shown to the LMST second stands for the plan second it was:
+        // read as shown, it keeps that second.
+        if matches!(self, Kind::Time | Kind::TimeOfDay) && text == self.show(clock, near) {
+            return Ok(near.cloned());
         }
         let int = || {
             text.parse::<i64>()
@@ -106,16 +112,16 @@ impl Kind {
             }
             Kind::TimeOfDay => {
                 // Seconds after midnight, or hh:mm[:ss].
-                match text
-                    .parse::<i64>()
-                    .ok()
-                    .or_else(|| parse_time_of_day(text).ok())
-                {
+                match text.parse::<i64>().ok().or_else(|| {
+                    parse_time_of_day(text)
+                        .ok()
+                        .map(|m| time_of_day_of_lmst(clock.sol_length, m))
+                }) {
                     Some(t) => json!(t),
                     None => {
                         return Err(format!(
-                            "\"{text}\" is not a local time of day: write 08:30 or seconds \
-                             after midnight"
+                            "\"{text}\" is not a local time of day: write 08:30 (LMST) or \
+                             plan seconds after midnight"
                         ));
                     }
                 }

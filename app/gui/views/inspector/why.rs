@@ -5,8 +5,8 @@
 
 use eframe::egui::{self, RichText};
 use solscope_engine::{
-    Explanation, Phase, explanation_notes_and_lead, reason_line, reasons_in_reading_order,
-    suggestion_line,
+    Explanation, Phase, explanation_notes_and_lead, lmst_sentence, reason_line,
+    reasons_in_reading_order, suggestion_description, suggestion_line,
 };
 
 use crate::gui::help;
@@ -43,6 +43,11 @@ pub(super) fn why_ui(
     // conflicts and reasons; the notes that go through them one by one below.
     let problem = &m.analysis.schedule.problem;
     let (notes, lead) = explanation_notes_and_lead(&m.doc.plan, problem, ex);
+    // The document's sentences, said in LMST.
+    let notes: Vec<String> = notes
+        .iter()
+        .map(|n| lmst_sentence(&m.doc.plan.local_time, n))
+        .collect();
     let lead = lead.min(notes.len());
     for note in &notes[..lead] {
         ui.label(note);
@@ -172,11 +177,12 @@ pub(super) fn suggestions_ui(
             for s in list {
                 ui.horizontal_wrapped(|ui| {
                     ui.label(suggestion_line(&m.doc.plan, s));
-                    if ui.button(format!("Apply: {}", s.description)).clicked() {
+                    let description = suggestion_description(&m.doc.plan, &s.description);
+                    if ui.button(format!("Apply: {description}")).clicked() {
                         cmds.push(Command::Edit {
                             target: s.target.clone(),
                             set: s.set.clone(),
-                            description: s.description.clone(),
+                            description,
                         });
                     }
                 });

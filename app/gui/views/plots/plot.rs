@@ -5,11 +5,12 @@
 
 use eframe::egui::{self, Color32, RichText};
 use egui_plot::{
-    GridInput, GridMark, HLine, HoverPosition, Line, LineStyle, MarkerShape, Plot, PlotPoint,
-    PlotPoints, PlotUi, Points, Text, VLine,
+    GridInput, GridMark, HLine, Line, LineStyle, MarkerShape, Plot, PlotPoint, PlotPoints, PlotUi,
+    Points, Text, VLine,
 };
-use solscope_engine::format_local;
+use solscope_engine::Unit;
 
+use super::execution::value_at;
 use crate::gui::theme::{
     CYCLE_LINE_STROKE, LABEL_WIDTH, LIMIT_FONT_SIZE, OTHER_VIOLATION_RADIUS, PLOT_HEIGHT, TICK_GAP,
     VALUE_GRID_GAP, VIOLATION_RADIUS,
@@ -115,11 +116,38 @@ pub(super) fn plot_ui(
     });
     let frame = resp.transform.frame();
     cache.plot_x = Some((frame.left(), frame.right()));
+    if resp.response.hovered() {
+        if let Some(text) = resp.inner.and_then(|p| readout(m, series, unit, p.x)) {
+            egui::Tooltip::for_widget(&resp.response)
+                .at_pointer()
+                .gap(12.0)
+                .show(|ui| ui.label(text));
+        }
+    }
     if resp.response.clicked() {
         if let Some(p) = resp.inner {
             cmds.push(Command::ProbePlot(Some(p.x.round() as i64)));
         }
     }
+}
+
+/// What the plot reads at time `x` (the hovered one): the time, and each
+/// series' value there (named when there are several), not the pointer's
+/// height; `None` where no series has a value.
+pub(super) fn readout(m: &Model<'_>, series: &[Series<'_>], unit: Unit, x: f64) -> Option<String> {
+    let t = x.round() as i64;
+    let values: Vec<String> = series
+        .iter()
+        .filter_map(|s| {
+            let v = value_at(s.points, t as f64)?;
+            Some(if series.len() == 1 {
+                unit.format(v)
+            } else {
+                format!("{}: {}", s.name, unit.format(v))
+            })
+        })
+        .collect();
+    (!values.is_empty()).then(|| format!("{}\n{}", m.time(t), values.join("\n")))
 }
 
 /// The series as lines, each thinned to what `width` pixels show of the
@@ -147,7 +175,7 @@ fn lines_of<'s>(series: &'s [Series<'_>], axis: TimeAxis, width: f64) -> Vec<Lin
         .collect()
 }
 
-/// The plot `id` with the Gantt's time ticks, value grid and hover label,
+/// The plot `id` with the Gantt's time ticks, value grid and time ruler,
 /// its value range from 0 up to room above its highest limit line and
 /// violation.
 fn plot_of(
@@ -157,7 +185,6 @@ fn plot_of(
     limits: &[(&str, f64)],
     highest_violation: f64,
 ) -> Plot<'static> {
-    let unit = unit_of(id);
     let local = m.doc.plan.local_time;
     // The Gantt ruler's ticks: round local times, sol boundaries thicker.
     Plot::new(id)
@@ -175,16 +202,9 @@ fn plot_of(
             tick_label(&local, mark.value.round() as i64, mark.step_size)
         })
         .y_grid_spacer(value_grid)
-        .label_formatter(move |hover| {
-            let (t, value) = match hover {
-                HoverPosition::NearDataPoint { position, .. }
-                | HoverPosition::Elsewhere { position } => (position.x, position.y),
-            };
-            Some(format!(
-                "{}\n{value:.1} {unit}",
-                format_local(&local, t.round() as i64)
-            ))
-        })
+        // No ruler at the pointer's height: the readout (see `readout`) is
+        // the profiles' values at the hovered time.
+        .show_y(false)
         .height(PLOT_HEIGHT)
         .allow_zoom(false)
         .allow_drag(false)
@@ -200,7 +220,7 @@ fn plot_of(
 
 /// The limit lines, each with its name and value at its right end: above
 /// it, or below when another limit's label sits just above.
-fn limits_ui(plot_ui: &mut PlotUi<'_>, m: &Model<'_>, limits: &[(&str, f64)], unit: &str) {
+fn limits_ui(plot_ui: &mut PlotUi<'_>, m: &Model<'_>, limits: &[(&str, f64)], unit: Unit) {
     let limit_color = m.theme.limit;
     let axis = m.nav.axis;
     let span = plot_ui.plot_bounds().height();
@@ -218,7 +238,7 @@ fn limits_ui(plot_ui: &mut PlotUi<'_>, m: &Model<'_>, limits: &[(&str, f64)], un
             Text::new(
                 name,
                 PlotPoint::new(axis.end - axis.span() * LIMIT_LABEL_INSET, y),
-                RichText::new(format!("{name} {y} {unit}")).size(LIMIT_FONT_SIZE),
+                RichText::new(format!("{name} {}", unit.format(y))).size(LIMIT_FONT_SIZE),
             )
             .anchor(anchor)
             .color(limit_color),
@@ -341,11 +361,11 @@ const LIMIT_LABEL_INSET: f64 = 0.004;
 const LIMIT_LABEL_ROOM: f64 = 0.12;
 
 /// The unit of the plot with this id.
-fn unit_of(id: &str) -> &'static str {
+pub(super) fn unit_of(id: &str) -> Unit {
     match id {
-        SOC => "Wh",
-        PEAK => "W",
-        _ => "Mbit",
+        SOC => Unit::Wh,
+        PEAK => Unit::W,
+        _ => Unit::Mbit,
     }
 }
 
