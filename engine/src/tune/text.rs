@@ -1,5 +1,6 @@
 //! The sentences of priority tuning, made from its data in one place.
 
+use super::score::{MICRO, Score, ValueMeasure};
 use super::why::{ChangeWhy, Moved};
 use crate::model::Plan;
 
@@ -61,9 +62,60 @@ pub fn change_line(plan: &Plan, why: &ChangeWhy) -> String {
     s
 }
 
+/// A score on a sample of `runs` runs, in the objective's order: e.g. "no run
+/// breaks a limit, 40 mandatory completions, value 212.5" (without a `value`
+/// in the plan, the value is the completions in the original step order, which
+/// has no one number).
+pub fn score_line(score: &Score, runs: u64) -> String {
+    let breaking = match score.runs_breaking {
+        0 => "no run breaks a limit".to_string(),
+        k if k == runs => format!("every run breaks a limit ({k})"),
+        k => format!("{k} of {runs} runs break a limit ({})", share(k, runs)),
+    };
+    let mandatory = match score.mandatory_completed {
+        1 => "1 mandatory completion".to_string(),
+        k => format!("{k} mandatory completions"),
+    };
+    let value = match &score.value {
+        ValueMeasure::Total(v) => format!("value {:.1}", *v as f64 / MICRO as f64),
+        ValueMeasure::StepOrder(c) => {
+            format!(
+                "{} completions (compared in the original step order)",
+                c.iter().sum::<u64>()
+            )
+        }
+    };
+    format!("{breaking}, {mandatory}, {value}")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_score_reads_in_the_objective_s_order() {
+        let s = Score {
+            runs_breaking: 0,
+            mandatory_completed: 40,
+            value: ValueMeasure::Total(212_500_000),
+            changes: 2,
+        };
+        assert_eq!(
+            score_line(&s, 40),
+            "no run breaks a limit, 40 mandatory completions, value 212.5"
+        );
+        let t = Score {
+            runs_breaking: 3,
+            mandatory_completed: 1,
+            value: ValueMeasure::StepOrder(vec![4, 3]),
+            changes: 0,
+        };
+        assert_eq!(
+            score_line(&t, 4),
+            "3 of 4 runs break a limit (75%), 1 mandatory completion, \
+             7 completions (compared in the original step order)"
+        );
+    }
 
     #[test]
     fn shares_read_as_planners_expect() {
