@@ -23,6 +23,7 @@ mod steps;
 mod text;
 mod toolbar;
 mod tour;
+mod tune;
 mod widgets;
 
 pub use model::{Look, Model, ViewCache, Widgets};
@@ -96,6 +97,12 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
             .show(ui, |ui| {
                 montecarlo::campaign_panel_ui(ui, m, w.text, cmds);
             });
+    }
+    if m.tune.open {
+        // Under the Gantt and plots (above the Monte Carlo panel).
+        egui::Panel::bottom("tune").resizable(false).show(ui, |ui| {
+            tune::tune_panel_ui(ui, m, &mut w.text.tune, cmds);
+        });
     }
     egui::CentralPanel::default().show(ui, |ui| {
         axis::axis_ui(ui, m, &mut w.text.range_text, cmds);
