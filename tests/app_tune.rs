@@ -207,7 +207,10 @@ fn cancel_keeps_the_best_order_so_far_marked_stopped_early() {
     assert_eq!(r.tuning.stop, solscope_engine::Stop::Cancelled);
     assert!(r.tuning.evaluations < 1_000_000);
     assert_eq!(r.tuning.held_out.runs, 2, "confirmed all the same");
-    assert!(h.query_by_label_contains("Stopped early").is_some());
+    assert!(
+        h.query_by_label_contains("Stopped early (cancelled)")
+            .is_some()
+    );
 }
 
 #[test]

@@ -100,9 +100,16 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
     }
     if m.tune.open {
         // Under the Gantt and plots (above the Monte Carlo panel).
-        egui::Panel::bottom("tune").resizable(false).show(ui, |ui| {
-            tune::tune_panel_ui(ui, m, &mut w.text.tune, cmds);
-        });
+        egui::Panel::bottom("tune")
+            .resizable(true)
+            .default_size(tune::PANEL_HEIGHT)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical()
+                    .auto_shrink([false; 2])
+                    .show(ui, |ui| {
+                        tune::tune_panel_ui(ui, m, &mut w.text.tune, cmds);
+                    });
+            });
     }
     egui::CentralPanel::default().show(ui, |ui| {
         axis::axis_ui(ui, m, &mut w.text.range_text, cmds);

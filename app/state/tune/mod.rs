@@ -191,10 +191,12 @@ impl TuneResult {
         })
     }
 
-    /// The search was cancelled: the result is the best order found until
-    /// then (confirmed on the held-out sample all the same).
+    /// The search stopped before it finished (cancelled, or the budget ran
+    /// out), as the command line's `stopped_early` says: the result is the
+    /// best order found until then, confirmed on the held-out sample all the
+    /// same.
     pub fn stopped_early(&self) -> bool {
-        self.tuning.stop == Stop::Cancelled
+        self.tuning.stop != Stop::Finished
     }
 
     /// The edit that gives `plan` (the plan tuned) the tuned priorities and

@@ -9,6 +9,7 @@ use eframe::egui::{self, Painter, Pos2, Rect, Stroke};
 use super::layout::Row;
 use crate::gui::theme::LANE_GAP;
 use crate::gui::views::Model;
+use crate::gui::views::tune::tuned_color;
 
 /// Share of a row's height the tuned bar takes, at its bottom.
 const TUNED_SHARE: f32 = 0.38;
@@ -43,7 +44,7 @@ pub(super) fn overlay(painter: &Painter, m: &Model<'_>, rows: &[Row], top: f32, 
     }
     let axis = m.nav.axis;
     let x = |t: i64| axis.x(t as f64, timeline) as f32;
-    let color = m.theme.current;
+    let color = tuned_color(&m.theme);
     for (a, row) in at.iter().enumerate() {
         let Some((_, y, h)) = *row else {
             continue;

@@ -9,22 +9,35 @@
 
 mod result;
 
-use eframe::egui::{self, RichText};
+use eframe::egui::{self, Color32, RichText};
 
 use super::Model;
 use super::controls::command_button;
+use crate::gui::theme::Theme;
 use crate::state::tune::{
     BUDGET_LABEL, CONFIRM_RUNS_LABEL, CONFIRM_SEED_LABEL, PINNED_LABEL, RUNS_LABEL, SEED_LABEL,
     TuneResult, TuneRunning, TuneText,
 };
 use crate::state::{Command, UiCommand};
 
+/// The panel's height when it opens (it can be resized; its body scrolls).
+pub const PANEL_HEIGHT: f32 = 330.0;
 /// Width of the number fields.
 const NUMBER_WIDTH: f32 = 48.0;
 /// Width of the pinned ids field.
 const PINNED_WIDTH: f32 = 180.0;
 /// Width of the progress bar.
 const PROGRESS_WIDTH: f32 = 180.0;
+
+/// The colour of the tuned order's share bars and of the tuned schedule on
+/// the Gantt (a violet no other layer uses).
+pub fn tuned_color(theme: &Theme) -> Color32 {
+    if theme.dark {
+        Color32::from_rgb(175, 125, 255)
+    } else {
+        Color32::from_rgb(120, 60, 200)
+    }
+}
 
 /// The panel: its controls in the header, the result in the body.
 pub fn tune_panel_ui(
@@ -34,7 +47,7 @@ pub fn tune_panel_ui(
     cmds: &mut Vec<Command>,
 ) {
     ui.horizontal_wrapped(|ui| {
-        ui.label(RichText::new(UiCommand::TunePriorities.label()).strong())
+        ui.label(RichText::new("Priority tuning").strong())
             .on_hover_text(
                 "Search the priorities (the order in which the scheduler considers the \
                  activities) that complete more of what matters over the executions the \
@@ -210,20 +223,29 @@ fn summary_ui(ui: &mut egui::Ui, m: &Model<'_>, r: &TuneResult, cmds: &mut Vec<C
         }
     );
     ui.label(how);
-    if r.stopped_early() {
-        ui.colored_label(
-            m.theme.aborted,
-            "Stopped early: the best order found before Cancel, confirmed on the held-out \
-             sample",
-        );
+    match t.stop {
+        solscope_engine::Stop::Finished => {}
+        solscope_engine::Stop::Cancelled => {
+            ui.colored_label(
+                m.theme.aborted,
+                "Stopped early (cancelled): the best order found until then, confirmed on \
+                 the held-out sample",
+            );
+        }
+        solscope_engine::Stop::Budget => {
+            ui.colored_label(
+                m.theme.aborted,
+                "Stopped early (the budget ran out): the best order found within it; a \
+                 larger budget may find a better one",
+            );
+        }
     }
     let held = t.held_out.runs;
     let score = |s| solscope_engine::score_line(s, held);
+    ui.label(format!("Held-out, {held} runs (seed {}):", t.held_out.seed));
     egui::Grid::new("tune_objective")
         .num_columns(2)
         .show(ui, |ui| {
-            ui.label(format!("Held-out, {held} runs (seed {}):", t.held_out.seed));
-            ui.end_row();
             ui.label("original");
             ui.label(score(&t.held_out_scores.original));
             ui.end_row();

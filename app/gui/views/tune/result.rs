@@ -3,10 +3,11 @@
 //! the tuned one's (the activities whose share moved first). Clicking an
 //! activity selects it.
 
-use eframe::egui::{self, Pos2, Rect, Sense, Stroke};
+use eframe::egui::{self, Pos2, Rect, RichText, Sense, Stroke};
 
 use super::super::Model;
 use super::super::text::percent;
+use super::tuned_color;
 use crate::gui::theme::BAR_OUTLINE_STROKE;
 use crate::state::Command;
 use crate::state::tune::TuneResult;
@@ -17,10 +18,6 @@ const BAR_WIDTH: f32 = 140.0;
 const BAR_HEIGHT: f32 = 6.0;
 /// Gap between the paired bars.
 const BAR_GAP: f32 = 2.0;
-/// Width of the activity column of the shares.
-const ID_WIDTH: f32 = 150.0;
-/// Most height the two lists take before they scroll.
-const LIST_HEIGHT: f32 = 220.0;
 
 /// The changes and the shares, side by side.
 pub(super) fn result_ui(ui: &mut egui::Ui, m: &Model<'_>, r: &TuneResult, cmds: &mut Vec<Command>) {
@@ -35,32 +32,29 @@ pub(super) fn result_ui(ui: &mut egui::Ui, m: &Model<'_>, r: &TuneResult, cmds: 
 /// Each priority changed, with why.
 fn changes_ui(ui: &mut egui::Ui, m: &Model<'_>, r: &TuneResult, cmds: &mut Vec<Command>) {
     let n = r.tuning.changes.len();
-    ui.label(egui::RichText::new(format!("Changes ({n})")).strong());
-    egui::ScrollArea::vertical()
-        .id_salt("tune_changes")
-        .max_height(LIST_HEIGHT)
-        .auto_shrink([false, true])
-        .show(ui, |ui| {
-            for (c, why) in r.tuning.changes.iter().zip(&r.reasons) {
-                let id = m
-                    .doc
-                    .plan
-                    .activities
-                    .get(c.activity)
-                    .map_or("?", |a| a.id.as_str());
-                let head = format!("{id}: priority {} → {}", c.before, c.after);
-                if ui
-                    .selectable_label(m.nav.selected == Some(c.activity), head)
-                    .on_hover_text("Select it")
-                    .clicked()
-                {
-                    cmds.push(Command::Select(Some(c.activity)));
-                }
-                ui.indent(("tune_why", c.activity), |ui| {
-                    ui.colored_label(m.theme.muted, why);
-                });
-            }
+    ui.label(RichText::new(format!("Changes ({n})")).strong());
+    for (c, why) in r.tuning.changes.iter().zip(&r.reasons) {
+        let id = m
+            .doc
+            .plan
+            .activities
+            .get(c.activity)
+            .map_or("?", |a| a.id.as_str());
+        let head = format!("{id}: priority {} → {}", c.before, c.after);
+        if ui
+            .selectable_label(m.nav.selected == Some(c.activity), head)
+            .on_hover_text("Select it")
+            .clicked()
+        {
+            cmds.push(Command::Select(Some(c.activity)));
+        }
+        ui.indent(("tune_why", c.activity), |ui| {
+            // A sentence, not stretched to the column's width.
+            ui.with_layout(egui::Layout::top_down(egui::Align::Min), |ui| {
+                ui.add(egui::Label::new(RichText::new(why).color(m.theme.muted)).wrap());
+            });
         });
+    }
 }
 
 /// Per activity, its completed share before and after on the held-out
@@ -69,9 +63,9 @@ fn shares_ui(ui: &mut egui::Ui, m: &Model<'_>, r: &TuneResult, cmds: &mut Vec<Co
     let t = &r.tuning;
     let runs = t.held_out.runs;
     ui.horizontal(|ui| {
-        ui.label(egui::RichText::new("Completed, held-out runs").strong());
+        ui.label(RichText::new("Completed, held-out runs").strong());
         legend(ui, m.theme.predicted, "original");
-        legend(ui, m.theme.scheduled, "tuned");
+        legend(ui, tuned_color(&m.theme), "tuned");
     });
     // The activities whose share moved first (most gained first), then the
     // rest in file order.
@@ -81,10 +75,9 @@ fn shares_ui(ui: &mut egui::Ui, m: &Model<'_>, r: &TuneResult, cmds: &mut Vec<Co
         i128::from(c.held_out_after.completed) - i128::from(c.held_out_before.completed)
     };
     order.sort_by_key(|&a| (delta(a) == 0, -delta(a).abs(), a));
-    egui::ScrollArea::vertical()
-        .id_salt("tune_shares")
-        .max_height(LIST_HEIGHT)
-        .auto_shrink([false, true])
+    egui::Grid::new("tune_shares")
+        .num_columns(3)
+        .min_col_width(0.0)
         .show(ui, |ui| {
             for a in order {
                 let Some(act) = m.doc.plan.activities.get(a) else {
@@ -92,33 +85,32 @@ fn shares_ui(ui: &mut egui::Ui, m: &Model<'_>, r: &TuneResult, cmds: &mut Vec<Co
                 };
                 let c = &t.counts[a];
                 let (before, after) = (c.held_out_before.completed, c.held_out_after.completed);
-                ui.horizontal(|ui| {
-                    let label = ui.add_sized(
-                        [ID_WIDTH, BAR_HEIGHT * 2.0 + BAR_GAP],
-                        egui::Button::selectable(m.nav.selected == Some(a), act.id.as_str()),
-                    );
-                    if label.on_hover_text("Select it").clicked() {
-                        cmds.push(Command::Select(Some(a)));
-                    }
-                    let text = format!(
-                        "{}: completed {} → {} of {runs} held-out runs",
-                        act.id,
-                        percent(before, runs),
-                        percent(after, runs)
-                    );
-                    paired_bars(ui, m, (before, after), runs, text);
-                    let moved = if after > before {
-                        m.theme.scheduled
-                    } else if after < before {
-                        m.theme.failed
-                    } else {
-                        m.theme.muted
-                    };
-                    ui.colored_label(
-                        moved,
-                        format!("{} → {}", percent(before, runs), percent(after, runs)),
-                    );
-                });
+                if ui
+                    .selectable_label(m.nav.selected == Some(a), act.id.as_str())
+                    .on_hover_text("Select it")
+                    .clicked()
+                {
+                    cmds.push(Command::Select(Some(a)));
+                }
+                let text = format!(
+                    "{}: completed {} → {} of {runs} held-out runs",
+                    act.id,
+                    percent(before, runs),
+                    percent(after, runs)
+                );
+                paired_bars(ui, m, (before, after), runs, text);
+                let moved = if after > before {
+                    m.theme.valid
+                } else if after < before {
+                    m.theme.failed
+                } else {
+                    m.theme.muted
+                };
+                ui.colored_label(
+                    moved,
+                    format!("{} → {}", percent(before, runs), percent(after, runs)),
+                );
+                ui.end_row();
             }
         });
 }
@@ -145,7 +137,7 @@ fn paired_bars(
     if ui.is_rect_visible(rect) {
         let painter = ui.painter_at(rect);
         let total = runs.max(1) as f32;
-        for (i, (n, color)) in [(before, m.theme.predicted), (after, m.theme.scheduled)]
+        for (i, (n, color)) in [(before, m.theme.predicted), (after, tuned_color(&m.theme))]
             .into_iter()
             .enumerate()
         {
