@@ -117,3 +117,48 @@ fn cancelling_before_the_search_keeps_the_original_order_confirmed() {
         r.tuning.held_out_scores.tuned
     );
 }
+
+#[test]
+fn without_values_the_first_difference_in_step_order_is_said() {
+    let settings = TuneSettings {
+        runs: 8,
+        confirm_runs: 8,
+        budget: 40,
+        ..TuneSettings::default()
+    };
+    let with_values = TuneResult::of(&plan(), &settings, None, None).expect("tunes");
+    assert_eq!(
+        solscope_engine::first_difference_line(&plan(), &with_values.tuning),
+        None,
+        "the plan's values decide"
+    );
+    let mut plain = plan();
+    for a in &mut plain.activities {
+        a.value = None;
+    }
+    let r = TuneResult::of(&plain, &settings, None, None).expect("tunes");
+    let t = &r.tuning;
+    let (solscope_engine::ValueMeasure::StepOrder(o), solscope_engine::ValueMeasure::StepOrder(n)) = (
+        &t.held_out_scores.original.value,
+        &t.held_out_scores.tuned.value,
+    ) else {
+        panic!("no values: step order");
+    };
+    let k = o
+        .iter()
+        .zip(n)
+        .position(|(x, y)| x != y)
+        .expect("a difference");
+    let id = &plain.activities[t.original[k]].id;
+    assert_eq!(
+        solscope_engine::first_difference_line(&plain, t).as_deref(),
+        Some(
+            format!(
+                "first difference in the original step order: {id} completes in {} of 8 runs \
+                 instead of {}",
+                n[k], o[k]
+            )
+            .as_str()
+        )
+    );
+}

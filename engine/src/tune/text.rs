@@ -1,5 +1,6 @@
 //! The sentences of priority tuning, made from its data in one place.
 
+use super::Tuning;
 use super::score::{MICRO, Score, ValueMeasure};
 use super::why::{ChangeWhy, Moved};
 use crate::model::Plan;
@@ -80,12 +81,37 @@ pub fn score_line(score: &Score, runs: u64) -> String {
         ValueMeasure::Total(v) => format!("value {:.1}", *v as f64 / MICRO as f64),
         ValueMeasure::StepOrder(c) => {
             format!(
-                "{} completions (compared in the original step order)",
+                "{} completions in all (compared activity by activity in the original step \
+                 order)",
                 c.iter().sum::<u64>()
             )
         }
     };
     format!("{breaking}, {mandatory}, {value}")
+}
+
+/// Without a `value` in the plan, what decides between the original and the
+/// tuned order on the held-out sample after limits and mandatory
+/// completions: the first activity in the original step order completed a
+/// different number of times, e.g. "first difference in the original step
+/// order: uhf_mro_412_pm completes in 38 of 40 runs instead of 34". `None`
+/// when the plan has values or no activity differs.
+pub fn first_difference_line(plan: &Plan, t: &Tuning) -> Option<String> {
+    let (o, n) = (&t.held_out_scores.original, &t.held_out_scores.tuned);
+    let (ValueMeasure::StepOrder(a), ValueMeasure::StepOrder(b)) = (&o.value, &n.value) else {
+        return None;
+    };
+    let ((before, after), act) = a
+        .iter()
+        .zip(b)
+        .zip(&t.original)
+        .find(|((x, y), _)| x != y)?;
+    let id = plan.activities.get(*act).map_or("?", |x| x.id.as_str());
+    Some(format!(
+        "first difference in the original step order: {id} completes in {after} of {} runs \
+         instead of {before}",
+        t.held_out.runs
+    ))
 }
 
 #[cfg(test)]
@@ -113,7 +139,7 @@ mod tests {
         assert_eq!(
             score_line(&t, 4),
             "3 of 4 runs break a limit (75%), 1 mandatory completion, \
-             7 completions (compared in the original step order)"
+             7 completions in all (compared activity by activity in the original step order)"
         );
     }
 

@@ -129,6 +129,8 @@ fn controls_ui(ui: &mut egui::Ui, m: &Model<'_>, text: &mut TuneText, cmds: &mut
         NUMBER_WIDTH,
         "Orders the search may score on the tuning sample, the original's included",
     );
+    // The pinned ids, Tune and Cancel on a line of their own.
+    ui.end_row();
     field(
         ui,
         PINNED_LABEL,
@@ -253,6 +255,9 @@ fn summary_ui(ui: &mut egui::Ui, m: &Model<'_>, r: &TuneResult, cmds: &mut Vec<C
             ui.label(score(&t.held_out_scores.tuned));
             ui.end_row();
         });
+    if let Some(line) = solscope_engine::first_difference_line(&m.doc.plan, t) {
+        ui.label(line);
+    }
     if t.changes.is_empty() {
         ui.label("The original order is the best found: no priority changes.");
     } else if t.held_out_no_worse() {

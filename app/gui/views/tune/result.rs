@@ -67,8 +67,8 @@ fn shares_ui(ui: &mut egui::Ui, m: &Model<'_>, r: &TuneResult, cmds: &mut Vec<Co
         legend(ui, m.theme.predicted, "original");
         legend(ui, tuned_color(&m.theme), "tuned");
     });
-    // The activities whose share moved first (most gained first), then the
-    // rest in file order.
+    // The activities whose share moved first (the largest change first),
+    // then the rest in file order.
     let mut order: Vec<usize> = (0..t.counts.len()).collect();
     let delta = |a: usize| {
         let c = &t.counts[a];
