@@ -67,6 +67,8 @@ fn wait_until(h: &mut H, what: &str, done: impl Fn(&SolscopeApp) -> bool) {
 fn panel_with_small_settings(app: SolscopeApp) -> H {
     let mut h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
     assert!(h.query_by_label("Tuning runs").is_none(), "closed at first");
+    h.get_by_label("File").click();
+    h.run_steps(2);
     h.get_by_label("Tune priorities").click();
     h.run_steps(3);
     // The command line's defaults.

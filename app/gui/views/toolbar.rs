@@ -1,5 +1,5 @@
 //! The toolbar: the File and Help menus, Back and Forward, Undo and Redo, the
-//! theme, the Gantt's layers, the tuning panel, the plan's title and counts, and the mode switch.
+//! theme, the Gantt's layers, the plan's title and counts, and the mode switch.
 
 use eframe::egui::{self, RichText};
 
@@ -22,6 +22,9 @@ pub(super) fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Comman
             ] {
                 menu_item(ui, cmd, cmds);
             }
+            ui.separator();
+            // The panel under the Gantt (also Ctrl+T).
+            menu_item(ui, UiCommand::TunePriorities, cmds);
             if !m.persisted.recent.is_empty() {
                 ui.separator();
                 ui.label("Recent");
@@ -84,17 +87,6 @@ pub(super) fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Comman
             if resp.changed() {
                 cmds.push(cmd.into());
             }
-        }
-        let tune = UiCommand::TunePriorities;
-        let mut resp = ui.selectable_label(m.tune.open, tune.label());
-        if let Some(shortcut) = kb_shortcut(tune) {
-            resp = resp.on_hover_text(format!(
-                "Show or hide the panel that searches better priorities ({})",
-                ui.ctx().format_shortcut(&shortcut)
-            ));
-        }
-        if resp.clicked() {
-            cmds.push(tune.into());
         }
         let mut by_resource = m.persisted.by_resource;
         if ui
