@@ -488,3 +488,19 @@ fn hover_readout_on_the_peak_plot() {
     h.run_steps(3);
     h.snapshot_options("peak_hover_readout", &snapshot_options());
 }
+
+#[test]
+fn the_tuning_panel_with_a_result_and_the_tuned_schedule_on_the_gantt() {
+    let text = include_str!("../assets/tuning-examples/order-matters.json");
+    let mut app = SolscopeApp::from_text(text, None).expect("tuning example");
+    // A small search (the example has few orders): fast and the same every run.
+    app.apply(Command::RunTune(solscope::state::tune::TuneSettings {
+        runs: 8,
+        confirm_runs: 12,
+        budget: 40,
+        ..Default::default()
+    }));
+    app.apply(Command::Ui(UiCommand::ToggleTuneOverlay));
+    assert!(app.tune_result().is_some(), "tuned in place");
+    check("tune_order_matters", app, View::default());
+}

@@ -151,6 +151,7 @@ impl SolscopeApp {
             nav: s.nav,
             messages: s.messages,
             exec: s.exec,
+            tune: s.tune,
         };
         let w = Widgets {
             text,

@@ -14,6 +14,7 @@ fn egui_key(key: Key) -> egui::Key {
         Key::S => egui::Key::S,
         Key::Z => egui::Key::Z,
         Key::F => egui::Key::F,
+        Key::T => egui::Key::T,
         Key::Num1 => egui::Key::Num1,
         Key::Num2 => egui::Key::Num2,
         Key::Home => egui::Key::Home,

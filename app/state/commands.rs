@@ -14,6 +14,7 @@ use std::path::PathBuf;
 use serde_json::{Map, Value};
 
 use super::axis::TimeAxis;
+use super::tune::TuneSettings;
 use super::ui::{Dialog, ListFilter, StepWindow};
 
 /// Declares [`UiCommand`] and [`UiCommand::ALL`] from one list, so that no
@@ -143,6 +144,19 @@ ui_commands! {
     ZoomStepsOut,
     /// The step slider spans every step of the run again.
     AllSteps,
+    /// Show or hide the panel that tunes the priorities.
+    TunePriorities,
+    /// Stop the tuning search: the best order found so far is confirmed and
+    /// shown, marked as stopped early.
+    CancelTune,
+    /// Give the plan the tuned priorities (one edit: one undo restores every
+    /// priority).
+    ApplyTuning,
+    /// Forget the tuning shown (and its overlay on the Gantt).
+    DismissTuning,
+    /// Show the tuned predicted schedule over the original one on the Gantt,
+    /// or not.
+    ToggleTuneOverlay,
 }
 
 impl UiCommand {
@@ -194,6 +208,11 @@ impl UiCommand {
             Self::ZoomStepsIn => "Zoom steps in",
             Self::ZoomStepsOut => "Zoom steps out",
             Self::AllSteps => "All steps",
+            Self::TunePriorities => "Tune priorities",
+            Self::CancelTune => "Cancel tuning",
+            Self::ApplyTuning => "Apply tuned priorities",
+            Self::DismissTuning => "Dismiss tuning",
+            Self::ToggleTuneOverlay => "Tuned schedule on the Gantt",
         }
     }
 
@@ -225,6 +244,7 @@ impl UiCommand {
             Self::PreviousCycle => plain(Key::PageUp),
             Self::NextCycle => plain(Key::PageDown),
             Self::ToggleFlex => plain(Key::F),
+            Self::TunePriorities => cmd(Key::T),
             Self::AddActivity
             | Self::DuplicateActivity
             | Self::DeleteActivity
@@ -252,7 +272,11 @@ impl UiCommand {
             | Self::ResetTour
             | Self::ZoomStepsIn
             | Self::ZoomStepsOut
-            | Self::AllSteps => None,
+            | Self::AllSteps
+            | Self::CancelTune
+            | Self::ApplyTuning
+            | Self::DismissTuning
+            | Self::ToggleTuneOverlay => None,
         }
     }
 }
@@ -269,6 +293,8 @@ pub enum Key {
     Z,
     /// The letter F.
     F,
+    /// The letter T.
+    T,
     /// The digit 1.
     Num1,
     /// The digit 2.
@@ -517,6 +543,9 @@ pub enum Command {
     /// Show page `k` of the guided tour, and give the commands that page gives
     /// (select its failure, move the step slider).
     TourPage(usize),
+    /// Tune the priorities of the plan as it is with these settings (on a
+    /// worker in the desktop app); a search running is stopped first.
+    RunTune(TuneSettings),
 }
 
 impl From<UiCommand> for Command {

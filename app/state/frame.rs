@@ -9,6 +9,7 @@ use std::time::Duration;
 use solscope_engine::{CategoryIntervals, Explanation, Suggestion};
 
 use super::derived::{CampaignCache, ExecKey, ExecutionCache, FlexResult, step_view};
+use super::tune::TuneModel;
 use super::{
     ActualsSource, Analysis, AppState, CampaignModel, CampaignResult, Command, CycleRun, Document,
     ExecModel, ExecutionRun, FreeSlackProgress, Listed, Messages, Mode, Navigation, Persisted,
@@ -52,6 +53,10 @@ impl AppState {
             self.ui.messages.error = Some(e);
         }
         if let Err(e) = self.flex.reap(self.revision) {
+            self.ui.messages.error = Some(e);
+        }
+        // A tuning search of an older plan revision stops here.
+        if let Err(e) = self.tune.reap(self.revision) {
             self.ui.messages.error = Some(e);
         }
         self.derive_step_view();
@@ -115,8 +120,8 @@ impl AppState {
         } else if self.flex.busy() {
             // The free slack fills in over minutes: a few repaints a second.
             repaint.ask(500);
-        } else if self.campaign.progress().is_some() {
-            // The progress bar moves while the campaign runs.
+        } else if self.campaign.progress().is_some() || self.tune.running().is_some() {
+            // The progress bar moves while the campaign or the tuning runs.
             repaint.ask(100);
         }
         repaint.0
@@ -421,6 +426,7 @@ impl AppState {
             execution,
             campaign,
             actuals,
+            tune,
             ui,
             ..
         } = self;
@@ -449,6 +455,7 @@ impl AppState {
             nav,
             messages,
             exec: exec_model(nav, execution, campaign, actuals, key),
+            tune: tune.model(revision),
         };
         (reads, text)
     }
@@ -526,4 +533,6 @@ pub struct FrameReads<'a> {
     pub messages: &'a Messages,
     /// What execution mode draws.
     pub exec: ExecModel<'a>,
+    /// Priority tuning: the panel, the search and its result.
+    pub tune: TuneModel<'a>,
 }

@@ -8,7 +8,7 @@
 //! and turns input into commands.
 //!
 //! Modules, lowest first (each uses only those before it): `axis`, `job`
-//! → `document`, `repair` → `persisted`, `ui` → `commands`,
+//! → `document`, `repair`, `tune` → `persisted`, `ui` → `commands`,
 //! `status`, `execution` → `extent`, `list`, `tour`, `montecarlo` →
 //! `exec_model`, `derived` → this module (`AppState`), `frame`, `opening`,
 //! `reduce`.
@@ -30,6 +30,7 @@ mod reduce;
 pub mod repair;
 mod status;
 pub mod tour;
+pub mod tune;
 mod ui;
 
 #[cfg(test)]
@@ -99,6 +100,8 @@ pub struct AppState {
     campaign: CampaignCache,
     /// The flexible form of the schedule (schedule mode).
     flex: FlexCache,
+    /// Priority tuning: its panel, search and result.
+    tune: tune::TuneCache,
     /// What the activity list's search and filters select.
     list: ListCache,
     /// Time of the last automatic step.
@@ -163,6 +166,7 @@ impl AppState {
             execution: ExecutionCache::default(),
             campaign: CampaignCache::default(),
             flex: FlexCache::default(),
+            tune: tune::TuneCache::default(),
             list: ListCache::default(),
             last_tick: 0.0,
             dialog: None,

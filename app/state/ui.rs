@@ -619,6 +619,8 @@ pub struct TextBuffers {
     pub campaign_runs_text: String,
     /// The seed field of the Monte Carlo panel.
     pub campaign_seed_text: String,
+    /// The fields of the tuning panel.
+    pub tune: super::tune::TuneText,
     /// The typed path when no file dialog could be shown.
     pub path_text: String,
     /// Repair view: the plan text being repaired.
@@ -642,6 +644,7 @@ impl Default for TextBuffers {
             seed_text: "1".into(),
             campaign_runs_text: DEFAULT_CAMPAIGN_RUNS.to_string(),
             campaign_seed_text: "1".into(),
+            tune: super::tune::TuneText::default(),
             path_text: String::new(),
             repair_text: String::new(),
             repair_value: String::new(),

@@ -85,7 +85,8 @@ pub use scheduler::{
 pub use timeline::{Interval, IntervalSet};
 pub use tune::{
     ActivityCounts, Change, ChangeWhy, Counts, Mode, Moved, Sample, Score, Scores, Stop,
-    TuneOptions, TuneProgress, Tuning, ValueMeasure, change_line, tune,
+    TuneOptions, TuneProgress, Tuning, ValueMeasure, change_line, first_difference_line,
+    score_line, tune,
 };
 pub use units::{
     BIT_PER_MBIT, LMST_SECONDS_PER_SOL, MJ_PER_WH, MW_PER_W, ParseUnitError, Unit,

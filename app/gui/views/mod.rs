@@ -24,6 +24,7 @@ mod steps;
 mod text;
 mod toolbar;
 mod tour;
+mod tune;
 mod widgets;
 
 pub use model::{Look, Model, ViewCache, Widgets};
@@ -112,6 +113,19 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
             .resizable(false)
             .show(ui, |ui| {
                 montecarlo::campaign_panel_ui(ui, m, w.text, cmds);
+            });
+    }
+    if m.tune.open {
+        // Under the Gantt and plots (above the Monte Carlo panel).
+        egui::Panel::bottom("tune")
+            .resizable(true)
+            .default_size(tune::PANEL_HEIGHT)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical()
+                    .auto_shrink([false; 2])
+                    .show(ui, |ui| {
+                        tune::tune_panel_ui(ui, m, &mut w.text.tune, cmds);
+                    });
             });
     }
     egui::CentralPanel::default().show(ui, |ui| {

@@ -8,6 +8,7 @@ use solscope_engine::Suggestion;
 use super::gantt::{BarDrag, GanttRows};
 use super::tour::TourAnchors;
 use crate::gui::theme::Theme;
+use crate::state::tune::TuneModel;
 use crate::state::{
     Analysis, Document, ExecModel, FreeSlackProgress, Listed, Messages, Mode, Navigation,
     Persisted, SearchIndex, Status, StepView, TextBuffers, WouldCause, status_at,
@@ -51,6 +52,8 @@ pub struct Model<'a> {
     pub messages: &'a Messages,
     /// What execution mode draws.
     pub exec: ExecModel<'a>,
+    /// Priority tuning: the panel, the search and its result.
+    pub tune: TuneModel<'a>,
 }
 
 /// What the views keep between frames (their own, not the app's).

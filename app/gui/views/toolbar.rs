@@ -22,6 +22,9 @@ pub(super) fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Comman
             ] {
                 menu_item(ui, cmd, cmds);
             }
+            ui.separator();
+            // The panel under the Gantt (also Ctrl+T).
+            menu_item(ui, UiCommand::TunePriorities, cmds);
             if !m.persisted.recent.is_empty() {
                 ui.separator();
                 ui.label("Recent");

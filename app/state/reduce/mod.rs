@@ -4,13 +4,14 @@
 //! dialogs, the repair view), `edit` (edits, undo, the activity list's
 //! changes, pins), `steps` (steps, selection, links and history, revealing
 //! the selection), `execution` (actuals, cycles, the Monte Carlo campaign),
-//! `tour` (the guided tour).
+//! `tour` (the guided tour), `tune` (priority tuning).
 
 mod edit;
 mod execution;
 mod file;
 mod steps;
 mod tour;
+mod tune;
 
 use super::{AppState, Command, UiCommand};
 
@@ -88,6 +89,7 @@ impl AppState {
                 }
             }
             Command::TourPage(k) => self.tour_page(k),
+            Command::RunTune(settings) => self.start_tune(settings),
         }
     }
 
@@ -140,6 +142,11 @@ impl AppState {
             | U::NextCycle
             | U::CancelCampaign => self.run_execution(cmd),
             U::ToggleFlex => self.persisted.hide_flex = !self.persisted.hide_flex,
+            U::TunePriorities
+            | U::CancelTune
+            | U::ApplyTuning
+            | U::DismissTuning
+            | U::ToggleTuneOverlay => self.run_tune(cmd),
             U::ToggleComparePolicies => {
                 self.persisted.compare_policies = !self.persisted.compare_policies;
             }

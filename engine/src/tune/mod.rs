@@ -24,7 +24,7 @@ use std::fmt;
 use std::sync::atomic::AtomicBool;
 
 pub use score::{Counts, Sample, Score, ValueMeasure};
-pub use text::change_line;
+pub use text::{change_line, first_difference_line, score_line};
 pub use why::{ChangeWhy, Moved};
 
 use crate::error::Error;

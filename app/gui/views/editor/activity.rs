@@ -1,4 +1,4 @@
-//! The activity form: id, name, priority, mandatory, awake, duration,
+//! The activity form: id, name, priority, value, mandatory, awake, duration,
 //! rates and engines, group; its windows, unit resources and thermal zones,
 //! dependencies, state requirements and effects (`states`) and comm kinds,
 //! each field committing one edit of the activity.
@@ -118,6 +118,8 @@ fn identity_rows(
     ed.error_row(ui, "id");
     ed.field_row(ui, "Name", "name", Kind::Text, obj, true);
     ed.field_row(ui, "Priority", "priority", Kind::Int, obj, false);
+    // What completing it is worth to the planners (only tuning reads it).
+    ed.field_row(ui, "Value", "value", Kind::Number(""), obj, true);
     ui.label("");
     let mut mandatory = act.mandatory;
     if ui

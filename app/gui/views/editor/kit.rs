@@ -33,7 +33,7 @@ pub(super) enum Kind {
     Int,
     /// A length of time in seconds (shown with its span).
     Seconds,
-    /// A decimal number in this unit.
+    /// A decimal number in this unit (none when empty).
     Number(&'static str),
     /// A plan time, in sol and local time (or plan seconds).
     Time,
@@ -94,6 +94,7 @@ impl Kind {
             Kind::Seconds => json!(int().map_err(|e| format!("{e} of seconds"))?),
             Kind::Number(unit) => match text.parse::<f64>() {
                 Ok(x) if x.is_finite() => json!(x),
+                _ if unit.is_empty() => return Err(format!("\"{text}\" is not a number")),
                 _ => return Err(format!("\"{text}\" is not a number of {unit}")),
             },
             Kind::Time => {
@@ -133,7 +134,7 @@ impl Kind {
     /// What the field says beside its value (unit, length of time).
     pub(super) fn note(self, v: Option<&Value>) -> Option<String> {
         match self {
-            Kind::Number(unit) => Some(unit.to_string()),
+            Kind::Number(unit) => (!unit.is_empty()).then(|| unit.to_string()),
             Kind::Seconds => Some(match v.and_then(Value::as_i64) {
                 Some(s) if s >= 60 => format!("s ({})", format_span(s)),
                 _ => "s".into(),

@@ -9,7 +9,8 @@
 //!
 //! `layout` builds the rows (`execution` those of execution mode), kept
 //! between frames in [`GanttRows`]; `bars` draws them, `ruler` the time
-//! around them, `hover` the tooltips and `drag` what dragging does.
+//! around them, `hover` the tooltips, `drag` what dragging does and `tune`
+//! the tuned schedule over the original.
 
 mod bars;
 mod drag;
@@ -19,6 +20,7 @@ mod layout;
 mod ruler;
 #[cfg(test)]
 mod tests;
+mod tune;
 
 pub use drag::BarDrag;
 pub use ruler::ruler_ui;
@@ -122,6 +124,9 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
         run,
     );
     canvas.rows_ui(ui, &rows, rect);
+    if run.is_none() {
+        tune::overlay(&painter, m, &rows, rect.top(), timeline);
+    }
     ruler::time_lines(&painter, m, run, timeline);
     hover::tooltip_ui(m, &response, canvas.hovered.take(), quiet, cmds);
     let frame = (&painter, timeline);

@@ -62,6 +62,7 @@ fn model(app: &SolscopeApp) -> Model<'_> {
             loss: None,
             campaign: crate::gui::views::CampaignModel::default(),
         },
+        tune: Default::default(),
     }
 }
 
