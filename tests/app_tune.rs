@@ -130,7 +130,13 @@ fn a_search_runs_to_its_end_and_shows_what_changed_and_why() {
     assert!(h.query_by_label(bars).is_some());
     // Clicking an activity selects it.
     assert_eq!(h.state().ui.nav.selected, None);
-    click(&mut h, "supercam_target");
+    // The change list's button (the Gantt also labels the failed row with the id).
+    let link = h.get_by_role_and_label(eframe::egui::accesskit::Role::Button, "supercam_target");
+    link.scroll_to_me();
+    h.run_steps(30);
+    h.get_by_role_and_label(eframe::egui::accesskit::Role::Button, "supercam_target")
+        .click();
+    h.run_steps(3);
     assert_eq!(h.state().ui.nav.selected, Some(supercam));
     // The overlay of the tuned schedule toggles; Dismiss forgets the result.
     assert!(!h.state().tune_model().overlay);

@@ -179,10 +179,12 @@ fn editing_a_window_s_start_in_sol_time_reruns_and_updates_the_banner() {
     let revision = h.state().revision;
     // The field shows the start in sol and local time.
     let shown = h.get_by_label("Window 1 start").value();
-    assert_eq!(shown.as_deref(), Some("Sol 0 10:30:00"), "37800 s");
+    assert_eq!(shown.as_deref(), Some("Sol 0 10:13:08"), "37800 s");
     commit(&mut h, "Window 1 start", "Sol 0 10:00");
     let w = h.state().doc.plan.activities[a].windows.clone().unwrap();
-    assert_eq!((w[0].start, w[0].end), (36000, 38700));
+    // 10:00 LMST is 36000 LMST seconds, the first plan second at or after it
+    // 36990 (a sol of 88775 s).
+    assert_eq!((w[0].start, w[0].end), (36990, 38700));
     assert_eq!(h.state().revision, revision + 1, "rescheduled once");
     assert!(
         h.state().analysis.placement(a).is_some(),
@@ -194,10 +196,11 @@ fn editing_a_window_s_start_in_sol_time_reruns_and_updates_the_banner() {
         h.query_by_label_contains("Set window 1 start of sky_flats_mast_busy")
             .is_some()
     );
-    // A time of day alone stays in the window's sol.
+    // A time of day alone stays in the window's sol (10:50 LMST: plan second
+    // 40073).
     commit(&mut h, "Window 1 end", "10:50");
     let w = h.state().doc.plan.activities[a].windows.clone().unwrap();
-    assert_eq!(w[0].end, 39000);
+    assert_eq!(w[0].end, 40073);
 }
 
 #[test]
@@ -246,7 +249,7 @@ fn a_window_ending_before_its_start_shows_the_error_and_changes_nothing() {
     h.run_steps(2);
     assert_eq!(
         h.get_by_label("Window 1 end").value().as_deref(),
-        Some("Sol 413 11:30:00")
+        Some("Sol 413 11:11:32")
     );
 }
 
@@ -547,7 +550,7 @@ fn every_reason_kind_shows_its_numbers() {
     // its kind.
     assert!(
         h.query_by_label_contains(
-            "preheat_operability for starts Sol 412 05:45:05 (t=44680)–Sol 412 06:00:05 (t=45580): mast preheat from Sol 412 04:45:05 (t=41080)"
+            "preheat_operability for starts Sol 412 05:35:51 (t=44680)–Sol 412 05:50:27 (t=45580): mast preheat from Sol 412 04:37:27 (t=41080)"
         )
         .is_some()
     );
@@ -645,7 +648,7 @@ fn the_cycle_slider_and_the_step_slider_inside_a_cycle() {
     h.run_steps(3);
     assert_eq!(h.state().ui.nav.cycle, 1);
     assert!(
-        h.query_by_label_contains("cycle 1 of 21: at Sol 0 10:30:00 (t=1800), replan period")
+        h.query_by_label_contains("cycle 1 of 21: at Sol 0 10:13:08 (t=1800), replan period")
             .is_some()
     );
     // Page Down moves on; the cycle's run is shown at its last step.
@@ -662,7 +665,7 @@ fn the_cycle_slider_and_the_step_slider_inside_a_cycle() {
     assert_eq!(cycle.activity_of.len(), 3);
     assert_eq!(h.state().cycle_run().unwrap().steps(), 3);
     assert!(
-        h.query_by_label_contains("cycle 4 of 21: at Sol 0 11:46:40 (t=6400), after drive ended")
+        h.query_by_label_contains("cycle 4 of 21: at Sol 0 11:27:45 (t=6400), after drive ended")
             .is_some()
     );
     assert!(
@@ -851,7 +854,7 @@ fn an_edit_reruns_the_execution_and_the_inspector_shows_what_happened() {
             .is_some()
     );
     assert!(
-        h.query_by_label_contains("min_soc broken from Sol 0 11:57:10 (t=7030): worst 915.1 Wh")
+        h.query_by_label_contains("min_soc broken from Sol 0 11:37:58 (t=7030): worst 915.1 Wh")
             .is_some()
     );
     assert!(
@@ -865,7 +868,7 @@ fn an_edit_reruns_the_execution_and_the_inspector_shows_what_happened() {
     // Why, from the explainer at the cycle that decided it.
     assert!(
         h.query_by_label_contains(
-            "post_drive_imaging was not run: at the cycle at Sol 0 12:00:00 (t=7200) the scheduler could not place it: placement (min_soc)"
+            "post_drive_imaging was not run: at the cycle at Sol 0 11:40:44 (t=7200) the scheduler could not place it: placement (min_soc)"
         )
         .is_some()
     );
@@ -1367,19 +1370,19 @@ fn selecting_an_activity_shows_its_flexibility() {
     // The same numbers as `solscope flex --text`.
     let text = solscope_engine::flex_text(&h.state().doc.plan, h.state().flex().unwrap());
     assert!(text.contains(
-        "watson_pre_abrasion: scheduled at Sol 412 09:25:05 (t=57880); may start from Sol 412 09:10:05 (t=56980) \
-         to Sol 412 11:00:05 (t=63580) (15 min earlier, 1 h 35 min later)."
+        "watson_pre_abrasion: scheduled at Sol 412 09:09:57 (t=57880); may start from Sol 412 08:55:22 (t=56980) \
+         to Sol 412 10:42:25 (t=63580) (15 min earlier, 1 h 35 min later)."
     ));
     assert!(h.query_by_label("Flexibility").is_some());
     for line in [
-        "Scheduled at Sol 412 09:25:05 (t=57880).",
-        "May start from Sol 412 09:10:05 (t=56980) to Sol 412 11:00:05 (t=63580) (15 min earlier, 1 h 35 min later).",
+        "Scheduled at Sol 412 09:09:57 (t=57880).",
+        "May start from Sol 412 08:55:22 (t=56980) to Sol 412 10:42:25 (t=63580) (15 min earlier, 1 h 35 min later).",
         "Starts no earlier than 10 min after arm_unstow_412 starts.",
         "Starts no earlier than 10 min after fsw_housekeeping_412 starts.",
         "Starts no later than 40 min after arm_unstow_412 starts.",
-        "Skipped once the earliest of Sol 412 11:00:05 (t=63580) and 40 min after arm_unstow_412 starts \
+        "Skipped once the earliest of Sol 412 10:42:25 (t=63580) and 40 min after arm_unstow_412 starts \
          has passed without it starting.",
-        "Free slack (every check, others fixed): Sol 412 09:25:05 (t=57880) to Sol 412 09:35:05 (t=58480)",
+        "Free slack (every check, others fixed): Sol 412 09:09:57 (t=57880) to Sol 412 09:19:41 (t=58480)",
         // The bundled plan's sol-413 drive is not dynamically controllable; the
         // WATSON image is not involved: one line, not the whole verdict.
         "The plan is not dynamically controllable, because of drive_413; this activity is not involved.",
@@ -1405,7 +1408,7 @@ fn selecting_an_activity_shows_its_flexibility() {
     assert_eq!(h.state().ui.nav.selected, Some(unstow));
     assert!(
         h.query_by_label(
-            "May start from Sol 412 09:00:05 (t=56380) to Sol 412 10:30:05 (t=61780) (15 min earlier, 1 h 15 min later)."
+            "May start from Sol 412 08:45:38 (t=56380) to Sol 412 10:13:13 (t=61780) (15 min earlier, 1 h 15 min later)."
         )
         .is_some()
     );
@@ -1485,7 +1488,7 @@ fn dragging_a_bar_inside_its_slack_previews_and_changes_nothing() {
     let watson = index(h.state(), "watson_pre_abrasion");
     let to = drag_bar(&mut h, watson, 3000);
     assert!(
-        h.query_by_label_contains("watson_pre_abrasion at Sol 412 10:15:05 (t=60880)")
+        h.query_by_label_contains("watson_pre_abrasion at Sol 412 09:58:37 (t=60880)")
             .is_some_and(|n| n
                 .accesskit_node()
                 .value()
@@ -1602,7 +1605,7 @@ fn an_activity_fixed_in_time_outlines_no_unrelated_neighbours() {
     assert!(listed.is_empty(), "{listed:?}");
     assert!(
         h.query_by_label(
-            "May start from Sol 411 19:10:00 (t=4200) to Sol 411 19:10:00 (t=4200) (0 s earlier, 0 s later)."
+            "May start from Sol 411 18:39:14 (t=4200) to Sol 411 18:39:14 (t=4200) (0 s earlier, 0 s later)."
         )
         .is_some()
     );
@@ -1619,10 +1622,10 @@ fn a_controllable_plan_shows_the_waits_of_the_selected_activity() {
     app.apply(Command::Select(Some(post)));
     let h = harness(app, SNAPSHOT_SIZE.into(), &View::default()).unwrap();
     for line in [
-        "May start from Sol 0 11:16:40 (t=4600) to Sol 0 12:36:40 (t=9400) (30 min earlier, 50 min later).",
+        "May start from Sol 0 10:58:33 (t=4600) to Sol 0 12:16:25 (t=9400) (30 min earlier, 50 min later).",
         "Starts no earlier than when drive ends.",
         "Starts no later than 30 min after drive ends.",
-        "Skipped once the earliest of Sol 0 12:36:40 (t=9400) and 30 min after drive ends has passed \
+        "Skipped once the earliest of Sol 0 12:16:25 (t=9400) and 30 min after drive ends has passed \
          without it starting.",
         "Dynamically controllable: every outcome of the uncertain durations can be met.",
         "Waits until drive ends or 1 h 50 min after it starts.",
@@ -2131,17 +2134,18 @@ fn a_time_range_is_typed_in_sols_and_local_time() {
     assert_eq!(
         h.state().ui.text.range_text,
         [
-            "Sol 411 18:00:00".to_string(),
-            "Sol 413 18:00:00".to_string()
+            "Sol 411 17:31:06".to_string(),
+            "Sol 413 17:31:06".to_string()
         ]
     );
     type_range(&mut h, "Sol 412 08:00", "12:00");
     h.get_by_label("Apply range").click();
     h.run_steps(3);
-    // Sol 412 starts at plan time 23975 (local midnight): 08:00 is 28800 s later,
-    // and the end without a sol is in the start's sol.
+    // Sol 412 starts at plan time 23975 (local midnight): 08:00 LMST is 29592
+    // plan seconds later (28800 LMST s of a 88775 s sol, rounded up), 12:00
+    // LMST 44388; the end without a sol is in the start's sol.
     let axis = h.state().ui.nav.axis;
-    assert_eq!((axis.start, axis.end), (52_775.0, 67_175.0));
+    assert_eq!((axis.start, axis.end), (53_567.0, 68_363.0));
     assert_eq!(
         h.state().ui.text.range_text,
         [
@@ -2152,7 +2156,7 @@ fn a_time_range_is_typed_in_sols_and_local_time() {
     // The plan seconds of the range, on hover.
     h.get_by_label("to").hover();
     h.run_steps(60);
-    assert!(h.query_by_label("t=67175 s").is_some());
+    assert!(h.query_by_label("t=68363 s").is_some());
     // Plan seconds still work, and a bad time says what to type.
     type_range(&mut h, "60000", "Sol 412 25:00");
     h.get_by_label("Apply range").click();
@@ -2184,7 +2188,7 @@ fn hovering_a_bar_says_what_it_is_when_and_for_how_long() {
         .expect("a tooltip at the bar");
     assert!(
         tip.contains(
-            "\nscheduled Sol 412 12:00:05 (t=67180) – Sol 412 12:30:05 (t=68980) (30 min)\nholds meda\n"
+            "\nscheduled Sol 412 11:40:49 (t=67180) – Sol 412 12:10:00 (t=68980) (30 min)\nholds meda\n"
         ),
         "who, when, how long, what it holds: {tip}"
     );
@@ -2589,7 +2593,7 @@ fn every_energy_and_peak_reason_is_marked_and_each_can_be_drawn() {
     // at) on the state of charge; the peak plot marks the other reason's
     // violation.
     assert!(
-        h.query_by_label_contains("Dashed: X if placed at Sol 0 00:06:40 (t=400)")
+        h.query_by_label_contains("Dashed: X if placed at Sol 0 00:06:29 (t=400)")
             .is_some()
     );
     assert!(
@@ -2724,7 +2728,7 @@ fn the_tour_applies_its_suggestion_and_undoes_it() {
     let a = index(h.state(), "sky_flats_mast_busy");
     assert!(h.state().analysis.placement(a).is_none());
     assert!(
-        h.query_by_label_contains("(its window becomes Sol 0 10:20:00 to Sol 0 10:45:00)")
+        h.query_by_label_contains("(its window becomes Sol 0 10:03:24 to Sol 0 10:27:44)")
             .is_some()
     );
     h.get_by_label("Apply it").click();
@@ -2734,7 +2738,7 @@ fn the_tour_applies_its_suggestion_and_undoes_it() {
         "the suggestion applied"
     );
     assert!(
-        h.query_by_label_contains("sky_flats_mast_busy is scheduled now, at Sol 0 10:20:00")
+        h.query_by_label_contains("sky_flats_mast_busy is scheduled now, at Sol 0 10:03:24")
             .is_some()
     );
     h.get_by_label("Next →").click();

@@ -468,7 +468,7 @@ mod tests {
         );
         let failed = text(Page::Failed, &facts).paragraphs.join(" ");
         assert!(
-            failed.contains("allows starts from Sol 0 10:30:00 to Sol 0 10:45:00"),
+            failed.contains("allows starts from Sol 0 10:13:08 to Sol 0 10:27:44"),
             "{failed}"
         );
         // Once a change gives it room, the pages about its failure say so.

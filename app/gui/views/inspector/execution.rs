@@ -219,7 +219,10 @@ fn loss_ui(ui: &mut egui::Ui, m: &Model<'_>, run: &ExecutionRun, cmds: &mut Vec<
             ui.colored_label(m.theme.error, format!("Could not find out why: {e}"));
         }
         Some(Ok(loss)) => {
-            ui.label(loss_line(&m.doc.plan, &run.execution.problem, loss));
+            ui.label(solscope_engine::lmst_sentence(
+                &m.doc.plan.local_time,
+                &loss_line(&m.doc.plan, &run.execution.problem, loss),
+            ));
             if let Some((k, _)) = loss.cycle {
                 if k != m.exec.cycle && ui.button(format!("Show cycle {k}")).clicked() {
                     cmds.push(Command::SetCycle(k));
@@ -311,7 +314,10 @@ fn cycle_step_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Vec<Comm
     if !failing.is_empty() && step.outcome.placement().is_none() {
         ui.label(RichText::new("Rejected starts").strong());
         for r in failing.iter().take(REASONS_SHOWN) {
-            ui.label(reason_line(plan, &sched.problem, r, step.duration));
+            ui.label(solscope_engine::lmst_sentence(
+                &plan.local_time,
+                &reason_line(plan, &sched.problem, r, step.duration),
+            ));
         }
         if failing.len() > REASONS_SHOWN {
             ui.label(format!("and {} more ranges", failing.len() - REASONS_SHOWN));

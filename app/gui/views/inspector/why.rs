@@ -79,7 +79,10 @@ fn reasons_ui(
         .take(REASONS_SHOWN)
         .map(|i| (i, &ex.reasons[i]))
     {
-        let line = reason_line(&m.doc.plan, &m.analysis.schedule.problem, r, ex.duration);
+        let line = lmst_sentence(
+            &m.doc.plan.local_time,
+            &reason_line(&m.doc.plan, &m.analysis.schedule.problem, r, ex.duration),
+        );
         // An energy or peak-power reason can be drawn over its plot (when
         // there is more than one to choose from).
         let overlay = m.would_cause.filter(|w| w.reasons.len() > 1).and_then(|w| {
