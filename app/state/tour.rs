@@ -158,7 +158,7 @@ impl Facts<'_> {
         self.plan.activities.get(a).map_or("", |x| x.id.as_str())
     }
 
-    /// A time as planners read it: `Sol 0 10:30:00`.
+    /// A time as planners read it: `Sol 0 10:13:08` (LMST).
     fn time(&self, t: i64) -> String {
         format_local(&self.plan.local_time, t)
     }
@@ -373,7 +373,7 @@ pub fn text(page: Page, facts: &Facts<'_>) -> Text {
 }
 
 /// The windows a suggestion sets, in sol and local time: ` (its window
-/// becomes Sol 0 10:20:00 to Sol 0 10:45:00)`; empty when it sets none.
+/// becomes Sol 0 10:03:24 to Sol 0 10:27:44)`; empty when it sets none.
 fn windows_of(facts: &Facts<'_>, s: &Suggestion) -> String {
     let Some(windows) = s.set.get("windows").and_then(|w| w.as_array()) else {
         return String::new();
@@ -486,7 +486,7 @@ mod tests {
         };
         let failed = text(Page::Failed, &now).paragraphs.join(" ");
         assert!(
-            failed.starts_with("sky_flats_mast_busy is scheduled now, at Sol 0 10:20:00"),
+            failed.starts_with("sky_flats_mast_busy is scheduled now, at Sol 0 10:03:24"),
             "{failed}"
         );
         assert_eq!(
