@@ -163,15 +163,25 @@ impl AppState {
         };
         let mut set = serde_json::Map::new();
         set.insert("activities".into(), value);
+        if self.edit_plan(set, description) {
+            self.ui.nav.selected =
+                select.and_then(|id| self.doc.plan.activities.iter().position(|a| a.id == id));
+        }
+    }
+
+    /// Applies `set` to the plan's top level as one edit (validated,
+    /// rescheduled, one undo step); whether the plan took it.
+    pub(super) fn edit_plan(
+        &mut self,
+        set: serde_json::Map<String, serde_json::Value>,
+        description: String,
+    ) -> bool {
         let revision = self.revision;
         self.apply(Command::Edit {
             target: "plan".into(),
             set,
             description,
         });
-        if self.revision != revision {
-            self.ui.nav.selected =
-                select.and_then(|id| self.doc.plan.activities.iter().position(|a| a.id == id));
-        }
+        self.revision != revision
     }
 }

@@ -3,7 +3,7 @@
 //! dismissed, and the Gantt's overlay of the tuned schedule.
 
 use super::super::tune::{TuneModel, TuneResult, TuneRunning, TuneSettings};
-use super::super::{AppState, Command, UiCommand};
+use super::super::{AppState, UiCommand};
 
 impl AppState {
     /// The tuning commands given by name.
@@ -34,13 +34,7 @@ impl AppState {
             return;
         };
         let (set, description) = edit;
-        let revision = self.revision;
-        self.apply(Command::Edit {
-            target: "plan".into(),
-            set,
-            description,
-        });
-        if self.revision != revision {
+        if self.edit_plan(set, description) {
             self.tune.dismiss();
         }
     }
