@@ -662,7 +662,7 @@ fn the_cycle_slider_and_the_step_slider_inside_a_cycle() {
     let run = h.state().execution_run().unwrap();
     let cycle = &run.execution.cycles[4];
     assert_eq!(cycle.time, 6400);
-    assert_eq!(cycle.activity_of.len(), 3);
+    assert_eq!(h.state().cycle_run().unwrap().activity_of.len(), 3);
     assert_eq!(h.state().cycle_run().unwrap().steps(), 3);
     assert!(
         h.query_by_label_contains("cycle 4 of 21: at Sol 0 11:27:45 (t=6400), after drive ended")

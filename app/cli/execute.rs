@@ -22,12 +22,8 @@ pub fn run(args: &ExecuteArgs, limit: usize) -> Result<String, Failure> {
         (None, Some(seed)) => solscope_engine::sample_run(&loaded.plan, seed, args.run),
         (None, None) => solscope_engine::Actuals::nominal(),
     };
-    // The document explains the losses, which read only the plans of the
-    // cycles that first left an activity unplaced.
     let options = solscope_engine::ExecuteOptions {
         policy: args.policy.into(),
-        failed_plans_only: true,
-        ..Default::default()
     };
     let execution = solscope_engine::execute_with(&loaded.plan, &actuals, options)?;
     let losses = solscope_engine::losses(&loaded.plan, &execution)?;

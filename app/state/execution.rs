@@ -7,7 +7,7 @@
 use std::path::PathBuf;
 
 use solscope_engine::{
-    ActivityRun, Actuals, Cycle, Error, Execution, Plan, RunOutcome, Schedule, Step, StepTrace,
+    ActivityRun, Actuals, CyclePlan, Error, Execution, Plan, RunOutcome, Schedule, Step, StepTrace,
     execute, load_actuals, mbit, sample_run, watts, wh,
 };
 
@@ -87,7 +87,7 @@ impl ExecutionRun {
             .actuals(plan)
             .map_err(|e| format!("actuals ({}): {e}", source.describe()))?;
         let execution = execute(plan, &actuals).map_err(|e| e.to_string())?;
-        let first = execution.cycles.first().and_then(|c| CycleRun::of(0, c));
+        let first = CycleRun::of(0, &execution, plan);
         let predicted = match &first {
             Some(run) => run
                 .schedule
@@ -164,6 +164,9 @@ pub struct CycleRun {
     pub index: usize,
     /// The run (cycle-plan indices), or why it could not be repeated.
     pub schedule: Result<Schedule, String>,
+    /// The cycle's plan (rebuilt from the execution; `None` when it could not
+    /// be).
+    pub plan: Option<Plan>,
     /// The plan activity of each cycle-plan activity.
     pub activity_of: Vec<usize>,
     /// What each step's record leaves out (`traces[k - 1]` for step k): its
@@ -173,17 +176,23 @@ pub struct CycleRun {
 }
 
 impl CycleRun {
-    /// The scheduler run of cycle `index`; `None` when the execution kept no plan
-    /// for it.
-    pub fn of(index: usize, cycle: &Cycle) -> Option<Self> {
-        let schedule = cycle.schedule()?.map_err(|e| e.to_string());
+    /// The scheduler run of cycle `index` of `execution` (an execution of
+    /// `plan`); `None` when it has no such cycle.
+    pub fn of(index: usize, execution: &Execution, plan: &Plan) -> Option<Self> {
+        Some(Self::from_plan(index, execution.cycle_plan(plan, index)?))
+    }
+
+    /// The scheduler run of cycle `index`, whose plan is `cycle`.
+    pub fn from_plan(index: usize, cycle: CyclePlan) -> Self {
+        let schedule = cycle.schedule().map_err(|e| e.to_string());
         let traces = schedule.as_ref().map_or(Vec::new(), Schedule::all_traces);
-        Some(Self {
+        Self {
             index,
             schedule,
-            activity_of: cycle.activity_of.clone(),
+            plan: Some(cycle.plan),
+            activity_of: cycle.activity_of,
             traces,
-        })
+        }
     }
 
     /// Its number of steps (0 when it could not be repeated).

@@ -33,12 +33,12 @@ pub use edit::apply_edit;
 pub use error::{Error, Warning};
 pub use execute::{
     ACTUALS_FORMAT, ActivityRun, ActivitySummary, Actuals, Campaign, Cause, CauseCount, Cycle,
-    Distribution, Dropped, Event, ExecuteOptions, ExecutedProfile, Execution, Guard, LimitSummary,
-    Loss, LossRecord, LostSummary, MONTECARLO_FORMAT, MONTECARLO_RUNS_FORMAT, PairSummary, Policy,
-    Predictor, Quantiles, RunOutcome, RunRecord, RunsDoc, Summary, Trigger, Violation,
-    ViolationKind, campaign, campaign_runs, campaign_with, execute, execute_with, load_actuals,
-    loss, loss_line, losses, merge_files, merge_parts, read_runs, run_record, sample_actuals,
-    sample_run, summarize,
+    CyclePlan, Distribution, Dropped, Event, ExecuteOptions, ExecutedProfile, Execution, Guard,
+    LimitSummary, Loss, LossRecord, LostSummary, MONTECARLO_FORMAT, MONTECARLO_RUNS_FORMAT,
+    PairSummary, Policy, Predictor, Quantiles, RunOutcome, RunRecord, RunsDoc, Summary, Trigger,
+    Violation, ViolationKind, campaign, campaign_runs, campaign_with, execute, execute_with,
+    load_actuals, loss, loss_line, losses, merge_files, merge_parts, read_runs, run_record,
+    sample_actuals, sample_run, summarize,
 };
 pub use explain::{
     Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,

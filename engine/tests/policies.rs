@@ -44,15 +44,7 @@ fn with_models(text: &str) -> Plan {
 }
 
 fn run(plan: &Plan, actuals: &Actuals, policy: Policy) -> solscope_engine::Execution {
-    execute_with(
-        plan,
-        actuals,
-        ExecuteOptions {
-            policy,
-            ..Default::default()
-        },
-    )
-    .unwrap()
+    execute_with(plan, actuals, ExecuteOptions { policy }).unwrap()
 }
 
 fn check(plan: &Plan, seed: u64) -> Result<(), String> {

@@ -93,8 +93,8 @@ pub fn cycles_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
             cmds.push(Command::SetCycle(c));
         }
         if let Some(cycle) = cycles.get(k) {
-            let placed = cycle.placements.iter().filter(|p| p.is_some()).count();
-            let failed = cycle.placements.len() - placed;
+            let placed = cycle.placed();
+            let failed = cycle.failed().len();
             ui.label(format!(
                 "cycle {k} of {}: at {}, {}, from {} — {placed} placed, {failed} not, {} dropped",
                 cycles.len(),

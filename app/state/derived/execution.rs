@@ -126,6 +126,7 @@ impl ExecutionCache {
                                 CycleRun {
                                     index: k,
                                     schedule: Err(e.clone()),
+                                    plan: None,
                                     activity_of: Vec::new(),
                                     traces: Vec::new(),
                                 },
@@ -205,23 +206,24 @@ impl ExecutionCache {
 
     /// Starts repeating cycle `k`'s scheduler run of the execution at `key`
     /// unless it is known or a worker is busy.
-    pub fn request_cycle(&mut self, key: ExecKey, k: usize, background: bool) {
+    pub fn request_cycle(&mut self, plan: &Plan, key: ExecKey, k: usize, background: bool) {
         if self.cycle(key, k).is_some() || self.pending_cycle.is_some() {
             return;
         }
         let Some(Ok(run)) = self.run(key) else {
             return;
         };
-        let Some(cycle) = run.execution.cycles.get(k) else {
+        // The cycle's plan is rebuilt here (linear in the activities); its
+        // run, on the worker.
+        let Some(cycle) = run.execution.cycle_plan(plan, k) else {
             return;
         };
         if background {
-            let cycle = cycle.clone();
             self.pending_cycle = Some(Job::spawn((key, k), move |_: &Signal| {
-                CycleRun::of(k, &cycle)
+                Some(CycleRun::from_plan(k, cycle))
             }));
-        } else if let Some(run) = CycleRun::of(k, cycle) {
-            self.keep_cycle(k, run);
+        } else {
+            self.keep_cycle(k, CycleRun::from_plan(k, cycle));
         }
     }
 

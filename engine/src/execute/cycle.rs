@@ -2,8 +2,36 @@
 //! in the same step order, from the state the rover is really in at `t`
 //! (docs/semantics.md, "Execution").
 
+use super::sim::Started;
+use crate::error::Error;
 use crate::model::{CycleStart, Duration, EffectAt, Plan, Window};
+use crate::scheduler::{Schedule, schedule};
 use crate::units::{BIT_PER_MBIT, MJ_PER_WH};
+
+/// The plan a scheduling cycle scheduled ([`Execution::cycle_plan`]).
+///
+/// [`Execution::cycle_plan`]: super::Execution::cycle_plan
+#[derive(Clone, Debug, PartialEq)]
+pub struct CyclePlan {
+    /// The cycle's own plan: the activities not yet started, and the ones
+    /// still executing (placed first), from the state the rover was in.
+    pub plan: Plan,
+    /// The plan activity index of each of its activities.
+    pub activity_of: Vec<usize>,
+}
+
+impl CyclePlan {
+    /// The cycle plan's index of plan activity `a`, if the cycle had it.
+    pub fn index_of(&self, a: usize) -> Option<usize> {
+        self.activity_of.binary_search(&a).ok()
+    }
+
+    /// The cycle's scheduler run with its full step trace (the execution
+    /// keeps only the outcomes).
+    pub fn schedule(&self) -> Result<Schedule, Error> {
+        schedule(&self.plan)
+    }
+}
 
 /// Why an activity not yet started is left out of a cycle's plan (it can no
 /// longer run).
@@ -35,8 +63,23 @@ pub(super) enum Status {
     Ended { end: i64 },
 }
 
+impl Status {
+    /// The status at a cycle at `t` of an activity that started as `run`
+    /// before the cycle (`None`: not started).
+    pub(super) fn at(run: Option<&Started>, t: i64) -> Self {
+        match run {
+            None => Status::Waiting,
+            Some(r) if r.end <= t => Status::Ended { end: r.end },
+            Some(r) => Status::Executing {
+                start: r.start,
+                hold: r.planned_end.max(t + 1),
+            },
+        }
+    }
+}
+
 /// The cycle's plan and, for each of its activities, the plan activity it is.
-pub(super) struct CyclePlan {
+pub(super) struct Built {
     pub plan: Plan,
     pub activity_of: Vec<usize>,
     pub dropped: Vec<(usize, Dropped)>,
@@ -49,7 +92,7 @@ pub(super) fn cycle_plan(
     status: &[Status],
     state_values: &[(String, String)],
     start: CycleStart,
-) -> CyclePlan {
+) -> Built {
     let n = plan.activities.len();
     let ids: std::collections::BTreeMap<&str, usize> = plan
         .activities
@@ -197,7 +240,7 @@ pub(super) fn cycle_plan(
         out.handover = None;
     }
     out.cycle = Some(start);
-    CyclePlan {
+    Built {
         plan: out,
         activity_of,
         dropped: dropped

@@ -26,7 +26,7 @@ mod text;
 mod why;
 
 pub use actuals::{ACTUALS_FORMAT, Actuals, load_actuals, sample_actuals, sample_run};
-pub use cycle::Dropped;
+pub use cycle::{CyclePlan, Dropped};
 pub use montecarlo::{
     ActivitySummary, Campaign, CauseCount, Distribution, LimitSummary, LossRecord, LostSummary,
     MONTECARLO_FORMAT, MONTECARLO_RUNS_FORMAT, PairSummary, Predictor, Quantiles, RunRecord,
@@ -41,10 +41,11 @@ pub use why::{Cause, Loss, loss, losses};
 pub(crate) use montecarlo::runs_of;
 
 use crate::error::Error;
-use crate::model::Plan;
-use crate::scheduler::{Problem, Schedule, schedule};
+use crate::model::{CycleStart, Plan};
+use crate::scheduler::Problem;
+use cycle::Status;
 use policy::{Prepared, Replan};
-use sim::{Sim, Started, actual_durations, end_of};
+use sim::{Sim, Started, actual_durations, end_of, state_values};
 
 /// One execution of a plan.
 #[derive(Clone, Debug)]
@@ -63,6 +64,46 @@ pub struct Execution {
     pub handover_soc: Option<i128>,
     /// The compiled plan (fixed-point figures the profiles are in).
     pub problem: Problem,
+    /// How each activity that started ran (from which the cycles' plans are
+    /// rebuilt, [`Execution::cycle_plan`]).
+    runs: Vec<Option<Started>>,
+}
+
+impl Execution {
+    /// The plan cycle `k` scheduled (its activities are those not yet
+    /// started, and the ones still executing, placed first), rebuilt from what
+    /// ran before the cycle and the state it started from: an execution keeps
+    /// per cycle only what its document and loss explanations read, so that
+    /// its memory grows with its activities plus its cycles. `plan` is the
+    /// plan executed. Debug builds compare every cycle's rebuilt plan with the
+    /// one it scheduled.
+    pub fn cycle_plan(&self, plan: &Plan, k: usize) -> Option<CyclePlan> {
+        let c = self.cycles.get(k)?;
+        let Some(start) = &c.start else {
+            // A policy that schedules once: the plan as it is.
+            return Some(CyclePlan {
+                plan: plan.clone(),
+                activity_of: (0..plan.activities.len()).collect(),
+            });
+        };
+        // What had started before the cycle (the activities it dispatches
+        // start at or after its time).
+        let runs: Vec<Option<Started>> = self
+            .runs
+            .iter()
+            .map(|r| r.filter(|r| r.cycle < k))
+            .collect();
+        let status: Vec<Status> = runs
+            .iter()
+            .map(|r| Status::at(r.as_ref(), c.time))
+            .collect();
+        let values = state_values(&self.problem, plan, &runs, c.time);
+        let built = cycle::cycle_plan(plan, c.time, &status, &values, start.clone());
+        Some(CyclePlan {
+            plan: built.plan,
+            activity_of: built.activity_of,
+        })
+    }
 }
 
 /// Why a cycle ran.
@@ -76,61 +117,53 @@ pub enum Trigger {
     End(usize),
 }
 
-/// One scheduling cycle.
+/// One scheduling cycle: what the execution document and the loss
+/// explanations read of it. Its plan and its scheduler run are rebuilt on
+/// demand ([`Execution::cycle_plan`], [`CyclePlan::schedule`]).
 #[derive(Clone, Debug)]
 pub struct Cycle {
     /// When it ran.
     pub time: i64,
     /// Why.
     pub trigger: Trigger,
-    /// The plan it scheduled (its activities are those not yet started, and the
-    /// ones still executing, placed first); `None` when the execution was run
-    /// without keeping them (Monte Carlo), or with
-    /// [`ExecuteOptions::failed_plans_only`] when no loss is explained there.
-    pub plan: Option<Plan>,
     /// State of charge it started from (mJ).
     pub soc: i128,
-    /// Where it placed each of its activities (by cycle-plan index).
-    pub placements: Vec<Option<(i64, i64)>>,
-    /// The plan activity index of each of the cycle plan's activities.
-    pub activity_of: Vec<usize>,
     /// Activities not yet started that this cycle left out (they can no longer
     /// run), with why.
     pub dropped: Vec<(usize, Dropped)>,
     /// What the dispatcher did until the next cycle.
     pub events: Vec<Event>,
+    /// The state it started from (`None`: a policy that schedules once, the
+    /// plan as it is).
+    start: Option<CycleStart>,
+    /// How many of its plan's activities it placed.
+    placed: usize,
+    /// The plan activities it did not place, in file order.
+    failed: Vec<usize>,
 }
 
 impl Cycle {
-    /// The cycle plan's index of plan activity `a`, if the cycle has it.
-    pub fn index_of(&self, a: usize) -> Option<usize> {
-        self.activity_of.iter().position(|&x| x == a)
+    /// How many of its plan's activities it placed (still executing ones
+    /// included).
+    pub fn placed(&self) -> usize {
+        self.placed
     }
 
-    /// Where the cycle placed plan activity `a`.
-    pub fn placement(&self, a: usize) -> Option<(i64, i64)> {
-        self.placements[self.index_of(a)?]
+    /// The plan activity indices of the activities of its plan it did not
+    /// place, in file order.
+    pub fn failed(&self) -> &[usize] {
+        &self.failed
     }
 
-    /// The cycle's scheduler run with its full step trace (run again from the
-    /// cycle's plan: the execution keeps only the outcomes). `None` when the
-    /// plan was not kept.
-    pub fn schedule(&self) -> Option<Result<Schedule, Error>> {
-        self.plan.as_ref().map(schedule)
+    /// Whether its plan had plan activity `a` and it did not place it.
+    pub fn did_not_place(&self, a: usize) -> bool {
+        self.failed.binary_search(&a).is_ok()
     }
 }
 
-/// What [`execute_with`] keeps.
+/// How [`execute_with`] runs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ExecuteOptions {
-    /// Drop each cycle's plan (a Monte Carlo run needs only the outcomes).
-    pub outcomes_only: bool,
-    /// Keep the plan only of the first cycle, if it left an activity unplaced,
-    /// and of a later cycle that left unplaced an activity the latest cycle
-    /// before it that had it placed: all that [`losses`] reads, without a plan
-    /// per cycle (what makes a long execution's memory grow with its cycles
-    /// times its activities). Other cycles' plans are `None`.
-    pub failed_plans_only: bool,
     /// How activities are started (default: replanning every cycle).
     pub policy: Policy,
 }
@@ -218,7 +251,7 @@ pub fn execute(plan: &Plan, actuals: &Actuals) -> Result<Execution, Error> {
     execute_with(plan, actuals, ExecuteOptions::default())
 }
 
-/// [`execute`], keeping what `options` says.
+/// [`execute`] under the policy `options` names.
 pub fn execute_with(
     plan: &Plan,
     actuals: &Actuals,
@@ -227,9 +260,9 @@ pub fn execute_with(
     let problem = Problem::compile(plan)?;
     if options.policy.is_replan() {
         let sim = Sim::new(&problem, plan, actuals);
-        sim.run(&problem, plan, &Replan::new(plan), options)
+        sim.run(&problem, plan, &Replan::new(plan))
     } else {
-        Prepared::new(plan, options.policy)?.execute(&problem, plan, actuals, options)
+        Prepared::new(plan, options.policy)?.execute(&problem, plan, actuals)
     }
 }
 
@@ -245,11 +278,7 @@ pub(crate) struct Prefix {
 
 impl Prefix {
     /// Runs the nominal execution of `plan`, keeping its state before each cycle.
-    pub(crate) fn nominal(
-        problem: &Problem,
-        plan: &Plan,
-        options: ExecuteOptions,
-    ) -> Result<Self, Error> {
+    pub(crate) fn nominal(problem: &Problem, plan: &Plan) -> Result<Self, Error> {
         let replan = Replan::new(plan);
         let mut sim = Sim::new(problem, plan, &Actuals::nominal());
         let mut before = Vec::new();
@@ -257,7 +286,7 @@ impl Prefix {
             let mut snapshot = sim.clone();
             snapshot.cycles = Vec::new();
             before.push(snapshot);
-            if !sim.cycle(problem, plan, &replan, options)? {
+            if !sim.cycle(problem, plan, &replan)? {
                 break;
             }
         }
@@ -276,7 +305,6 @@ impl Prefix {
         problem: &Problem,
         plan: &Plan,
         actuals: &Actuals,
-        options: ExecuteOptions,
     ) -> Result<Execution, Error> {
         let actual = actual_durations(plan, actuals);
         let last = &self.before[self.before.len() - 1];
@@ -312,9 +340,9 @@ impl Prefix {
                 sim.runs[a] = Some(Started { end, aborted, ..r });
             }
         }
-        let out = sim.run(problem, plan, &Replan::new(plan), options)?;
+        let out = sim.run(problem, plan, &Replan::new(plan))?;
         #[cfg(debug_assertions)]
-        if let Ok(full) = execute_with(plan, actuals, options) {
+        if let Ok(full) = execute(plan, actuals) {
             debug_assert_eq!(out.activities, full.activities, "the resumed run differs");
             debug_assert_eq!(out.profile, full.profile, "the resumed profile differs");
         }

@@ -172,7 +172,7 @@ pub fn campaign_runs(
 }
 
 /// [`campaign_runs`], explaining the losses only when `explain_losses` is set:
-/// without it every record's `losses` is empty and no cycle plan is kept, for a
+/// without it every record's `losses` is empty, for a
 /// caller that needs only the outcomes and the violations (priority tuning
 /// scores many orders and explains the losses of a few).
 pub(crate) fn runs_of(
@@ -187,13 +187,9 @@ pub(crate) fn runs_of(
     // other policies share the schedule (and its flexible form).
     let problem = crate::scheduler::Problem::compile(plan)?;
     let policy = campaign.policy;
-    let options = ExecuteOptions {
-        policy,
-        outcomes_only: !explain_losses,
-        failed_plans_only: true,
-    };
+    let options = ExecuteOptions { policy };
     let (prefix, prepared) = if policy.is_replan() {
-        (Some(Prefix::nominal(&problem, plan, options)?), None)
+        (Some(Prefix::nominal(&problem, plan)?), None)
     } else {
         (None, Some(super::policy::Prepared::new(plan, policy)?))
     };
@@ -205,8 +201,8 @@ pub(crate) fn runs_of(
             }
             let actuals = sample_run(plan, campaign.seed, r);
             let ex = match (&prefix, &prepared) {
-                (Some(prefix), _) => prefix.execute(&problem, plan, &actuals, options),
-                (None, Some(prepared)) => prepared.execute(&problem, plan, &actuals, options),
+                (Some(prefix), _) => prefix.execute(&problem, plan, &actuals),
+                (None, Some(prepared)) => prepared.execute(&problem, plan, &actuals),
                 (None, None) => execute_with(plan, &actuals, options),
             };
             let record =
@@ -230,8 +226,6 @@ pub fn run_record(plan: &Plan, campaign: &Campaign, run: u64) -> Result<RunRecor
     let actuals = sample_run(plan, campaign.seed, run);
     let options = ExecuteOptions {
         policy: campaign.policy,
-        failed_plans_only: true,
-        ..ExecuteOptions::default()
     };
     let ex = execute_with(plan, &actuals, options)?;
     record_of(plan, campaign, run, &actuals, &ex, true)

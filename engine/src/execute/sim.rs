@@ -8,9 +8,7 @@ use std::borrow::Cow;
 
 use super::cycle::{Dropped, Status};
 use super::record::{Integrator, Record, union};
-use super::{
-    ActivityRun, Actuals, Cycle, Event, ExecuteOptions, Execution, Guard, RunOutcome, Trigger,
-};
+use super::{ActivityRun, Actuals, Cycle, Event, Execution, Guard, RunOutcome, Trigger};
 use crate::error::Error;
 use crate::model::{AwakeMode, CycleStart, EffectAt, HeaterHold, Plan};
 use crate::scheduler::{Problem, RunOutcomes};
@@ -54,6 +52,9 @@ pub(super) struct CycleSchedule<'p> {
     pub dropped: Vec<(usize, Dropped)>,
     /// Where the cycle's run placed each activity, and what it generated.
     pub outcomes: Cow<'p, RunOutcomes>,
+    /// The state the cycle's plan starts from, when the plan was built for
+    /// the cycle (`None`: the plan as it is, scheduled once).
+    pub start: Option<CycleStart>,
 }
 
 /// The next cycle: when, and why.
@@ -72,9 +73,8 @@ pub(super) struct Sim {
     pub runs: Vec<Option<Started>>,
     /// The last cycle whose plan had each activity not yet started.
     pub last_cycle: Vec<Option<usize>>,
-    /// Whether the latest cycle whose plan had each activity placed it (`true`
-    /// before the first cycle).
-    pub placed: Vec<bool>,
+    /// Where the first cycle placed each activity (empty before it).
+    pub predicted: Vec<Option<(i64, i64)>>,
     pub record: Record,
     pub integ: Integrator,
     pub cycles: Vec<Cycle>,
@@ -85,6 +85,10 @@ pub(super) struct Sim {
     /// (what the next cycle finds on).
     pub prev_awake: Vec<(i64, i64)>,
     pub prev_heat: Vec<Heat>,
+    /// Every cycle's plan, to check [`Execution::cycle_plan`]'s rebuilt ones
+    /// against.
+    #[cfg(debug_assertions)]
+    pub plans: Vec<Plan>,
 }
 
 impl Sim {
@@ -96,7 +100,7 @@ impl Sim {
             status: vec![Status::Waiting; n],
             runs: vec![None; n],
             last_cycle: vec![None; n],
-            placed: vec![true; n],
+            predicted: Vec::new(),
             record: Record::default(),
             integ: Integrator::new(problem),
             cycles: Vec::new(),
@@ -104,6 +108,8 @@ impl Sim {
             trigger: Trigger::Start,
             prev_awake: Vec::new(),
             prev_heat: Vec::new(),
+            #[cfg(debug_assertions)]
+            plans: Vec::new(),
         }
     }
 
@@ -114,9 +120,8 @@ impl Sim {
         problem: &Problem,
         plan: &Plan,
         executive: &impl Executive,
-        options: ExecuteOptions,
     ) -> Result<Execution, Error> {
-        while self.cycle(problem, plan, executive, options)? {}
+        while self.cycle(problem, plan, executive)? {}
         Ok(self.finish(problem.clone(), plan))
     }
 
@@ -127,7 +132,6 @@ impl Sim {
         problem: &Problem,
         plan: &Plan,
         executive: &impl Executive,
-        options: ExecuteOptions,
     ) -> Result<bool, Error> {
         let t = self.t;
         // What ran so far is final up to the cycle.
@@ -138,35 +142,35 @@ impl Sim {
         let mut next = executive.next_cycle(problem, self);
         let events = executive.start(problem, plan, self, &schedule, &mut next);
         self.run_generated(problem, plan, &schedule, next.time);
-        let CycleSchedule {
-            plan: cycle_plan,
-            activity_of,
-            dropped,
-            outcomes,
-        } = schedule;
-        let placements = match outcomes {
-            Cow::Owned(o) => o.placements,
-            Cow::Borrowed(o) => o.placements.clone(),
-        };
-        // A loss is explained at the first cycle that left unplaced an
-        // activity the cycle before had placed (any, at the first cycle).
-        let newly_failed = activity_of
-            .iter()
-            .zip(&placements)
-            .any(|(&a, p)| p.is_none() && self.placed[a]);
-        for (&a, p) in activity_of.iter().zip(&placements) {
-            self.placed[a] = p.is_some();
+        // Kept of the cycle's outcomes: what it placed and what not (its plan
+        // and run are rebuilt on demand).
+        let placements = &schedule.outcomes.placements;
+        let mut placed = 0;
+        let mut failed = Vec::new();
+        for (&a, p) in schedule.activity_of.iter().zip(placements) {
+            match p {
+                Some(_) => placed += 1,
+                None => failed.push(a),
+            }
         }
-        let keep = !options.outcomes_only && (!options.failed_plans_only || newly_failed);
+        if self.cycles.is_empty() {
+            self.predicted = vec![None; plan.activities.len()];
+            for (&a, &p) in schedule.activity_of.iter().zip(placements) {
+                self.predicted[a] = p;
+            }
+        }
+        #[cfg(debug_assertions)]
+        self.plans.push(schedule.plan.as_ref().clone());
+        let CycleSchedule { dropped, start, .. } = schedule;
         self.cycles.push(Cycle {
             time: t,
             trigger: self.trigger,
-            plan: keep.then(|| cycle_plan.into_owned()),
             soc,
-            placements,
-            activity_of,
             dropped,
             events,
+            start,
+            placed,
+            failed,
         });
         if next.time >= problem.h1 {
             return Ok(false);
@@ -180,15 +184,8 @@ impl Sim {
     /// held until its planned end (at least past `t`).
     fn settle(&mut self, t: i64) {
         for (status, r) in self.status.iter_mut().zip(&self.runs) {
-            if let Some(r) = r {
-                *status = if r.end <= t {
-                    Status::Ended { end: r.end }
-                } else {
-                    Status::Executing {
-                        start: r.start,
-                        hold: r.planned_end.max(t + 1),
-                    }
-                };
+            if r.is_some() {
+                *status = Status::at(r.as_ref(), t);
             }
         }
     }
@@ -289,10 +286,9 @@ impl Sim {
     pub fn finish(mut self, problem: Problem, plan: &Plan) -> Execution {
         let (h0, h1) = (problem.h0, problem.h1);
         self.integ.advance(&problem, &self.record, h1);
-        let first = &self.cycles[0];
         let activities = (0..plan.activities.len())
             .map(|a| {
-                let predicted = first.placement(a);
+                let predicted = self.predicted.get(a).copied().flatten();
                 let run = self.runs[a];
                 ActivityRun {
                     outcome: match run {
@@ -321,7 +317,7 @@ impl Sim {
                 .filter(|(a, b)| a < b)
                 .collect(),
         );
-        Execution {
+        let out = Execution {
             cycles: self.cycles,
             activities,
             profile,
@@ -329,7 +325,17 @@ impl Sim {
             lowest_soc: self.integ.lowest,
             handover_soc: self.integ.at_handover,
             problem,
+            runs: self.runs,
+        };
+        #[cfg(debug_assertions)]
+        for (k, kept) in self.plans.iter().enumerate() {
+            debug_assert_eq!(
+                out.cycle_plan(plan, k).map(|c| c.plan).as_ref(),
+                Some(kept),
+                "cycle {k}'s rebuilt plan differs from the one it scheduled"
+            );
         }
+        out
     }
 }
 

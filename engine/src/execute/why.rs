@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use super::{Dropped, Execution, RunOutcome};
+use super::{CyclePlan, Dropped, Execution, RunOutcome};
 use crate::error::Error;
 use crate::explain::{ExplainOptions, Phase, explain, involved};
 use crate::model::Plan;
@@ -83,105 +83,121 @@ impl Dropped {
 }
 
 /// Why each activity that the first cycle placed did not complete, in plan
-/// order. Needs the cycle plans (an execution run without
-/// `ExecuteOptions::outcomes_only`; those kept by
-/// `ExecuteOptions::failed_plans_only` suffice: a loss is explained at the
-/// first cycle that left the activity unplaced after one that placed it).
+/// order. A loss is explained at the first cycle that left the activity
+/// unplaced after the last one that placed it, whose plan is rebuilt
+/// ([`Execution::cycle_plan`]) and scheduled again for its trace.
 pub fn losses(plan: &Plan, ex: &Execution) -> Result<Vec<Loss>, Error> {
-    // Losses often share the cycle that decided them: its trace is rebuilt once.
-    let mut traces = BTreeMap::new();
-    let mut out = Vec::new();
-    for (a, run) in ex.activities.iter().enumerate() {
-        if run.predicted.is_none() || run.outcome == RunOutcome::Completed {
-            continue;
-        }
-        out.push(loss_with(plan, ex, a, &mut traces)?);
-    }
-    Ok(out)
+    let lost: Vec<usize> = ex
+        .activities
+        .iter()
+        .enumerate()
+        .filter(|(_, run)| run.predicted.is_some() && run.outcome != RunOutcome::Completed)
+        .map(|(a, _)| a)
+        .collect();
+    losses_of(plan, ex, &lost)
 }
 
 /// Why activity `a` did not complete (it may also be one the first cycle did
 /// not place).
 pub fn loss(plan: &Plan, ex: &Execution, a: usize) -> Result<Loss, Error> {
-    loss_with(plan, ex, a, &mut BTreeMap::new())
+    let mut one = losses_of(plan, ex, &[a])?;
+    one.pop()
+        .ok_or_else(|| Error::invalid("activities", format!("no activity {a}")))
 }
 
-/// [`loss`], with the cycles' traces rebuilt so far.
-fn loss_with(
-    plan: &Plan,
-    ex: &Execution,
-    a: usize,
-    traces: &mut BTreeMap<usize, Schedule>,
-) -> Result<Loss, Error> {
-    let run = &ex.activities[a];
-    let (cycle, cause) = if run.outcome == RunOutcome::Aborted {
-        (run.cycle, Cause::Overran)
-    } else if let Some(k) = ex
-        .cycles
-        .iter()
-        .position(|c| c.dropped.iter().any(|(x, _)| *x == a))
-    {
-        let why = ex.cycles[k]
-            .dropped
-            .iter()
-            .find(|(x, _)| *x == a)
-            .map(|(_, d)| d.clone());
-        (Some(k), why.map_or(Cause::Held, Cause::Dropped))
-    } else if let Some(last) = run.last_cycle {
-        // The cycle that dropped it from the schedule for good: the first one
-        // after the last that placed it (later cycles only find its windows
-        // passing).
-        let placed_last = (0..=last)
-            .rev()
-            .find(|&k| ex.cycles[k].placement(a).is_some());
-        let from = placed_last.map_or(0, |k| k + 1);
-        match (from..=last).find(|&k| ex.cycles[k].index_of(a).is_some()) {
-            Some(k) => (Some(k), failed(plan, ex, k, a, traces)?),
-            None => (Some(last), Cause::Held),
+/// The losses of activities `lost`, in that order. Losses often share the
+/// cycle that decided them: each such cycle's trace is rebuilt once, and
+/// dropped before the next one's is built (a long execution's traces would
+/// not fit in memory together).
+fn losses_of(plan: &Plan, ex: &Execution, lost: &[usize]) -> Result<Vec<Loss>, Error> {
+    // The first cycle that left each activity out, with why.
+    let mut dropped: BTreeMap<usize, (usize, &Dropped)> = BTreeMap::new();
+    for (k, c) in ex.cycles.iter().enumerate() {
+        for (x, d) in &c.dropped {
+            dropped.entry(*x).or_insert((k, d));
         }
-    } else {
-        (None, Cause::Held)
-    };
-    let at = cycle.map(|k| (k, ex.cycles[k].time));
-    let until = at.map_or(i64::MAX, |(_, t)| t);
-    let changed = ex
-        .activities
-        .iter()
-        .enumerate()
-        .filter_map(|(b, r)| {
-            let (s, e) = r.actual?;
-            let planned = plan.activities[b].duration.max();
-            (s < until && e - s != planned && plan.activities[b].duration_model.is_some())
-                .then_some((b, e - s, planned))
+    }
+    let mut decided: Vec<(usize, Option<usize>, Option<Cause>)> = Vec::with_capacity(lost.len());
+    let mut by_cycle: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for &a in lost {
+        let run = ex
+            .activities
+            .get(a)
+            .ok_or_else(|| Error::invalid("activities", format!("no activity {a}")))?;
+        let (cycle, cause) = if run.outcome == RunOutcome::Aborted {
+            (run.cycle, Some(Cause::Overran))
+        } else if let Some(&(k, d)) = dropped.get(&a) {
+            (Some(k), Some(Cause::Dropped(d.clone())))
+        } else if let Some(last) = run.last_cycle {
+            // The cycle that dropped it from the schedule for good: the first
+            // one after the last that placed it (later cycles only find its
+            // windows passing). Every cycle up to the last that had it had it
+            // (it never started, and a cycle that leaves an activity out
+            // leaves it out of every later one).
+            let placed_last = (0..=last).rev().find(|&k| !ex.cycles[k].did_not_place(a));
+            let from = placed_last.map_or(0, |k| k + 1);
+            if from <= last {
+                by_cycle.entry(from).or_default().push(decided.len());
+                (Some(from), None)
+            } else {
+                (Some(last), Some(Cause::Held))
+            }
+        } else {
+            (None, Some(Cause::Held))
+        };
+        decided.push((a, cycle, cause));
+    }
+    for (k, indices) in by_cycle {
+        let trace = match ex.cycle_plan(plan, k) {
+            Some(cp) => {
+                let sched = cp.schedule()?;
+                Some((cp, sched))
+            }
+            None => None,
+        };
+        for i in indices {
+            let a = decided[i].0;
+            let cause = match &trace {
+                Some((cp, sched)) => failed(plan, cp, sched, a)?,
+                None => Cause::Held,
+            };
+            decided[i].2 = Some(cause);
+        }
+    }
+    Ok(decided
+        .into_iter()
+        .map(|(a, cycle, cause)| {
+            let at = cycle.map(|k| (k, ex.cycles[k].time));
+            let until = at.map_or(i64::MAX, |(_, t)| t);
+            let changed = ex
+                .activities
+                .iter()
+                .enumerate()
+                .filter_map(|(b, r)| {
+                    let (s, e) = r.actual?;
+                    let planned = plan.activities[b].duration.max();
+                    (s < until && e - s != planned && plan.activities[b].duration_model.is_some())
+                        .then_some((b, e - s, planned))
+                })
+                .collect();
+            Loss {
+                activity: a,
+                outcome: ex.activities[a].outcome,
+                cycle: at,
+                cause: cause.unwrap_or(Cause::Held),
+                changed,
+            }
         })
-        .collect();
-    Ok(Loss {
-        activity: a,
-        outcome: run.outcome,
-        cycle: at,
-        cause,
-        changed,
-    })
+        .collect())
 }
 
-/// The explainer's answer for plan activity `a` at cycle `k`.
-fn failed(
-    plan: &Plan,
-    ex: &Execution,
-    k: usize,
-    a: usize,
-    traces: &mut BTreeMap<usize, Schedule>,
-) -> Result<Cause, Error> {
-    let c = &ex.cycles[k];
-    let (Some(cycle_plan), Some(i)) = (c.plan.as_ref(), c.index_of(a)) else {
+/// The explainer's answer for plan activity `a` in the cycle whose plan is
+/// `cp`, scheduled as `sched`.
+fn failed(plan: &Plan, cp: &CyclePlan, sched: &Schedule, a: usize) -> Result<Cause, Error> {
+    let Some(i) = cp.index_of(a) else {
         return Ok(Cause::Held);
     };
-    let sched = match traces.entry(k) {
-        std::collections::btree_map::Entry::Occupied(e) => e.into_mut(),
-        std::collections::btree_map::Entry::Vacant(e) => {
-            e.insert(crate::scheduler::schedule(cycle_plan)?)
-        }
-    };
+    let cycle_plan = &cp.plan;
     let opts = ExplainOptions {
         activity: Some(plan.activities[a].id.clone()),
         no_suggestions: true,
@@ -208,7 +224,7 @@ fn failed(
     };
     let culprits = involved(ex1)
         .iter()
-        .filter_map(|cu| c.activity_of.get(cu.activity).copied())
+        .filter_map(|cu| cp.activity_of.get(cu.activity).copied())
         .collect();
     Ok(Cause::Failed {
         phase,

@@ -14,9 +14,10 @@ use crate::units::{mbit, watts, wh};
 /// The value of `format` in every execution document.
 pub const EXECUTION_FORMAT: &str = "solscope.execution/1";
 
-/// `solscope.execution/1`.
+/// `solscope.execution/1` (its cycles' lists of ids borrow the plan's: a
+/// long execution lists as many as its cycles times its activities).
 #[derive(Clone, Debug, Serialize)]
-pub struct ExecutionDoc {
+pub struct ExecutionDoc<'a> {
     /// Always [`EXECUTION_FORMAT`].
     pub format: &'static str,
     /// Plan name.
@@ -29,7 +30,7 @@ pub struct ExecutionDoc {
     /// Every activity, in file order.
     pub activities: Vec<RunEntry>,
     /// Every scheduling cycle, in time order.
-    pub cycles: Vec<CycleEntry>,
+    pub cycles: Vec<CycleEntry<'a>>,
     /// Limits the executed profile breaks.
     pub violations: Vec<ViolationEntry>,
     /// The executed profiles, as breakpoints.
@@ -130,7 +131,7 @@ pub struct ChangedEntry {
 
 /// One scheduling cycle.
 #[derive(Clone, Debug, Serialize)]
-pub struct CycleEntry {
+pub struct CycleEntry<'a> {
     /// Index (0 is the first cycle).
     pub index: usize,
     /// Plan time.
@@ -145,7 +146,7 @@ pub struct CycleEntry {
     /// Activities placed by the cycle (still executing ones included).
     pub scheduled: usize,
     /// Activities the cycle could not place.
-    pub failed: Vec<String>,
+    pub failed: Vec<&'a str>,
     /// Activities it left out because they can no longer run.
     pub dropped: Vec<DroppedEntry>,
     /// What the dispatcher did until the next cycle.
@@ -195,13 +196,13 @@ pub struct ViolationEntry {
 
 /// The execution document of `execution` (of `plan`, run with `actuals`), with
 /// `losses` (from [`crate::losses`]) as each lost activity's `why`.
-pub fn execution_document(
-    plan: &Plan,
+pub fn execution_document<'a>(
+    plan: &'a Plan,
     execution: &Execution,
     actuals: &Actuals,
     losses: &[Loss],
     default_name: &str,
-) -> ExecutionDoc {
+) -> ExecutionDoc<'a> {
     let id = |a: usize| plan.activities[a].id.clone();
     let why = |a: usize| {
         let loss = losses.iter().find(|l| l.activity == a)?;
@@ -247,92 +248,85 @@ pub fn execution_document(
         .cycles
         .iter()
         .enumerate()
-        .map(|(index, c)| {
-            let placed = c.placements.iter().filter(|p| p.is_some()).count();
-            CycleEntry {
-                index,
-                time: c.time,
-                trigger: match c.trigger {
-                    Trigger::Start => "start",
-                    Trigger::Period => "period",
-                    Trigger::End(_) => "end",
-                },
-                ended: match c.trigger {
-                    Trigger::End(a) => Some(id(a)),
-                    _ => None,
-                },
-                soc: wh(c.soc),
-                scheduled: placed,
-                failed: c
-                    .placements
-                    .iter()
-                    .zip(&c.activity_of)
-                    .filter(|(p, _)| p.is_none())
-                    .map(|(_, &a)| id(a))
-                    .collect(),
-                dropped: c
-                    .dropped
-                    .iter()
-                    .map(|(a, why)| {
-                        let (reason, on) = match *why {
-                            Dropped::GroupMemberRan(b) => ("group_member_ran", b),
-                            Dropped::DependencyPassed { on, .. } => ("dependency_passed", on),
-                            Dropped::DependsOnDropped(b) => ("depends_on_dropped", b),
-                        };
-                        DroppedEntry {
-                            activity: id(*a),
-                            reason,
-                            on: id(on),
-                        }
-                    })
-                    .collect(),
-                events: c
-                    .events
-                    .iter()
-                    .map(|e| match *e {
-                        Event::Started { activity, time } => EventEntry {
-                            time,
-                            event: "started",
-                            activity: id(activity),
-                            guard: None,
-                            by: None,
-                        },
-                        Event::Held {
-                            activity,
-                            time,
-                            guard,
-                        } => {
-                            let (name, by) = match guard {
-                                Guard::Dependency(b) => ("dependency", id(b)),
-                                Guard::Resource(b) => ("resource", id(b)),
-                                Guard::Engines(b) => ("sequence_engines", id(b)),
-                                Guard::Skipped => ("skip_condition", String::new()),
-                                Guard::State(s, v) => {
-                                    let (state, def) = plan
-                                        .states
-                                        .iter()
-                                        .nth(s)
-                                        .map_or((String::new(), None), |(n, d)| {
-                                            (n.clone(), Some(d))
-                                        });
-                                    let value = def
-                                        .and_then(|d| d.values.get(v))
-                                        .cloned()
-                                        .unwrap_or_default();
-                                    ("state", format!("{state}={value}"))
-                                }
-                            };
-                            EventEntry {
-                                time,
-                                event: "held",
-                                activity: id(activity),
-                                guard: Some(name),
-                                by: (!by.is_empty()).then_some(by),
+        .map(|(index, c)| CycleEntry {
+            index,
+            time: c.time,
+            trigger: match c.trigger {
+                Trigger::Start => "start",
+                Trigger::Period => "period",
+                Trigger::End(_) => "end",
+            },
+            ended: match c.trigger {
+                Trigger::End(a) => Some(id(a)),
+                _ => None,
+            },
+            soc: wh(c.soc),
+            scheduled: c.placed(),
+            failed: c
+                .failed()
+                .iter()
+                .map(|&a| plan.activities[a].id.as_str())
+                .collect(),
+            dropped: c
+                .dropped
+                .iter()
+                .map(|(a, why)| {
+                    let (reason, on) = match *why {
+                        Dropped::GroupMemberRan(b) => ("group_member_ran", b),
+                        Dropped::DependencyPassed { on, .. } => ("dependency_passed", on),
+                        Dropped::DependsOnDropped(b) => ("depends_on_dropped", b),
+                    };
+                    DroppedEntry {
+                        activity: id(*a),
+                        reason,
+                        on: id(on),
+                    }
+                })
+                .collect(),
+            events: c
+                .events
+                .iter()
+                .map(|e| match *e {
+                    Event::Started { activity, time } => EventEntry {
+                        time,
+                        event: "started",
+                        activity: id(activity),
+                        guard: None,
+                        by: None,
+                    },
+                    Event::Held {
+                        activity,
+                        time,
+                        guard,
+                    } => {
+                        let (name, by) = match guard {
+                            Guard::Dependency(b) => ("dependency", id(b)),
+                            Guard::Resource(b) => ("resource", id(b)),
+                            Guard::Engines(b) => ("sequence_engines", id(b)),
+                            Guard::Skipped => ("skip_condition", String::new()),
+                            Guard::State(s, v) => {
+                                let (state, def) = plan
+                                    .states
+                                    .iter()
+                                    .nth(s)
+                                    .map_or((String::new(), None), |(n, d)| (n.clone(), Some(d)));
+                                let value = def
+                                    .and_then(|d| d.values.get(v))
+                                    .cloned()
+                                    .unwrap_or_default();
+                                ("state", format!("{state}={value}"))
                             }
+                        };
+                        EventEntry {
+                            time,
+                            event: "held",
+                            activity: id(activity),
+                            guard: Some(name),
+                            by: (!by.is_empty()).then_some(by),
                         }
-                    })
-                    .collect(),
-            }
+                    }
+                })
+                .collect(),
         })
         .collect();
     let violations: Vec<ViolationEntry> = execution

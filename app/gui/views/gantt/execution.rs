@@ -32,7 +32,7 @@ pub(super) fn execution_rows(m: &Model<'_>, run: &ExecutionRun) -> Vec<Row> {
     });
     rows.extend(executed_rows(m, run));
     if let (Some(cr), Some(sched)) = (m.exec.cycle_run, m.exec.schedule()) {
-        rows.extend(cycle_rows(m, run, cr, sched));
+        rows.extend(cycle_rows(m, cr, sched));
     }
     rows
 }
@@ -175,11 +175,11 @@ fn marker_row(label: &str, bars: Vec<Bar>) -> Row {
 
 /// The looked-at cycle's run as of the step shown: its awake periods, what it
 /// placed, and what it could not place (drawn as their windows).
-fn cycle_rows(m: &Model<'_>, run: &ExecutionRun, cr: &CycleRun, sched: &Schedule) -> Vec<Row> {
+fn cycle_rows(m: &Model<'_>, cr: &CycleRun, sched: &Schedule) -> Vec<Row> {
     let t = &m.theme;
     let k = m.exec.cycle;
     let plan = &m.doc.plan;
-    let cycle_plan = run.execution.cycles.get(k).and_then(|c| c.plan.as_ref());
+    let cycle_plan = cr.plan.as_ref();
     let mut rows = Vec::new();
     let awake = sched
         .generated_after(m.exec.step)

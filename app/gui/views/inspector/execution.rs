@@ -244,12 +244,7 @@ fn cycle_step_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Vec<Comm
         ui.label("Not in this cycle's plan (it had started, ended, or could no longer run).");
         return;
     };
-    let Some(plan) = m
-        .exec
-        .ready()
-        .and_then(|r| r.execution.cycles.get(k))
-        .and_then(|c| c.plan.as_ref())
-    else {
+    let Some(plan) = cr.plan.as_ref() else {
         return;
     };
     ui.horizontal_wrapped(|ui| {

@@ -15,7 +15,7 @@ use std::borrow::Cow;
 pub(super) use replan::Replan;
 
 use super::sim::{CycleSchedule, Next, Sim};
-use super::{Actuals, ExecuteOptions, Execution, Trigger};
+use super::{Actuals, Execution, Trigger};
 use crate::error::Error;
 use crate::flex::{Flex, FlexOptions, flex_with};
 use crate::model::Plan;
@@ -102,13 +102,12 @@ impl Prepared {
         problem: &Problem,
         plan: &Plan,
         actuals: &Actuals,
-        options: ExecuteOptions,
     ) -> Result<Execution, Error> {
         let sim = Sim::new(problem, plan, actuals);
         let outcomes = &self.outcomes;
         match &self.flex {
-            Some(flex) => sim.run(problem, plan, &Dispatch { outcomes, flex }, options),
-            None => sim.run(problem, plan, &Fixed { outcomes }, options),
+            Some(flex) => sim.run(problem, plan, &Dispatch { outcomes, flex }),
+            None => sim.run(problem, plan, &Fixed { outcomes }),
         }
     }
 }
@@ -121,6 +120,7 @@ fn scheduled_once<'p>(plan: &'p Plan, outcomes: &'p RunOutcomes) -> CycleSchedul
         activity_of: (0..plan.activities.len()).collect(),
         dropped: Vec::new(),
         outcomes: Cow::Borrowed(outcomes),
+        start: None,
     }
 }
 

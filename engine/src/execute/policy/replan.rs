@@ -39,7 +39,7 @@ impl Executive for Replan {
     ) -> Result<CycleSchedule<'p>, Error> {
         let start = cycle_start(problem, plan, sim);
         let values = state_values(problem, plan, &sim.runs, sim.t);
-        let cp = cycle_plan(plan, sim.t, &sim.status, &values, start);
+        let cp = cycle_plan(plan, sim.t, &sim.status, &values, start.clone());
         let outcomes = run_outcomes(&cp.plan)?;
         let k = sim.cycles.len();
         for &a in &cp.activity_of {
@@ -52,6 +52,7 @@ impl Executive for Replan {
             activity_of: cp.activity_of,
             dropped: cp.dropped,
             outcomes: Cow::Owned(outcomes),
+            start: Some(start),
         })
     }
 
