@@ -85,21 +85,47 @@ pub(super) struct Built {
     pub dropped: Vec<(usize, Dropped)>,
 }
 
-/// Builds the plan of the cycle at `t`.
+/// The plan activity index of each dependency's target (`None`: an unknown
+/// id), by activity and dependency: looked up once per execution rather than
+/// at every cycle.
+#[derive(Clone, Debug)]
+pub(super) struct Links {
+    after: Vec<Vec<Option<usize>>>,
+}
+
+impl Links {
+    pub(super) fn new(plan: &Plan) -> Self {
+        let ids: std::collections::BTreeMap<&str, usize> = plan
+            .activities
+            .iter()
+            .enumerate()
+            .map(|(i, a)| (a.id.as_str(), i))
+            .collect();
+        Self {
+            after: plan
+                .activities
+                .iter()
+                .map(|a| {
+                    a.after
+                        .iter()
+                        .map(|d| ids.get(d.activity.as_str()).copied())
+                        .collect()
+                })
+                .collect(),
+        }
+    }
+}
+
+/// Builds the plan of the cycle at `t` (`links`: those of `plan`).
 pub(super) fn cycle_plan(
     plan: &Plan,
+    links: &Links,
     t: i64,
     status: &[Status],
     state_values: &[(String, String)],
     start: CycleStart,
 ) -> Built {
     let n = plan.activities.len();
-    let ids: std::collections::BTreeMap<&str, usize> = plan
-        .activities
-        .iter()
-        .enumerate()
-        .map(|(i, a)| (a.id.as_str(), i))
-        .collect();
     let started = |i: usize| !matches!(status[i], Status::Waiting);
     let mut dropped: Vec<Option<Dropped>> = vec![None; n];
     // Groups with a member that started keep no other member (the first such
@@ -136,8 +162,8 @@ pub(super) fn cycle_plan(
                 cutoff: None,
             }],
         };
-        for d in &a.after {
-            let Some(&j) = ids.get(d.activity.as_str()) else {
+        for (d, &j) in a.after.iter().zip(&links.after[i]) {
+            let Some(j) = j else {
                 continue;
             };
             if let Status::Ended { end } = status[j] {
@@ -170,14 +196,14 @@ pub(super) fn cycle_plan(
     // Dependents of dropped activities can no longer run either.
     loop {
         let mut changed = false;
-        for (i, a) in plan.activities.iter().enumerate() {
+        for i in 0..n {
             if started(i) || dropped[i].is_some() {
                 continue;
             }
-            if let Some(j) = a
-                .after
+            if let Some(j) = links.after[i]
                 .iter()
-                .filter_map(|d| ids.get(d.activity.as_str()).copied())
+                .flatten()
+                .copied()
                 .find(|&j| dropped[j].is_some())
             {
                 dropped[i] = Some(Dropped::DependsOnDropped(j));
@@ -191,6 +217,12 @@ pub(super) fn cycle_plan(
     let mut activities = Vec::new();
     let mut activity_of = Vec::new();
     for (i, a) in plan.activities.iter().enumerate() {
+        // Ended and dropped activities are left out before any copy is made.
+        if matches!(status[i], Status::Ended { .. })
+            || (matches!(status[i], Status::Waiting) && dropped[i].is_some())
+        {
+            continue;
+        }
         let mut a = a.clone();
         match status[i] {
             Status::Ended { .. } => continue,
@@ -212,9 +244,13 @@ pub(super) fn cycle_plan(
                 }
                 a.windows = windows[i].take();
                 // Dependencies on ended activities became windows.
-                a.after.retain(|d| {
-                    ids.get(d.activity.as_str())
-                        .is_some_and(|&j| !matches!(status[j], Status::Ended { .. }))
+                let mut targets = links.after[i].iter();
+                a.after.retain(|_| {
+                    targets
+                        .next()
+                        .copied()
+                        .flatten()
+                        .is_some_and(|j| !matches!(status[j], Status::Ended { .. }))
                 });
             }
         }

@@ -98,7 +98,8 @@ impl Execution {
             .map(|r| Status::at(r.as_ref(), c.time))
             .collect();
         let values = state_values(&self.problem, plan, &runs, c.time);
-        let built = cycle::cycle_plan(plan, c.time, &status, &values, start.clone());
+        let links = cycle::Links::new(plan);
+        let built = cycle::cycle_plan(plan, &links, c.time, &status, &values, start.clone());
         Some(CyclePlan {
             plan: built.plan,
             activity_of: built.activity_of,

@@ -6,7 +6,7 @@
 use std::borrow::Cow;
 
 use crate::error::Error;
-use crate::execute::cycle::{Status, cycle_plan};
+use crate::execute::cycle::{Links, Status, cycle_plan};
 use crate::execute::sim::{CycleSchedule, Executive, Next, Sim, cycle_start, guard, state_values};
 use crate::execute::{Event, Trigger};
 use crate::model::Plan;
@@ -17,6 +17,7 @@ use crate::scheduler::{Problem, run_outcomes};
 pub(in crate::execute) struct Replan {
     period: Option<i64>,
     on_end: bool,
+    links: Links,
 }
 
 impl Replan {
@@ -24,6 +25,7 @@ impl Replan {
         Self {
             period: plan.execution.and_then(|e| e.replan_period),
             on_end: plan.execution.is_none_or(|e| e.replan_on_end),
+            links: Links::new(plan),
         }
     }
 }
@@ -39,7 +41,14 @@ impl Executive for Replan {
     ) -> Result<CycleSchedule<'p>, Error> {
         let start = cycle_start(problem, plan, sim);
         let values = state_values(problem, plan, &sim.runs, sim.t);
-        let cp = cycle_plan(plan, sim.t, &sim.status, &values, start.clone());
+        let cp = cycle_plan(
+            plan,
+            &self.links,
+            sim.t,
+            &sim.status,
+            &values,
+            start.clone(),
+        );
         let outcomes = run_outcomes(&cp.plan)?;
         let k = sim.cycles.len();
         for &a in &cp.activity_of {
