@@ -37,6 +37,11 @@ const SPAN_LEAF_BREAKPOINTS: usize = if cfg!(debug_assertions) { 1 } else { 8 };
 /// every cell of four starts, so that the cross-checks see the bound at work.
 const TANGENT_CELL_SECONDS: i64 = if cfg!(debug_assertions) { 3 } else { 16 };
 
+/// [`State::search`] bounds the state of charge over runs of this many
+/// consecutive cells before it bounds a cell alone (debug builds: runs of
+/// two, so that the cross-checks see runs and their cells).
+const SPAN_CELLS: usize = if cfg!(debug_assertions) { 2 } else { 32 };
+
 /// Whether the span of starts `[lo, hi]` is halved before its cells are
 /// searched: it is at least [`SPAN_MIN_SECONDS`] long and more than
 /// [`SPAN_LEAF_BREAKPOINTS`] of the rate breakpoints `points` (sorted) lie in
@@ -766,16 +771,38 @@ impl State<'_> {
         let (Some(lo), Some(hi)) = (cand.first(), cand.intervals().last().map(|i| i.hi)) else {
             return (None, tries);
         };
-        let mut cells = cells(cand, self.critical_points(a, d, lo, hi));
+        // The cells in time order, and their order of search (index).
+        let cells = cells(cand, self.critical_points(a, d, lo, hi));
         let dist = |c: &(i64, i64)| distance(c.0, c.1, preferred);
-        cells.sort_by_key(|c| (dist(c), c.0));
+        let mut by_distance: Vec<usize> = (0..cells.len()).collect();
+        by_distance.sort_by_key(|&i| (dist(&cells[i]), cells[i].0));
+        // The state-of-charge bound of each run of `SPAN_CELLS` cells in
+        // time order, on first use: a run it proves failing on `min_soc`
+        // gives its cells that bound, and `merge_tries_with` asks for a
+        // cell's own bound only when the cell's turn comes.
+        let mut spans: Vec<Option<Option<i128>>> = vec![None; cells.len().div_ceil(SPAN_CELLS)];
+        let mut span_bound = |i: usize| -> Option<i128> {
+            let k = i / SPAN_CELLS;
+            *spans[k].get_or_insert_with(|| {
+                let (x, y) = (k * SPAN_CELLS, ((k + 1) * SPAN_CELLS).min(cells.len()) - 1);
+                self.span_soc_bound(a, d, cells[x].0, cells[y].1)
+            })
+        };
         let mut best: Option<(i64, i64)> = None; // (distance, start)
-        for cell in cells {
+        for i in by_distance {
+            let cell = cells[i];
             if best.is_some_and(|b| dist(&cell) > b.0) {
                 break;
             }
             let (cell_lo, cell_hi) = cell;
-            if let Some(bound) = self.failing_soc_bound(a, d, cell_lo, cell_hi) {
+            let bound = match span_bound(i) {
+                // A structural or peak failure: the cell's tries say which.
+                Some(b) if b < self.problem.min_soc => {
+                    self.structurally_ok(a, cell_lo, d).then_some(b)
+                }
+                _ => self.failing_soc_bound(a, d, cell_lo, cell_hi),
+            };
+            if let Some(bound) = bound {
                 let closeness = clamp_i64(bound);
                 tries.push((
                     Try {
@@ -1133,20 +1160,56 @@ impl State<'_> {
         let plain = self
             .soc
             .drain_bound(cell_lo, cell_hi.saturating_add(d), energy);
-        // The generated load's bound, also where the plain one proves the
-        // cell failing: the lower bound is the closeness `merge_tries_with`
-        // orders the cells by, so it saves exact searches.
-        let bound = match self.surely_drained(a, d, cell_lo, cell_hi) {
-            Some(g) => plain.min(self.soc.drain_bound(g.from, g.until, g.energy)),
-            None => plain,
+        // The generated load's bound only where the activity's own drain does
+        // not prove the cell failing: `merge_tries_with` asks for it
+        // (`State::generated_cell_bound`) when the cell's turn comes.
+        let bound = if plain < problem.min_soc {
+            plain
+        } else {
+            let g = self.surely_drained(a, d, cell_lo, cell_hi)?;
+            let bound = plain.min(self.soc.drain_bound(g.from, g.until, g.energy));
+            #[cfg(debug_assertions)]
+            if bound < problem.min_soc {
+                self.check_rejected_span(a, d, cell_lo, cell_hi, Some(bound));
+            }
+            bound
         };
-        #[cfg(debug_assertions)]
-        if bound < plain && bound < problem.min_soc {
-            self.check_rejected_span(a, d, cell_lo, cell_hi, Some(bound));
-        }
         // Structural and peak results are constant within a cell; they are
         // evaluated only when the bound would prune it.
         (bound < problem.min_soc && self.structurally_ok(a, cell_lo, d)).then_some(bound)
+    }
+
+    /// An upper bound on the lowest state of charge of every start in
+    /// `[lo, hi]` of activity `a` with duration `d` that passes the
+    /// structural checks: the lower of the activity's own drain's bound and
+    /// the generated load's ([`State::surely_drained`]). `None` when no bound
+    /// applies ([`State::drain_of_duration`]).
+    fn span_soc_bound(&self, a: usize, d: i64, lo: i64, hi: i64) -> Option<i128> {
+        let energy = self.drain_of_duration(a, d)?;
+        let plain = self.soc.drain_bound(lo, hi.saturating_add(d), energy);
+        let Some(g) = self.surely_drained(a, d, lo, hi) else {
+            return Some(plain);
+        };
+        let bound = self.soc.drain_bound(g.from, g.until, g.energy);
+        #[cfg(debug_assertions)]
+        if bound < plain && bound < self.problem.min_soc {
+            self.check_rejected_span(a, d, lo, hi, Some(bound));
+        }
+        Some(plain.min(bound))
+    }
+
+    /// [`State::span_soc_bound`] of one cell `[cell_lo, cell_hi]`: the cheap
+    /// second bound `merge_tries_with` gives a cell that
+    /// [`State::search`] pruned on a coarser bound (its run of cells', or its
+    /// own drain's alone).
+    pub(super) fn generated_cell_bound(
+        &self,
+        a: usize,
+        d: i64,
+        cell_lo: i64,
+        cell_hi: i64,
+    ) -> Option<i64> {
+        self.span_soc_bound(a, d, cell_lo, cell_hi).map(clamp_i64)
     }
 
     /// Debug builds: every start in `[lo, hi]` of activity `a` with duration
