@@ -985,7 +985,7 @@ impl State<'_> {
     /// bounded by every period in reach together.
     fn least_uncovered_need(&self, d: i64, lo: i64, hi: i64, (h0, h1): (i64, i64)) -> i64 {
         /// Periods in reach evaluated exactly, at most.
-        const EXACT_PERIODS: usize = 32;
+        const EXACT_PERIODS: usize = 256;
         let problem = self.problem;
         let (before, after) = (problem.wake, d + problem.shut);
         let len = before + after;
@@ -995,25 +995,39 @@ impl State<'_> {
         let periods = &self.awake[i..j.max(i)];
         // Outside the horizon nothing is drained: count it as covered
         // (overlap with a period only over-counts coverage, which is safe).
-        let far = (rlo - 1, h0.min(rhi));
-        let late = (h1.max(rlo), rhi + 1);
-        let edges = [far, late];
-        let all = || periods.iter().chain(edges.iter()).filter(|p| p.0 < p.1);
+        let edges = [(rlo - 1, h0.min(rhi)), (h1.max(rlo), rhi + 1)];
+        let overlap =
+            |(x, y): (i64, i64), s: i64| ((s + after).min(y) - (s - before).max(x)).max(0);
+        // The periods are sorted and disjoint: those meeting the need at `s`
+        // are one run, found by bisection.
         let covered_at = |s: i64| -> i64 {
-            all()
-                .map(|&(x, y)| ((s + after).min(y) - (s - before).max(x)).max(0))
-                .sum()
+            let first = periods.partition_point(|p| p.1 <= s - before);
+            let inside: i64 = periods[first..]
+                .iter()
+                .take_while(|p| p.0 < s + after)
+                .map(|&p| overlap(p, s))
+                .sum();
+            inside + edges.iter().map(|&e| overlap(e, s)).sum::<i64>()
         };
         let most = if periods.len() <= EXACT_PERIODS {
-            all()
-                .flat_map(|&(x, y)| [x + before, y + before, x - after, y - after])
-                .chain([lo, hi])
-                .map(|s| s.clamp(lo, hi))
-                .map(covered_at)
-                .max()
-                .unwrap_or(0)
+            let mut most = 0;
+            let bends = periods
+                .iter()
+                .chain(edges.iter())
+                .flat_map(|&(x, y)| [x + before, y + before, x - after, y - after]);
+            for s in bends.chain([lo, hi]).map(|s| s.clamp(lo, hi)) {
+                most = most.max(covered_at(s));
+                if most >= len {
+                    break;
+                }
+            }
+            most
         } else {
-            all().map(|&(x, y)| (y.min(rhi) - x.max(rlo)).max(0)).sum()
+            periods
+                .iter()
+                .chain(edges.iter())
+                .map(|&(x, y)| (y.min(rhi) - x.max(rlo)).max(0))
+                .sum()
         };
         (len - most).max(0)
     }
