@@ -608,6 +608,7 @@ pub(crate) fn run_step(
                 .find(|x| x.reason.is_some())
                 .unwrap_or_else(|| t.clone())
         },
+        |t| state.generated_cell_bound(a, t.duration, t.starts.lo, t.starts.hi),
         |t| state.failing_cell_soc_bound(a, t.duration, t.starts.lo, t.starts.hi),
     );
     #[cfg(debug_assertions)]

@@ -37,6 +37,11 @@ const SPAN_LEAF_BREAKPOINTS: usize = if cfg!(debug_assertions) { 1 } else { 8 };
 /// every cell of four starts, so that the cross-checks see the bound at work.
 const TANGENT_CELL_SECONDS: i64 = if cfg!(debug_assertions) { 3 } else { 16 };
 
+/// [`State::search`] bounds the state of charge over runs of this many
+/// consecutive cells before it bounds a cell alone (debug builds: runs of
+/// two, so that the cross-checks see runs and their cells).
+const SPAN_CELLS: usize = if cfg!(debug_assertions) { 2 } else { 32 };
+
 /// Whether the span of starts `[lo, hi]` is halved before its cells are
 /// searched: it is at least [`SPAN_MIN_SECONDS`] long and more than
 /// [`SPAN_LEAF_BREAKPOINTS`] of the rate breakpoints `points` (sorted) lie in
@@ -62,6 +67,17 @@ pub struct SocBudget {
     pub until: i64,
     /// `(handover time, margin)` when the handover minimum applies.
     pub handover: Option<(i64, i128)>,
+}
+
+/// A lower bound on the charge a span of starts drains ([`State::surely_drained`]).
+#[derive(Clone, Copy, Debug)]
+struct SurelyDrained {
+    /// Charge drained (mJ, > 0).
+    energy: i128,
+    /// Every counted drain lies in `[from, until)`.
+    from: i64,
+    /// See `from`.
+    until: i64,
 }
 
 /// A candidate that passed the structural and peak checks, with its energy margin.
@@ -755,16 +771,38 @@ impl State<'_> {
         let (Some(lo), Some(hi)) = (cand.first(), cand.intervals().last().map(|i| i.hi)) else {
             return (None, tries);
         };
-        let mut cells = cells(cand, self.critical_points(a, d, lo, hi));
+        // The cells in time order, and their order of search (index).
+        let cells = cells(cand, self.critical_points(a, d, lo, hi));
         let dist = |c: &(i64, i64)| distance(c.0, c.1, preferred);
-        cells.sort_by_key(|c| (dist(c), c.0));
+        let mut by_distance: Vec<usize> = (0..cells.len()).collect();
+        by_distance.sort_by_key(|&i| (dist(&cells[i]), cells[i].0));
+        // The state-of-charge bound of each run of `SPAN_CELLS` cells in
+        // time order, on first use: a run it proves failing on `min_soc`
+        // gives its cells that bound, and `merge_tries_with` asks for a
+        // cell's own bound only when the cell's turn comes.
+        let mut spans: Vec<Option<Option<i128>>> = vec![None; cells.len().div_ceil(SPAN_CELLS)];
+        let mut span_bound = |i: usize| -> Option<i128> {
+            let k = i / SPAN_CELLS;
+            *spans[k].get_or_insert_with(|| {
+                let (x, y) = (k * SPAN_CELLS, ((k + 1) * SPAN_CELLS).min(cells.len()) - 1);
+                self.span_soc_bound(a, d, cells[x].0, cells[y].1)
+            })
+        };
         let mut best: Option<(i64, i64)> = None; // (distance, start)
-        for cell in cells {
+        for i in by_distance {
+            let cell = cells[i];
             if best.is_some_and(|b| dist(&cell) > b.0) {
                 break;
             }
             let (cell_lo, cell_hi) = cell;
-            if let Some(bound) = self.failing_soc_bound(a, d, cell_lo, cell_hi) {
+            let bound = match span_bound(i) {
+                // A structural or peak failure: the cell's tries say which.
+                Some(b) if b < self.problem.min_soc => {
+                    self.structurally_ok(a, cell_lo, d).then_some(b)
+                }
+                _ => self.failing_soc_bound(a, d, cell_lo, cell_hi),
+            };
+            if let Some(bound) = bound {
                 let closeness = clamp_i64(bound);
                 tries.push((
                     Try {
@@ -826,8 +864,172 @@ impl State<'_> {
         if bound < problem.min_soc {
             return Some(Some(clamp_i64(bound)));
         }
+        let surely = self.surely_drained(a, d, lo, hi);
+        if let Some(g) = surely {
+            let bound = self.soc.drain_bound(g.from, g.until, g.energy);
+            if bound < problem.min_soc {
+                #[cfg(debug_assertions)]
+                self.check_rejected_span(a, d, lo, hi, Some(bound));
+                return Some(Some(clamp_i64(bound)));
+            }
+        }
         let (t, min) = problem.handover_soc_of(a)?;
-        (self.soc.level_bound(lo, until, energy, t) < min).then_some(None)
+        if self.soc.level_bound(lo, until, energy, t) < min {
+            return Some(None);
+        }
+        let g = surely?;
+        let fails = self.soc.level_bound(g.from, g.until, g.energy, t) < min;
+        #[cfg(debug_assertions)]
+        if fails {
+            self.check_rejected_span(a, d, lo, hi, None);
+        }
+        fails.then_some(None)
+    }
+
+    /// A lower bound on the charge every start in `[lo, hi]` of activity `a`
+    /// with duration `d` drains, generated load included, and the span it is
+    /// drained in: the activity's own drain, the part of its wake-up,
+    /// shutdown and activity time that no awake period of this state covers
+    /// at any of those starts (a new awake period contains that need, and
+    /// every period it meets is merged into it, so it drains at least the
+    /// uncovered part), its maintenance heating above the zone's highest draw
+    /// over the span, and its shortest preheat above that draw where no
+    /// heater of the zone is on just before any start of the span. `None`
+    /// when no bound applies ([`State::drain_of_duration`]) or the
+    /// generated load adds nothing. A placement that fails a structural
+    /// check fails anyway; one that passes drains at least this much inside
+    /// the returned span (drain outside the plan horizon is not counted).
+    fn surely_drained(&self, a: usize, d: i64, lo: i64, hi: i64) -> Option<SurelyDrained> {
+        let problem = self.problem;
+        let act = &problem.acts[a];
+        let own = self.drain_of_duration(a, d)?;
+        let (h0, h1) = (self.soc.rate().start(), self.soc.rate().end());
+        // |[s + x, s + y) ∩ [h0, h1)| is concave in s: its least over the
+        // span is at an end.
+        let inside = |x: i64, y: i64| {
+            let len = |s: i64| ((s + y).min(h1) - (s + x).max(h0)).max(0);
+            len(lo).min(len(hi))
+        };
+        let (mut from, mut until) = (lo, hi.saturating_add(d));
+        let mut extra: i128 = 0;
+        let awake_extra = problem.awake - problem.asleep;
+        if act.awake == AwakeMode::Required && awake_extra > 0 {
+            let uncovered = self.least_uncovered_need(d, lo, hi, (h0, h1));
+            if uncovered > 0 {
+                extra += i128::from(awake_extra) * i128::from(uncovered);
+                from = from.min(lo - problem.wake);
+                until = until.max(hi + d + problem.shut);
+            }
+        }
+        // Segments of a zone's draw looked at, at most, for its highest value.
+        const DRAW_SEGMENTS: usize = 64;
+        let highest = |z: usize, x: i64, y: i64| {
+            let mut it = self.zone_draw[z].segments(x, y);
+            let mut best: Option<i64> = None;
+            for _ in 0..DRAW_SEGMENTS {
+                match it.next() {
+                    Some((_, _, v)) => best = Some(best.map_or(v, |b| b.max(v))),
+                    None => return best,
+                }
+            }
+            if it.next().is_some() { None } else { best }
+        };
+        let owns_heater = problem.heaters.iter().any(|h| h.owner == Some(a));
+        for &z in &act.zones {
+            let zone = &problem.zones[z];
+            if let Some(cur) = highest(z, lo, hi.saturating_add(d)) {
+                let power = zone.maintenance - cur;
+                if power > 0 {
+                    extra += i128::from(power) * i128::from(inside(0, d));
+                }
+            }
+            if owns_heater {
+                continue;
+            }
+            // The heater is on at `s - 1` for no start `s` of the span.
+            let on = &self.zone_on[z];
+            let i = on.partition_point(|x| x.1 < lo);
+            if on.get(i).is_some_and(|x| x.0 < hi) {
+                continue;
+            }
+            let shortest = if zone.table.first().is_none_or(|row| row.0 > 0) {
+                0
+            } else {
+                zone.table.iter().map(|row| row.1).min().unwrap_or(0)
+            };
+            let longest = zone.table.iter().map(|row| row.1).max().unwrap_or(0);
+            if shortest <= 0 {
+                continue;
+            }
+            if let Some(cur) = highest(z, lo - longest, hi) {
+                let power = zone.preheat - cur;
+                if power > 0 {
+                    extra += i128::from(power) * i128::from(inside(-shortest, 0));
+                    from = from.min(lo - longest);
+                }
+            }
+        }
+        (extra > 0).then_some(SurelyDrained {
+            energy: own + extra,
+            from,
+            until,
+        })
+    }
+
+    /// The least part of an awake activity's need `[s - wake, s + d +
+    /// shutdown)` inside the horizon `[h0, h1)` that no awake period covers,
+    /// over the starts `s` in `[lo, hi]`: the need's length less the most
+    /// coverage. Coverage is piecewise linear in `s`, bending only where an
+    /// end of the need meets an end of a period, so with few periods in
+    /// reach its maximum is taken there exactly; with many, the coverage is
+    /// bounded by every period in reach together.
+    fn least_uncovered_need(&self, d: i64, lo: i64, hi: i64, (h0, h1): (i64, i64)) -> i64 {
+        /// Periods in reach evaluated exactly, at most.
+        const EXACT_PERIODS: usize = 256;
+        let problem = self.problem;
+        let (before, after) = (problem.wake, d + problem.shut);
+        let len = before + after;
+        let (rlo, rhi) = (lo - before, hi + after);
+        let i = self.awake.partition_point(|p| p.1 <= rlo);
+        let j = self.awake.partition_point(|p| p.0 < rhi);
+        let periods = &self.awake[i..j.max(i)];
+        // Outside the horizon nothing is drained: count it as covered
+        // (overlap with a period only over-counts coverage, which is safe).
+        let edges = [(rlo - 1, h0.min(rhi)), (h1.max(rlo), rhi + 1)];
+        let overlap =
+            |(x, y): (i64, i64), s: i64| ((s + after).min(y) - (s - before).max(x)).max(0);
+        // The periods are sorted and disjoint: those meeting the need at `s`
+        // are one run, found by bisection.
+        let covered_at = |s: i64| -> i64 {
+            let first = periods.partition_point(|p| p.1 <= s - before);
+            let inside: i64 = periods[first..]
+                .iter()
+                .take_while(|p| p.0 < s + after)
+                .map(|&p| overlap(p, s))
+                .sum();
+            inside + edges.iter().map(|&e| overlap(e, s)).sum::<i64>()
+        };
+        let most = if periods.len() <= EXACT_PERIODS {
+            let mut most = 0;
+            let bends = periods
+                .iter()
+                .chain(edges.iter())
+                .flat_map(|&(x, y)| [x + before, y + before, x - after, y - after]);
+            for s in bends.chain([lo, hi]).map(|s| s.clamp(lo, hi)) {
+                most = most.max(covered_at(s));
+                if most >= len {
+                    break;
+                }
+            }
+            most
+        } else {
+            periods
+                .iter()
+                .chain(edges.iter())
+                .map(|&(x, y)| (y.min(rhi) - x.max(rlo)).max(0))
+                .sum()
+        };
+        (len - most).max(0)
     }
 
     /// [`State::search`]'s choice without its tries (a run that records
@@ -969,12 +1171,102 @@ impl State<'_> {
     fn failing_soc_bound(&self, a: usize, d: i64, cell_lo: i64, cell_hi: i64) -> Option<i128> {
         let problem = self.problem;
         let energy = self.drain_of_duration(a, d)?;
-        let bound = self
+        let plain = self
             .soc
             .drain_bound(cell_lo, cell_hi.saturating_add(d), energy);
+        // The generated load's bound only where the activity's own drain does
+        // not prove the cell failing: `merge_tries_with` asks for it
+        // (`State::generated_cell_bound`) when the cell's turn comes.
+        let bound = if plain < problem.min_soc {
+            plain
+        } else {
+            let g = self.surely_drained(a, d, cell_lo, cell_hi)?;
+            let bound = plain.min(self.soc.drain_bound(g.from, g.until, g.energy));
+            #[cfg(debug_assertions)]
+            if bound < problem.min_soc {
+                self.check_rejected_span(a, d, cell_lo, cell_hi, Some(bound));
+            }
+            bound
+        };
         // Structural and peak results are constant within a cell; they are
         // evaluated only when the bound would prune it.
         (bound < problem.min_soc && self.structurally_ok(a, cell_lo, d)).then_some(bound)
+    }
+
+    /// An upper bound on the lowest state of charge of every start in
+    /// `[lo, hi]` of activity `a` with duration `d` that passes the
+    /// structural checks: the lower of the activity's own drain's bound and
+    /// the generated load's ([`State::surely_drained`]). `None` when no bound
+    /// applies ([`State::drain_of_duration`]).
+    fn span_soc_bound(&self, a: usize, d: i64, lo: i64, hi: i64) -> Option<i128> {
+        let energy = self.drain_of_duration(a, d)?;
+        let plain = self.soc.drain_bound(lo, hi.saturating_add(d), energy);
+        let Some(g) = self.surely_drained(a, d, lo, hi) else {
+            return Some(plain);
+        };
+        let bound = self.soc.drain_bound(g.from, g.until, g.energy);
+        #[cfg(debug_assertions)]
+        if bound < plain && bound < self.problem.min_soc {
+            self.check_rejected_span(a, d, lo, hi, Some(bound));
+        }
+        Some(plain.min(bound))
+    }
+
+    /// [`State::span_soc_bound`] of one cell `[cell_lo, cell_hi]`: the cheap
+    /// second bound `merge_tries_with` gives a cell that
+    /// [`State::search`] pruned on a coarser bound (its run of cells', or its
+    /// own drain's alone).
+    pub(super) fn generated_cell_bound(
+        &self,
+        a: usize,
+        d: i64,
+        cell_lo: i64,
+        cell_hi: i64,
+    ) -> Option<i64> {
+        self.span_soc_bound(a, d, cell_lo, cell_hi).map(clamp_i64)
+    }
+
+    /// Debug builds: every start in `[lo, hi]` of activity `a` with duration
+    /// `d`, which the generated-load bound ([`State::surely_drained`]) proved
+    /// failing, fails in the exhaustive search (no cell between critical
+    /// points passes), and at each cell's ends and reported probe the lowest
+    /// state of charge is at most `bound` (`Some`, on `min_soc`), or the
+    /// level at the handover time is below its minimum (`None`).
+    #[cfg(debug_assertions)]
+    fn check_rejected_span(&self, a: usize, d: i64, lo: i64, hi: i64, bound: Option<i128>) {
+        let problem = self.problem;
+        let span = IntervalSet::from_intervals(vec![Interval::new(lo, hi)]);
+        for (cell_lo, cell_hi) in cells(&span, self.critical_points(a, d, lo, hi)) {
+            let tries = self.cell_tries(a, d, cell_lo, cell_hi);
+            for t in &tries {
+                debug_assert!(
+                    t.reason.is_some(),
+                    "the generated-load bound rejected passing starts {:?} of activity {a}",
+                    t.starts
+                );
+                for s in [t.starts.lo, t.starts.hi, t.probe] {
+                    let Ok(ev) = self.evaluate(a, s, d) else {
+                        continue;
+                    };
+                    let handover = problem.handover_soc_of(a);
+                    let check = self
+                        .soc
+                        .check(&self.drain_of(&ev.placement), handover.map(|h| h.0));
+                    match (bound, handover, check.at_probe) {
+                        (Some(b), _, _) => debug_assert!(
+                            check.min <= b,
+                            "the generated-load bound {b} is below the lowest level {} at {s}",
+                            check.min
+                        ),
+                        (None, Some((_, min)), Some(level)) => debug_assert!(
+                            level < min,
+                            "the generated-load handover bound rejected a start passing it at {s}"
+                        ),
+                        (None, _, _) => debug_assert!(false, "a handover bound without a handover"),
+                    }
+                }
+            }
+        }
     }
 
     /// For a cell `[cell_lo, cell_hi]` that [`State::failing_soc_bound`]
@@ -1197,4 +1489,62 @@ pub(crate) fn drain_of_pieces(pieces: &[(i64, i64, i64, i64)]) -> Vec<(i64, i64,
         .iter()
         .map(|&(x, y, energy, _)| (x, y, energy))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::load::load_plan;
+
+    /// A plan whose battery has 1 Wh of room above `min_soc` and no net
+    /// charge asleep: a 600 s activity at 1 W fits that room on its own
+    /// energy, but the 1,200 s awake it needs (with wake-up and shutdown) at
+    /// 100 W above asleep do not.
+    fn starved_problem() -> Problem {
+        let text = r#"{
+          "format": "solscope.plan/1",
+          "horizon": { "start": 0, "end": 20000 },
+          "local_time": { "sol_length": 88775, "offset": 0 },
+          "battery": { "capacity": 2000.0, "initial": 1001.0, "min_soc": 1000.0 },
+          "power": { "rtg": 25.0, "asleep": 25.0, "awake": 125.0 },
+          "sleep": { "wakeup_duration": 300, "shutdown_duration": 300, "min_awake": 0, "min_sleep": 0 },
+          "activities": [
+            { "id": "look", "priority": 1, "duration": 600,
+              "windows": [ { "start": 5000, "end": 10000 } ],
+              "energy_rate": 1.0, "awake": "required" }
+          ]
+        }"#;
+        let plan = load_plan(text).expect("the plan loads").plan;
+        Problem::compile(&plan).expect("compiles")
+    }
+
+    /// The generated-load bound proves a span failing that the activity's own
+    /// drain does not, and only while no awake period covers the need.
+    #[test]
+    fn generated_load_proves_a_span_failing() {
+        let problem = starved_problem();
+        let mut state = State::new(&problem);
+        let (lo, hi) = (5000, 10000);
+        let own = state.drain_of_duration(0, 600).expect("drains");
+        assert!(state.soc.drain_bound(lo, hi + 600, own) >= problem.min_soc);
+        let g = state.surely_drained(0, 600, lo, hi).expect("a bound");
+        // Awake from wake-up to shutdown: 1,200 s at 100 W above asleep.
+        assert_eq!(g.energy, own + 100_000 * 1200);
+        assert_eq!((g.from, g.until), (lo - 300, hi + 600 + 300));
+        assert!(
+            matches!(state.fails_on_energy(0, 600, lo, hi), Some(Some(b)) if i128::from(b) < problem.min_soc)
+        );
+        let cand = IntervalSet::from_intervals(vec![Interval::new(lo, hi)]);
+        assert!(state.search(0, 600, &cand, lo).0.is_none());
+        // An awake period covering the need of some start: no bound.
+        state.awake = vec![(4500, 10700)];
+        let g = state.surely_drained(0, 600, lo, hi);
+        assert!(g.is_none(), "{g:?}");
+        assert_eq!(state.fails_on_energy(0, 600, lo, hi), None);
+        state.awake = vec![(4000, 5000)];
+        let g = state.surely_drained(0, 600, lo, hi).expect("a bound");
+        // A period covering 300 s of the need at s = 5000, less elsewhere:
+        // 900 s stay uncovered at every start.
+        assert_eq!(g.energy, own + 100_000 * 900);
+    }
 }

@@ -205,19 +205,23 @@ pub fn merge_tries(tries: Vec<Try>) -> Vec<Try> {
         tries.into_iter().map(|t| (t, None)).collect(),
         |t| t.clone(),
         |_| None,
+        |_| None,
     )
 }
 
 /// [`merge_tries`] where some tries carry only an upper bound on their closeness
 /// (`Some(bound)`: numbers not computed yet). Within a range, tries are looked at
-/// from the highest bound down, and `exact` computes a try's numbers only while it
-/// could still be the closest (ties: the earliest start, as in [`merge_tries`]).
-/// Once a range has a closest try, `tighter` may give a bounded try a second,
-/// dearer upper bound on its closeness (`None`: none), asked before `exact`: a
-/// try it proves unable to come closer is not computed.
+/// from the highest bound down (best-first), and `exact` computes a try's
+/// numbers only while it could still be the closest (ties: the earliest start,
+/// as in [`merge_tries`]). A bounded try is first given `refine`'s cheap
+/// second upper bound (`None`: none), and when that is lower it waits its turn
+/// again under it; once a range has a closest try, `tighter` may give a
+/// bounded try a third, dearer upper bound (`None`: none), asked before
+/// `exact`: a try it proves unable to come closer is not computed.
 pub fn merge_tries_with(
     mut tries: Vec<(Try, Option<i64>)>,
     mut exact: impl FnMut(&Try) -> Try,
+    mut refine: impl FnMut(&Try) -> Option<i64>,
     mut tighter: impl FnMut(&Try) -> Option<i64>,
 ) -> Vec<Try> {
     tries.sort_by_key(|(t, _)| (std::cmp::Reverse(t.duration), t.starts.lo, t.starts.hi));
@@ -225,8 +229,13 @@ pub fn merge_tries_with(
     let mut run: Vec<(Try, Option<i64>)> = Vec::new();
     // The highest start of the run so far.
     let mut hi = i64::MIN;
+    let mut bounds = Bounds {
+        exact: &mut exact,
+        refine: &mut refine,
+        tighter: &mut tighter,
+    };
     let mut flush = |run: &mut Vec<(Try, Option<i64>)>, out: &mut Vec<Try>| {
-        if let Some(merged) = merge_run(std::mem::take(run), &mut exact, &mut tighter) {
+        if let Some(merged) = merge_run(std::mem::take(run), &mut bounds) {
             out.push(merged);
         }
     };
@@ -248,42 +257,58 @@ pub fn merge_tries_with(
     out
 }
 
+/// The numbers and bounds [`merge_run`] asks for ([`merge_tries_with`]).
+struct Bounds<'f, E, R, T> {
+    exact: &'f mut E,
+    refine: &'f mut R,
+    tighter: &'f mut T,
+}
+
 /// One merged range: the span of the run, with the numbers of its closest try.
-fn merge_run(
-    run: Vec<(Try, Option<i64>)>,
-    exact: &mut impl FnMut(&Try) -> Try,
-    tighter: &mut impl FnMut(&Try) -> Option<i64>,
-) -> Option<Try> {
+fn merge_run<E, R, T>(run: Vec<(Try, Option<i64>)>, f: &mut Bounds<'_, E, R, T>) -> Option<Try>
+where
+    E: FnMut(&Try) -> Try,
+    R: FnMut(&Try) -> Option<i64>,
+    T: FnMut(&Try) -> Option<i64>,
+{
+    use std::cmp::Reverse;
     let lo = run.first()?.0.starts.lo;
     let hi = run.iter().map(|r| r.0.starts.hi).max()?;
-    // (closeness or its bound, start, index), highest first, then earliest.
-    let mut order: Vec<(i64, i64, usize)> = run
+    // (closeness or its bound, start, index, refined), highest first, then
+    // earliest.
+    let mut order: std::collections::BinaryHeap<(i64, Reverse<i64>, Reverse<usize>, bool)> = run
         .iter()
         .enumerate()
         .map(|(i, (t, bound))| {
             let c = bound.unwrap_or_else(|| t.reason.as_ref().map_or(0, Phase2Reason::closeness));
-            (c, t.starts.lo, i)
+            (c, Reverse(t.starts.lo), Reverse(i), false)
         })
         .collect();
-    order.sort_by_key(|&(c, s, _)| (std::cmp::Reverse(c), s));
     let mut best: Option<(i64, i64, Try)> = None;
-    for (c, start, i) in order {
-        if let Some((bc, bs, _)) = &best {
-            // Nothing after this can come closer, or tie and start earlier.
-            if c < *bc || (c == *bc && start > *bs) {
-                break;
-            }
+    while let Some((c, Reverse(start), Reverse(i), refined)) = order.pop() {
+        // Nothing after this can come closer, or tie and start earlier.
+        let beaten = |c: i64, best: &Option<(i64, i64, Try)>| {
+            best.as_ref()
+                .is_some_and(|(bc, bs, _)| c < *bc || (c == *bc && start > *bs))
+        };
+        if beaten(c, &best) {
+            break;
         }
         let t = match run[i].1 {
             Some(_) => {
-                // A dearer bound, once there is a closest try to beat.
-                let beaten = |c: i64, (bc, bs): (i64, i64)| c < bc || (c == bc && start > bs);
-                if let Some((bc, bs, _)) = &best
-                    && tighter(&run[i].0).is_some_and(|c| beaten(c, (*bc, *bs)))
-                {
+                if !refined {
+                    // A cheap second bound: when lower, the try waits its turn.
+                    match (f.refine)(&run[i].0) {
+                        Some(r) if r < c => order.push((r, Reverse(start), Reverse(i), true)),
+                        _ => order.push((c, Reverse(start), Reverse(i), true)),
+                    }
                     continue;
                 }
-                exact(&run[i].0)
+                // A dearer bound, once there is a closest try to beat.
+                if best.is_some() && (f.tighter)(&run[i].0).is_some_and(|c| beaten(c, &best)) {
+                    continue;
+                }
+                (f.exact)(&run[i].0)
             }
             None => run[i].0.clone(),
         };
