@@ -83,6 +83,8 @@ pub use scheduler::{
     valid_intervals_at,
 };
 pub use timeline::{Interval, IntervalSet};
+#[doc(hidden)]
+pub use tune::OrderScorer;
 pub use tune::{
     ActivityCounts, Change, ChangeWhy, Counts, Mode, Moved, Sample, Score, Scores, Stop,
     TuneOptions, TuneProgress, Tuning, ValueMeasure, change_line, first_difference_line,

@@ -14,6 +14,7 @@
 //! ([`search`]). The best order is then confirmed on a held-out sample, and
 //! every change says why from the evidence ([`why`], [`text`]).
 
+mod baseline;
 mod order;
 mod score;
 mod search;
@@ -23,6 +24,8 @@ mod why;
 use std::fmt;
 use std::sync::atomic::AtomicBool;
 
+#[doc(hidden)]
+pub use baseline::OrderScorer;
 pub use score::{Counts, Sample, Score, ValueMeasure};
 pub use text::{change_line, first_difference_line, score_line};
 pub use why::{ChangeWhy, Moved};
