@@ -9,6 +9,7 @@
 //! pinned activity's place and every dependency pair's order, and are realised
 //! by priorities only ([`order`]). With at most eight activities that can move,
 //! every such order is scored (exact mode); otherwise a squeaky-wheel search
+//! (from the mandatory-first order when that scores better than the original)
 //! moves lost activities ahead of what took their place, or those after them,
 //! from what the runs' losses and the predicted run's explanations say
 //! ([`search`]). The best order is then confirmed on a held-out sample, and
