@@ -35,6 +35,9 @@
 
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
+#[path = "scale/tuning.rs"]
+mod tuning;
+
 use std::time::{Duration, Instant};
 
 use eframe::egui;
@@ -122,6 +125,10 @@ fn main() {
     let profiles = chosen_profiles();
     if std::env::args().any(|a| a == "--execution") {
         execution();
+        return;
+    }
+    if std::env::args().any(|a| a == "--tuning") {
+        tuning::run(quick);
         return;
     }
     if std::env::args().any(|a| a == "--huge") {

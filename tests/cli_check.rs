@@ -5,8 +5,9 @@
 //! mark is accepted on plans, actuals and Monte Carlo parts, and output that cannot
 //! be written (`> /dev/full`) is reported. The execution extension's plan
 //! additions (`execution`, `duration_model`) check, and their invalid values are
-//! refused at their path. Also `solscope generate`: its realistic plans check, and
-//! it refuses zero sols.
+//! refused at their path. Also `solscope generate`: its realistic plans check, it
+//! refuses zero sols, and `--uncertain` adds duration models that check and
+//! execute.
 
 // Test helpers outside `#[test]` functions are not covered by clippy.toml's
 // allow-*-in-tests; a failed expectation here is a test failure.
@@ -287,6 +288,74 @@ fn generated_realistic_plan_checks() {
         "3",
     ]);
     assert_ne!(standard.stdout, out.stdout);
+}
+
+/// `generate --uncertain`: the same plan with a `duration_model` on the share
+/// asked of its fixed-duration activities (not passes or sleeps), the same for
+/// the same seed; it checks, and executes on sampled durations; a share outside
+/// 0 to 1 is refused at the flag.
+#[test]
+fn generate_uncertain_adds_models_to_a_share() {
+    let args = [
+        "generate",
+        "--profile",
+        "realistic",
+        "--activities",
+        "100",
+        "--sols",
+        "2",
+        "--seed",
+        "4",
+    ];
+    let plain = solscope(&args);
+    assert_eq!(plain.status.code(), Some(0), "stderr: {}", stderr(&plain));
+    let with_args: Vec<&str> = args.iter().copied().chain(["--uncertain", "0.3"]).collect();
+    let out = solscope(&with_args);
+    assert_eq!(out.status.code(), Some(0), "stderr: {}", stderr(&out));
+    assert_eq!(solscope(&with_args).stdout, out.stdout, "deterministic");
+    let plain: Value = serde_json::from_slice(&plain.stdout).expect("a JSON plan");
+    let plan: Value = serde_json::from_slice(&out.stdout).expect("a JSON plan");
+    let acts = plan["activities"].as_array().expect("activities");
+    let eligible = |a: &Value| {
+        a["duration"].is_i64() && a.get("comm_kind").is_none() && a["awake"] != "forbidden"
+    };
+    let candidates = acts.iter().filter(|a| eligible(a)).count();
+    let modelled: Vec<&Value> = acts
+        .iter()
+        .filter(|a| a.get("duration_model").is_some())
+        .collect();
+    assert_eq!(modelled.len(), (candidates as f64 * 0.3).round() as usize);
+    for a in &modelled {
+        assert!(eligible(a), "{a}");
+        let d = a["duration"].as_i64().expect("fixed");
+        let (min, max) = (
+            a["duration_model"]["min"].as_i64().expect("min"),
+            a["duration_model"]["max"].as_i64().expect("max"),
+        );
+        assert!(0 < min && min < d && d < max, "{a}");
+    }
+    // Without the models it is the plan `generate` gives without the flag.
+    let mut back = plan.clone();
+    for a in back["activities"].as_array_mut().expect("activities") {
+        a.as_object_mut().expect("object").remove("duration_model");
+    }
+    assert_eq!(back, plain);
+    let path = write_plan("generated-uncertain.json", &plan);
+    let check = solscope_check(&path);
+    assert_eq!(check.status.code(), Some(0), "stderr: {}", stderr(&check));
+    let path_arg = path.to_str().expect("UTF-8 path");
+    let ex = solscope(&["execute", path_arg, "--sample", "2"]);
+    assert_eq!(ex.status.code(), Some(0), "stderr: {}", stderr(&ex));
+    for bad in ["1.5", "-0.1", "NaN"] {
+        let out = solscope(&["generate", "--uncertain", bad]);
+        assert_eq!(out.status.code(), Some(2), "{bad}");
+        assert!(out.stdout.is_empty(), "{bad}");
+        assert_eq!(
+            stderr(&out),
+            format!("error: --uncertain: must be a share from 0 to 1 (got {bad})\n"),
+            "{bad}"
+        );
+    }
 }
 
 /// Runs solscope with `args`, standard output going to `stdout`, and fails the

@@ -319,6 +319,13 @@ pub struct GenerateArgs {
     /// Shape of the plan.
     #[arg(long, value_enum, default_value_t = Profile::Standard)]
     pub profile: Profile,
+    /// Give this share (0 to 1) of the activities that can have one a
+    /// `duration_model`, drawn from the seed: arm work and drives run 0.6 to 1.6
+    /// times their predicted duration, the others 0.8 to 1.25 times (fixed
+    /// durations only; not communication passes or sleeps). Without it, no
+    /// activity has one.
+    #[arg(long, value_name = "FRACTION", allow_negative_numbers = true)]
+    pub uncertain: Option<f64>,
     #[command(flatten)]
     pub output: OutputFile,
 }

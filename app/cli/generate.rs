@@ -1,4 +1,5 @@
-//! `solscope generate`: a random plan (every feature) on standard output.
+//! `solscope generate`: a random plan (every feature) on standard output,
+//! optionally with uncertain durations (`--uncertain`).
 
 use super::args::GenerateArgs;
 use super::failure::{Failure, to_json};
@@ -17,11 +18,23 @@ pub fn run(args: &GenerateArgs) -> Result<String, Failure> {
             "must be at least 1 (got 0)",
         )));
     }
+    if let Some(share) = args.uncertain
+        && !(0.0..=1.0).contains(&share)
+    {
+        return Err(Failure::Input(solscope_engine::Error::invalid(
+            "--uncertain",
+            format!("must be a share from 0 to 1 (got {share})"),
+        )));
+    }
     let plan = solscope_engine::generate_plan_with(
         args.profile.into(),
         args.activities,
         args.sols,
         args.seed,
     );
+    let plan = match args.uncertain {
+        Some(share) => solscope_engine::add_duration_models(plan, share, args.seed),
+        None => plan,
+    };
     to_json(&plan)
 }

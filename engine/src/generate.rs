@@ -19,13 +19,17 @@
 //!   activities fail, most of them in placement on `min_soc` or `handover_soc` at
 //!   every start they try: the plans where a failing placement must be proven
 //!   cheaply.
+//!
+//! Any profile's plan can be given uncertain durations afterwards
+//! ([`add_duration_models`]): a share of its fixed-duration activities get a
+//! `duration_model`, for executions, Monte Carlo campaigns and tuning.
 
 use std::collections::BTreeMap;
 
 use crate::model::{
-    Activity, AwakeMode, Battery, Data, Dependency, Duration, EffectAt, Handover, Horizon,
-    LocalTime, MARS_SOL, OperablePeriod, PLAN_FORMAT, Plan, Power, PreheatEntry, Sleep, StateDef,
-    StateEffect, StateRequirement, ThermalZone, Window,
+    Activity, AwakeMode, Battery, Data, Dependency, Duration, DurationModel, EffectAt, Handover,
+    Horizon, LocalTime, MARS_SOL, OperablePeriod, PLAN_FORMAT, Plan, Power, PreheatEntry, Sleep,
+    StateDef, StateEffect, StateRequirement, ThermalZone, Window,
 };
 
 /// SplitMix64: small, fast, deterministic.
@@ -418,6 +422,143 @@ pub fn generate_plan_with(profile: Profile, activities: usize, sols: usize, seed
         Profile::Standard => generate_plan(activities, sols, seed),
         Profile::Realistic => Realistic::new(activities, sols, seed).plan(),
         Profile::Starved => starved(Realistic::new(activities, sols, seed).plan(), seed),
+    }
+}
+
+/// The plan with a `duration_model` on `share` (0 to 1, nearest whole count) of
+/// its activities that can have one: a fixed duration, no model yet, neither a
+/// communication pass nor a sleep (their length is the pass's or the plan's).
+/// Which activities is drawn from `seed` alone (its own random stream), so a
+/// plan and a seed give the same models every time, and nothing else of the
+/// plan changes. Arm work and drives (an `arm` or `mobility` resource) run long
+/// more than short: actual durations from 0.6 to 1.6 times the predicted one;
+/// the others from 0.8 to 1.25 times (whole seconds, the shortest at least 1).
+pub fn add_duration_models(mut plan: Plan, share: f64, seed: u64) -> Plan {
+    let eligible: Vec<usize> = plan
+        .activities
+        .iter()
+        .enumerate()
+        .filter(|(_, a)| {
+            matches!(a.duration, Duration::Fixed(d) if d > 0)
+                && a.duration_model.is_none()
+                && a.comm_kind.is_none()
+                && a.awake != AwakeMode::Forbidden
+        })
+        .map(|(i, _)| i)
+        .collect();
+    let share = if share.is_finite() {
+        share.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let count = ((eligible.len() as f64 * share).round() as usize).min(eligible.len());
+    // The first `count` of a seeded shuffle (Fisher-Yates, front to back).
+    let mut rng = Rng(seed ^ 0x0D0_2A71_0000_0000);
+    let mut pool = eligible;
+    for k in 0..count {
+        let j = rng.range(k as i64, pool.len() as i64 - 1) as usize;
+        pool.swap(k, j);
+    }
+    for &i in &pool[..count] {
+        let a = &mut plan.activities[i];
+        let Duration::Fixed(d) = a.duration else {
+            continue;
+        };
+        let long_tailed = a.resources.iter().any(|r| r == "arm" || r == "mobility");
+        // (numerator, denominator) of the shortest and the longest factor.
+        let ((lo_n, lo_d), (hi_n, hi_d)) = if long_tailed {
+            ((3, 5), (8, 5))
+        } else {
+            ((4, 5), (5, 4))
+        };
+        a.duration_model = Some(DurationModel {
+            min: (d * lo_n / lo_d).max(1),
+            max: ((d * hi_n + hi_d - 1) / hi_d).max(d),
+        });
+    }
+    plan
+}
+
+#[cfg(test)]
+mod duration_model_tests {
+    use super::*;
+
+    /// Whether `a` may get a model.
+    fn eligible(a: &Activity) -> bool {
+        matches!(a.duration, Duration::Fixed(d) if d > 0)
+            && a.comm_kind.is_none()
+            && a.awake != AwakeMode::Forbidden
+    }
+
+    #[test]
+    fn models_go_on_the_share_asked_with_the_spread_of_their_kind() {
+        for profile in [Profile::Standard, Profile::Realistic, Profile::Starved] {
+            let base = generate_plan_with(profile, 200, 2, 5);
+            let candidates = base.activities.iter().filter(|a| eligible(a)).count();
+            let plan = add_duration_models(base.clone(), 0.25, 5);
+            crate::validate::validate(&plan).expect("valid");
+            let with: Vec<(&Activity, &Activity)> = plan
+                .activities
+                .iter()
+                .zip(&base.activities)
+                .filter(|(a, _)| a.duration_model.is_some())
+                .collect();
+            assert_eq!(with.len(), (candidates as f64 * 0.25).round() as usize);
+            for (a, b) in &with {
+                assert!(eligible(a), "{} got a model", a.id);
+                let (Duration::Fixed(d), Some(m)) = (a.duration, a.duration_model) else {
+                    panic!("{} has a model on an expanding duration", a.id);
+                };
+                let long = a.resources.iter().any(|r| r == "arm" || r == "mobility");
+                let (lo, hi) = if long { (0.6, 1.6) } else { (0.8, 1.25) };
+                assert!(m.min >= 1 && m.min <= d && m.max >= d, "{}: {m:?}", a.id);
+                assert!(
+                    (m.min as f64 - lo * d as f64).abs() <= 1.0,
+                    "{}: {m:?}",
+                    a.id
+                );
+                assert!(
+                    (m.max as f64 - hi * d as f64).abs() <= 1.0,
+                    "{}: {m:?}",
+                    a.id
+                );
+                // Nothing else of the activity changed.
+                let mut back = (*a).clone();
+                back.duration_model = None;
+                assert_eq!(&back, *b);
+            }
+            // The rest of the plan is the plan without models.
+            let mut back = plan.clone();
+            for a in &mut back.activities {
+                a.duration_model = None;
+            }
+            assert_eq!(back, base);
+            // Deterministic for the seed; another seed picks other activities.
+            assert_eq!(add_duration_models(base.clone(), 0.25, 5), plan);
+            assert_ne!(add_duration_models(base.clone(), 0.25, 6), plan);
+        }
+    }
+
+    #[test]
+    fn arm_work_runs_long_more_than_short_and_the_ends_of_the_share_hold() {
+        let base = generate_plan_with(Profile::Realistic, 100, 1, 2);
+        assert_eq!(add_duration_models(base.clone(), 0.0, 2), base);
+        let all = add_duration_models(base.clone(), 1.0, 2);
+        let mut arm = 0;
+        for a in &all.activities {
+            assert_eq!(a.duration_model.is_some(), eligible(a), "{}", a.id);
+            if let (Duration::Fixed(d), Some(m)) = (a.duration, a.duration_model)
+                && a.resources.iter().any(|r| r == "arm")
+            {
+                arm += 1;
+                assert!(m.max - d > d - m.min, "{}: {m:?} around {d}", a.id);
+            }
+        }
+        assert!(arm > 0, "the realistic plan has arm work");
+        // A share outside 0..1 is read as its nearest end.
+        assert_eq!(add_duration_models(base.clone(), -1.0, 2), base);
+        assert_eq!(add_duration_models(base.clone(), f64::NAN, 2), base);
+        assert_eq!(add_duration_models(base, 7.0, 2), all);
     }
 }
 

@@ -52,7 +52,7 @@ pub use flex::{
     FreeSlack, OrderKind, StartCondition, TimePoint, Wait, constraint_line, flex, flex_text,
     flex_with, free_slack_each, free_slack_of, time_point_name,
 };
-pub use generate::{Profile, generate_plan, generate_plan_with};
+pub use generate::{Profile, add_duration_models, generate_plan, generate_plan_with};
 pub use load::{
     LoadedPlan, MAX_PLAN_BYTES, load_plan, load_plan_file, load_plan_limited, plan_errors,
     read_plan_text,
@@ -83,6 +83,8 @@ pub use scheduler::{
     valid_intervals_at,
 };
 pub use timeline::{Interval, IntervalSet};
+#[doc(hidden)]
+pub use tune::OrderScorer;
 pub use tune::{
     ActivityCounts, Change, ChangeWhy, Counts, Mode, Moved, Sample, Score, Scores, Stop,
     TuneOptions, TuneProgress, Tuning, ValueMeasure, change_line, first_difference_line,

@@ -9,11 +9,13 @@
 //! pinned activity's place and every dependency pair's order, and are realised
 //! by priorities only ([`order`]). With at most eight activities that can move,
 //! every such order is scored (exact mode); otherwise a squeaky-wheel search
+//! (from the mandatory-first order when that scores better than the original)
 //! moves lost activities ahead of what took their place, or those after them,
 //! from what the runs' losses and the predicted run's explanations say
 //! ([`search`]). The best order is then confirmed on a held-out sample, and
 //! every change says why from the evidence ([`why`], [`text`]).
 
+mod baseline;
 mod order;
 mod score;
 mod search;
@@ -23,6 +25,8 @@ mod why;
 use std::fmt;
 use std::sync::atomic::AtomicBool;
 
+#[doc(hidden)]
+pub use baseline::OrderScorer;
 pub use score::{Counts, Sample, Score, ValueMeasure};
 pub use text::{change_line, first_difference_line, score_line};
 pub use why::{ChangeWhy, Moved};

@@ -139,10 +139,32 @@ impl<'s, 'p> Search<'s, 'p> {
         Ok(())
     }
 
-    /// Evidence mode: squeaky-wheel descents from the original and from
-    /// seeded perturbations of the best order.
+    /// Evidence mode: squeaky-wheel descents from the original (or the
+    /// mandatory-first order, when it scores better) and from seeded
+    /// perturbations of the best order.
     pub fn evidence(&mut self, original: Eval, seed: u64) -> Result<(), Error> {
         let mut current = (self.rules.original.clone(), original);
+        // The mandatory-first order first (one evaluation): the descent starts
+        // from it when it scores better than the original.
+        if let Some(order) = self.mandatory_first() {
+            if self.left() == 0 {
+                self.stop = Stop::Budget;
+                return Ok(());
+            }
+            let Some(scores) = self.score_all(std::slice::from_ref(&order))? else {
+                self.stop = Stop::Cancelled;
+                return Ok(());
+            };
+            if scores[0] > current.1.score {
+                match self.with_evidence(&order)? {
+                    Some(eval) => current = (order, eval),
+                    None => {
+                        self.stop = Stop::Cancelled;
+                        return Ok(());
+                    }
+                }
+            }
+        }
         let mut restart = 0u64;
         let mut since_better = 0u64;
         loop {
@@ -190,6 +212,34 @@ impl<'s, 'p> Search<'s, 'p> {
                 }
             }
         }
+    }
+
+    /// The original order with every mandatory activity, and every activity
+    /// one must follow, ahead of the rest, each part in the original order
+    /// (dependency pairs keep their order: the first part holds every
+    /// activity's predecessors). `None` when that is the original order, was
+    /// scored already, or moves a pinned activity.
+    fn mandatory_first(&self) -> Option<Vec<usize>> {
+        let plan = self.scorer.plan;
+        let n = self.rules.len();
+        let mut first = vec![false; n];
+        let mut stack: Vec<usize> = (0..n)
+            .filter(|&a| plan.activities.get(a).is_some_and(|x| x.mandatory))
+            .collect();
+        while let Some(a) = stack.pop() {
+            if !first[a] {
+                first[a] = true;
+                stack.extend(self.rules.before[a].iter().copied());
+            }
+        }
+        let (head, tail): (Vec<usize>, Vec<usize>) =
+            self.rules.original.iter().partition(|&&a| first[a]);
+        let order: Vec<usize> = head.into_iter().chain(tail).collect();
+        (order != self.rules.original
+            && !self.seen.contains(&order)
+            && self.rules.keeps(&order)
+            && self.rules.priorities(plan, &order).is_some())
+        .then_some(order)
     }
 
     /// The evaluation of `order` with its losses explained (not counted: the
