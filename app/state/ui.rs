@@ -627,6 +627,9 @@ pub struct TextBuffers {
     pub repair_text: String,
     /// Repair view: the value at the path of the error looked at, as edited.
     pub repair_value: String,
+    /// Repair view: what the list of ids to pick for an unknown `after`
+    /// target is narrowed to.
+    pub repair_pick: String,
     /// Repair view: the chars of the plan text to select and scroll to (set
     /// by a jump to an error, taken by the text view).
     pub repair_cursor: Option<std::ops::Range<usize>>,
@@ -648,6 +651,7 @@ impl Default for TextBuffers {
             path_text: String::new(),
             repair_text: String::new(),
             repair_value: String::new(),
+            repair_pick: String::new(),
             repair_cursor: None,
             focus_search: false,
         }
