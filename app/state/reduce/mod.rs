@@ -143,7 +143,7 @@ impl AppState {
             | U::PreviousCycle
             | U::NextCycle
             | U::CancelCampaign => self.run_execution(cmd),
-            U::ToggleFlex => self.persisted.hide_flex = !self.persisted.hide_flex,
+            U::ToggleFlex => self.toggle_flex(),
             U::TunePriorities
             | U::CancelTune
             | U::ApplyTuning
