@@ -505,6 +505,10 @@ fn drag(profiles: &[(&str, Profile)], quick: bool) {
     for &(name, profile) in profiles {
         for &(n, sols) in sizes {
             let (plan, mut app) = desktop_app(profile, n, sols);
+            // The layer shown (it starts off on large plans).
+            if !app.flex_shown() {
+                app.apply(Command::Ui(solscope::state::UiCommand::ToggleFlex));
+            }
             let ctx = egui::Context::default();
             // The flexible schedule's network first (its free slack may go on
             // on a worker, as in the app).

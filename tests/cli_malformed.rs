@@ -46,17 +46,17 @@ const EXPECTED: &[(&str, &str, &str)] = &[
     (
         "priority-string.json",
         "activities[1].priority",
-        "invalid type: string \"high\"",
+        "must be a whole number (got the text \"high\")",
     ),
     (
         "mandatory-string.json",
         "activities[4].mandatory",
-        "invalid type: string \"no\"",
+        "must be true or false (got the text \"no\")",
     ),
     (
         "duration-float.json",
         "activities[2].duration",
-        "invalid type: floating point `1.5`",
+        "must be a whole number of seconds or { \"min\": m, \"max\": M } (got 1.5)",
     ),
     (
         "awake-sometimes.json",
@@ -66,7 +66,7 @@ const EXPECTED: &[(&str, &str, &str)] = &[
     (
         "sequence-engines-negative.json",
         "sequence_engines",
-        "invalid value: integer `-1`",
+        "must be a whole number >= 0 (got -1)",
     ),
     ("battery-missing.json", "$", "missing field `battery`"),
     (
@@ -233,11 +233,15 @@ const EXPECTED: &[(&str, &str, &str)] = &[
         "power.rtg",
         "must be at most 1000000 W in magnitude",
     ),
-    ("integer-overflow.json", "horizon.end", "expected i64"),
+    (
+        "integer-overflow.json",
+        "horizon.end",
+        "must be a whole number of seconds (got 1e+23)",
+    ),
     (
         "nan-string.json",
         "battery.initial",
-        "invalid type: string \"NaN\"",
+        "must be a number (got the text \"NaN\")",
     ),
     (
         "time-too-large.json",

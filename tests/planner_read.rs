@@ -313,3 +313,31 @@ fn suggestions_and_the_banner_say_times_in_sol_time() {
         );
     }
 }
+
+/// The header's counts ("N of M scheduled, K not") and the mode switch's
+/// "View" at every window width from the smallest allowed: side by side with
+/// a gap, or the switch on a row of its own, never touching.
+#[test]
+fn the_header_counts_never_touch_the_mode_switch_at_any_width() {
+    let mut h = harness(
+        SolscopeApp::with_default_plan().unwrap(),
+        [900.0, 700.0].into(),
+        &View::default(),
+    )
+    .unwrap();
+    let counts = labels(&h)
+        .into_iter()
+        .find(|l| l.ends_with(" not") && l.contains(" scheduled, "))
+        .unwrap();
+    // Every width, so that every place the row can end is tried whatever
+    // the plan's name and counts (a 10,000-activity plan's are longer).
+    for width in 900..=1700 {
+        h.set_size([width as f32, 700.0].into());
+        h.run_steps(2);
+        let (c, v) = (rect_of(&h, &counts), rect_of(&h, "View"));
+        assert!(
+            c.right() < v.left() || v.top() >= c.bottom(),
+            "{width} px: {counts:?} at {c:?} touches View at {v:?}"
+        );
+    }
+}

@@ -298,6 +298,10 @@ pub struct TuneArgs {
 pub struct CheckArgs {
     /// The plan file (solscope.plan/1 JSON).
     pub plan: PathBuf,
+    /// On an invalid plan, say every error found in one pass (one `error:`
+    /// line each, the first the one said without this), not only the first.
+    #[arg(long)]
+    pub all_errors: bool,
     #[command(flatten)]
     pub input: InputLimit,
     #[command(flatten)]

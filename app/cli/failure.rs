@@ -12,6 +12,9 @@ pub const EXIT_INVALID: u8 = 2;
 pub enum Failure {
     /// The input is invalid (exit status 2).
     Input(solscope_engine::Error),
+    /// The input is invalid in each of these ways (exit status 2; one line
+    /// each, the first the one [`Failure::Input`] would give).
+    Inputs(Vec<solscope_engine::Error>),
     /// The output could not be made (exit status 1).
     Output(String),
     /// Standard output could not be written (exit status 1, said on standard
@@ -32,6 +35,12 @@ impl Failure {
         match self {
             Failure::Input(err) => {
                 say(&format!("error: {err}"));
+                ExitCode::from(EXIT_INVALID)
+            }
+            Failure::Inputs(errors) => {
+                for err in errors {
+                    say(&format!("error: {err}"));
+                }
                 ExitCode::from(EXIT_INVALID)
             }
             Failure::Output(what) => {

@@ -11,7 +11,7 @@ use eframe::egui;
 use super::shortcuts;
 use super::theme::{self, Theme};
 use super::views::{self, Look, Model, ViewCache, Widgets};
-use crate::state::AppState;
+use crate::state::{AppState, Command, UiCommand};
 
 /// The app: its state, and the egui side's palette and view cache.
 pub struct SolscopeApp {
@@ -106,6 +106,14 @@ impl SolscopeApp {
             // The repair view edits text: no undo, stepping or saving of the
             // plan behind it.
             shortcuts::keys(ui, &mut cmds);
+        }
+        // Ctrl+F takes effect before the views are drawn: the search field
+        // then has the keyboard in this very frame, and the keys typed after
+        // Ctrl+F in it reach the field.
+        let search = Command::from(UiCommand::Search);
+        if cmds.contains(&search) {
+            cmds.retain(|c| *c != search);
+            self.state.apply(search);
         }
         views::dropped_files(ui, &mut cmds);
         let now = ui.input(|i| i.time);

@@ -75,7 +75,10 @@ pub fn keys(ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
             cmds.push(cmd.into());
         }
     }
-    if ui.ctx().egui_wants_keyboard_input() {
+    // After Ctrl+F the keys are the search field's (focused before it is
+    // drawn this frame), not shortcuts.
+    let searching = cmds.contains(&UiCommand::Search.into());
+    if searching || ui.ctx().egui_wants_keyboard_input() {
         return;
     }
     for (cmd, shortcut) in with(false) {

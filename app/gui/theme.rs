@@ -250,6 +250,8 @@ pub const GHOST_STROKE: f32 = 1.5;
 pub const REPAIR_LIST_WIDTH: f32 = 420.0;
 /// Repair view: most height of the value field before it scrolls.
 pub const REPAIR_VALUE_HEIGHT: f32 = 160.0;
+/// Repair view: most ids listed to pick from at once (typing narrows them).
+pub const REPAIR_PICK_SHOWN: usize = 200;
 /// Editor: width of a field holding a sol and local time.
 pub const TIME_FIELD_WIDTH: f32 = 118.0;
 /// Editor: width of the combo boxes of a state requirement or effect.

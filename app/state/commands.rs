@@ -76,6 +76,9 @@ ui_commands! {
     /// Repair view: put the value typed for the error looked at in place of the
     /// text at its path, then check again.
     ReplaceAtError,
+    /// Repair view: put the plan text back as it was before the last
+    /// replacement (a value typed or an id picked), then check again.
+    UndoRepair,
     /// Repair view: leave it; the plan open before stays.
     CancelRepair,
     /// Show the previous step.
@@ -178,6 +181,7 @@ impl UiCommand {
             Self::CancelOpen => "Cancel opening",
             Self::RecheckRepair => "Re-check",
             Self::ReplaceAtError => "Replace and re-check",
+            Self::UndoRepair => "Undo replace",
             Self::CancelRepair => "Back to the open plan",
             Self::FirstStep => "|< First",
             Self::PreviousStep => "< Previous",
@@ -251,6 +255,7 @@ impl UiCommand {
             | Self::CancelOpen
             | Self::RecheckRepair
             | Self::ReplaceAtError
+            | Self::UndoRepair
             | Self::CancelRepair => None,
             Self::Back => Some(Shortcut::new(Modifiers::ALT, Key::ArrowLeft)),
             Self::Forward => Some(Shortcut::new(Modifiers::ALT, Key::ArrowRight)),
@@ -439,6 +444,10 @@ pub enum Command {
     /// Repair view: look at error `i` (its value at its path is shown to be
     /// edited, and selected in the plan text).
     RepairJump(usize),
+    /// Repair view: put this activity id (picked from the plan's) in place of
+    /// the unknown one at the error looked at, then check again (undoable
+    /// with [`UiCommand::UndoRepair`]).
+    RepairPickId(String),
     /// Open a plan file (guarded when there are unsaved changes).
     Open(PathBuf),
     /// Save the plan to this file (the host sends it once a file is chosen).

@@ -12,8 +12,9 @@ use super::derived::{CampaignCache, ExecKey, ExecutionCache, FlexResult, step_vi
 use super::tune::TuneModel;
 use super::{
     ActualsSource, Analysis, AppState, CampaignModel, CampaignResult, Command, CycleRun, Document,
-    ExecModel, ExecutionRun, FreeSlackProgress, Listed, Messages, Mode, Navigation, Persisted,
-    Progress, SearchIndex, StepView, Stopped, TextBuffers, UiState, WouldCause, failed_steps,
+    ExecModel, ExecutionRun, FLEX_LAYER_MAX_ACTIVITIES, FreeSlackProgress, Listed, Messages, Mode,
+    Navigation, Persisted, Progress, SearchIndex, StepView, Stopped, TextBuffers, UiState,
+    WouldCause, failed_steps,
 };
 
 /// The soonest redraw asked for while preparing a frame.
@@ -76,14 +77,16 @@ impl AppState {
                 self.revision,
                 self.background,
             );
-            if self.persisted.hide_flex {
+            if !self.flex_shown() {
                 // Nobody looks at the shading: the worker stops (what it
                 // found stays).
                 self.flex.stop_free_slack();
-            } else {
+            } else if self.background {
                 let axis = self.ui.nav.axis;
                 self.flex
                     .request_free_slack(self.revision, (axis.start + axis.end) / 2.0);
+            } else {
+                self.flex.fill_free_slack(self.revision);
             }
         }
         if self.ui.nav.playing {
@@ -108,8 +111,11 @@ impl AppState {
             let shown = self.ui.nav.overlay_reason_of(a);
             self.derived
                 .would_cause_for(&self.doc.plan, &self.analysis, self.revision, (a, shown));
-            // Its free slack ahead of the rest (the inspector shows it).
-            self.flex.request_one(self.revision, a);
+            // Its free slack ahead of the rest (the inspector shows it); on a
+            // large plan only once the layer is on.
+            if self.flex_shown() || self.doc.plan.activities.len() <= FLEX_LAYER_MAX_ACTIVITIES {
+                self.flex.request_one(self.revision, a);
+            }
         }
         self.reap_worker();
         // A selection made by a command given outside a frame.
@@ -223,6 +229,25 @@ impl AppState {
         if let Some(n) = self.execution.cycle(key, cycle).map(|c| c.steps()) {
             self.execution
                 .derive_view(key, cycle, self.ui.nav.cycle_step.min(n));
+        }
+    }
+
+    /// Whether the flexibility layer is on for the open plan (see
+    /// [`Navigation::flex_shown`]).
+    pub fn flex_shown(&self) -> bool {
+        self.ui
+            .nav
+            .flex_shown(self.persisted.hide_flex, self.doc.plan.activities.len())
+    }
+
+    /// Turns the flexibility layer on or off: on a plan of more than
+    /// [`FLEX_LAYER_MAX_ACTIVITIES`] activities for as long as it is open, on
+    /// a smaller one in the settings.
+    pub(super) fn toggle_flex(&mut self) {
+        if self.doc.plan.activities.len() > FLEX_LAYER_MAX_ACTIVITIES {
+            self.ui.nav.flex_on_large = Some(!self.flex_shown());
+        } else {
+            self.persisted.hide_flex = !self.persisted.hide_flex;
         }
     }
 

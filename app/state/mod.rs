@@ -51,10 +51,10 @@ pub use montecarlo::{CampaignResult, Progress, StopReason, Stopped};
 pub use persisted::Persisted;
 pub use status::{Status, failed_steps, status_at};
 pub use ui::{
-    DEFAULT_CAMPAIGN_RUNS, Dialog, EditorBuffers, FreeSlackProgress, HISTORY_LIMIT, History,
-    LAST_STEP, ListFilter, MIN_STEPS_SHOWN, Messages, Mode, Navigation, OverlayPlot, OverlayReason,
-    PathPrompt, Pending, PinOffer, Place, STEP_ZOOM, StatusFilter, StepView, StepWindow,
-    TextBuffers, Tour, UiState, WouldCause,
+    DEFAULT_CAMPAIGN_RUNS, Dialog, EditorBuffers, FLEX_LAYER_MAX_ACTIVITIES, FreeSlackProgress,
+    HISTORY_LIMIT, History, LAST_STEP, ListFilter, MIN_STEPS_SHOWN, Messages, Mode, Navigation,
+    OverlayPlot, OverlayReason, PathPrompt, Pending, PinOffer, Place, STEP_ZOOM, StatusFilter,
+    StepView, StepWindow, TextBuffers, Tour, UiState, WouldCause,
 };
 
 use derived::{CampaignCache, DerivedCache, ExecutionCache, FlexCache, StepViewCache, step_view};

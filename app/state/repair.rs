@@ -29,6 +29,12 @@ pub struct Repair {
     pub selected: Option<usize>,
     /// How many times the text was checked (1 when opened).
     pub checks: u32,
+    /// The activity ids written in the text as last checked, in file order
+    /// (each once): what an unknown `after` target can be replaced by.
+    pub ids: Vec<String>,
+    /// The text before each replacement made here, the last last (for
+    /// [`UiCommand::UndoRepair`](crate::state::UiCommand::UndoRepair)).
+    pub undo: Vec<String>,
 }
 
 impl Repair {
@@ -39,6 +45,8 @@ impl Repair {
             errors: check(text),
             selected: None,
             checks: 1,
+            ids: activity_ids(text),
+            undo: Vec::new(),
         }
     }
 
@@ -49,6 +57,32 @@ impl Repair {
             .and_then(|p| p.file_name())
             .map_or_else(|| "the plan".into(), |n| n.to_string_lossy().into_owned())
     }
+}
+
+impl PlanError {
+    /// Whether it is an `after` target that names no activity of the plan
+    /// (one of the plan's ids can be picked instead).
+    pub fn is_unknown_activity(&self) -> bool {
+        self.path.ends_with(".activity") && self.reason.starts_with("unknown activity \"")
+    }
+}
+
+/// The activity ids written in a plan's text, in file order, each once (none
+/// when it is not JSON).
+pub fn activity_ids(text: &str) -> Vec<String> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let Ok(doc) = serde_json::from_str::<serde_json::Value>(text) else {
+        return Vec::new();
+    };
+    let mut seen = std::collections::HashSet::new();
+    doc.get("activities")
+        .and_then(serde_json::Value::as_array)
+        .into_iter()
+        .flatten()
+        .filter_map(|a| a.get("id").and_then(serde_json::Value::as_str))
+        .filter(|id| seen.insert(*id))
+        .map(str::to_string)
+        .collect()
 }
 
 /// Every error of a plan's text (none when it loads).

@@ -253,6 +253,7 @@ impl UiState {
                 cycle_step: LAST_STEP,
                 overlay_reason: None,
                 steps_shown: StepWindow::ALL,
+                flex_on_large: None,
             },
             messages: Messages::default(),
             text: TextBuffers::default(),
@@ -306,7 +307,18 @@ pub struct Navigation {
     /// The steps the step slider spans (zoomed in on a long run), in the run
     /// it moves through (the schedule's, or the looked-at cycle's).
     pub steps_shown: StepWindow,
+    /// The flexibility layer on a plan of more than
+    /// [`FLEX_LAYER_MAX_ACTIVITIES`] activities as toggled while it is open
+    /// (`None`: not toggled, so off); smaller plans follow
+    /// [`Persisted::hide_flex`](super::Persisted::hide_flex).
+    pub flex_on_large: Option<bool>,
 }
+
+/// The most activities of a plan whose flexibility layer is shown when it
+/// opens (unless hidden in the settings): on a larger plan it starts off, and
+/// its free slack (minutes to hours of CPU at 10,000 activities) is not
+/// computed until the layer is turned on.
+pub const FLEX_LAYER_MAX_ACTIVITIES: usize = 2_000;
 
 /// How much one press of "Zoom steps in" narrows the step slider's span.
 pub const STEP_ZOOM: f64 = 4.0;
@@ -413,6 +425,17 @@ impl StepWindow {
 }
 
 impl Navigation {
+    /// Whether the flexibility layer is shown on a plan of `activities`
+    /// activities, with the setting `hide_flex` (in either mode; execution
+    /// mode draws no layer).
+    pub fn flex_shown(&self, hide_flex: bool, activities: usize) -> bool {
+        if activities > FLEX_LAYER_MAX_ACTIVITIES {
+            self.flex_on_large.unwrap_or(false)
+        } else {
+            !hide_flex
+        }
+    }
+
     /// The index of the energy or peak-power reason of activity `a` whose
     /// profile the plots draw.
     pub fn overlay_reason_of(&self, a: usize) -> usize {
@@ -627,6 +650,9 @@ pub struct TextBuffers {
     pub repair_text: String,
     /// Repair view: the value at the path of the error looked at, as edited.
     pub repair_value: String,
+    /// Repair view: what the list of ids to pick for an unknown `after`
+    /// target is narrowed to.
+    pub repair_pick: String,
     /// Repair view: the chars of the plan text to select and scroll to (set
     /// by a jump to an error, taken by the text view).
     pub repair_cursor: Option<std::ops::Range<usize>>,
@@ -648,6 +674,7 @@ impl Default for TextBuffers {
             path_text: String::new(),
             repair_text: String::new(),
             repair_value: String::new(),
+            repair_pick: String::new(),
             repair_cursor: None,
             focus_search: false,
         }

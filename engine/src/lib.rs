@@ -21,6 +21,7 @@ mod flex;
 mod generate;
 mod load;
 mod model;
+mod plan_errors;
 mod report;
 mod scheduler;
 mod sentence;
@@ -54,14 +55,14 @@ pub use flex::{
 };
 pub use generate::{Profile, add_duration_models, generate_plan, generate_plan_with};
 pub use load::{
-    LoadedPlan, MAX_PLAN_BYTES, load_plan, load_plan_file, load_plan_limited, plan_errors,
-    read_plan_text,
+    LoadedPlan, MAX_PLAN_BYTES, load_plan, load_plan_file, load_plan_limited, read_plan_text,
 };
 pub use model::{
     Activity, AwakeMode, Battery, CycleStart, Data, Dependency, Duration, DurationModel, EffectAt,
     ExecutionSection, Handover, Horizon, LocalTime, MARS_SOL, OperablePeriod, PLAN_FORMAT, Plan,
     Power, PreheatEntry, Sleep, StateDef, StateEffect, StateRequirement, ThermalZone, Window,
 };
+pub use plan_errors::plan_errors;
 pub use report::{
     ActivityEntry, BoundEntry, BoundsEntry, ChangedEntry, ConditionEntry, ConstraintEntry,
     ControllabilityEntry, CulpritEntry, CycleEntry, DroppedEntry, EXECUTION_FORMAT, EdgeEntry,

@@ -3,11 +3,8 @@
 use serde::Deserialize;
 
 use crate::error::{Error, Warning};
-use crate::model::Activity;
 use crate::model::Plan;
-use crate::validate::{
-    check_activity_shape, check_json_shape, shape_may_fail, validate, validate_all,
-};
+use crate::validate::{check_json_shape, shape_may_fail, validate};
 
 /// A plan that passed strict parsing and semantic validation, with its warnings.
 #[derive(Clone, Debug)]
@@ -48,95 +45,9 @@ pub fn load_plan_limited(text: &str, limit: usize) -> Result<LoadedPlan, Error> 
     Ok(LoadedPlan { plan, warnings })
 }
 
-/// Every error of a plan's text (at most [`MAX_PLAN_BYTES`]), in the order a
-/// planner fixes them; empty exactly when [`load_plan`] accepts it, and
-/// otherwise led by the error [`load_plan`] gives.
-///
-/// A plan that parses gets every semantic error ([`validate_all`]). One that
-/// does not is read again piece by piece when it is a JSON object: the plan
-/// without its activities, then each activity on its own, so a wrong type in
-/// one activity does not hide one in the next (the semantic checks need the
-/// whole plan, so they wait until it parses).
-pub fn plan_errors(text: &str) -> Vec<Error> {
-    match parse_plan(text, MAX_PLAN_BYTES) {
-        Ok(plan) => validate_all(&plan),
-        Err(first) => {
-            // The text parse names the position too: the same error read from
-            // the piece has the same path.
-            let path = |e: &Error| match e {
-                Error::Invalid { path, .. } => Some(path.clone()),
-                _ => None,
-            };
-            let first_path = path(&first);
-            let mut errors = vec![first];
-            for e in piecewise_errors(text.strip_prefix('\u{feff}').unwrap_or(text)) {
-                if path(&e) != first_path {
-                    errors.push(e);
-                }
-            }
-            errors
-        }
-    }
-}
-
-/// The parse errors of a plan read piece by piece (see [`plan_errors`]): none
-/// when the text is not a JSON object.
-fn piecewise_errors(text: &str) -> Vec<Error> {
-    let Ok(serde_json::Value::Object(mut root)) = serde_json::from_str::<serde_json::Value>(text)
-    else {
-        return Vec::new();
-    };
-    let activities = root.remove("activities");
-    let mut errors = Vec::new();
-    // The plan without its activities (an empty list stands in for them).
-    root.insert("activities".into(), serde_json::Value::Array(Vec::new()));
-    let shell = serde_json::Value::Object(root);
-    if let Err(e) = check_json_shape(&shell) {
-        errors.push(e);
-    } else if let Err(e) = serde_path_to_error::deserialize::<_, Plan>(&shell) {
-        errors.push(Error::invalid(path_of(&e), e.into_inner().to_string()));
-    }
-    let Some(serde_json::Value::Array(acts)) = activities else {
-        return errors;
-    };
-    for (i, act) in acts.iter().enumerate() {
-        let base = format!("activities[{i}]");
-        let shape = match act.as_object() {
-            Some(obj) => check_activity_shape(obj, &base),
-            None => Ok(()),
-        };
-        if let Err(e) = shape {
-            errors.push(e);
-            continue;
-        }
-        if let Err(e) = serde_path_to_error::deserialize::<_, Activity>(act) {
-            let inner = path_of(&e);
-            let path = if inner == "$" {
-                base
-            } else if inner.starts_with('[') {
-                format!("{base}{inner}")
-            } else {
-                format!("{base}.{inner}")
-            };
-            errors.push(Error::invalid(path, e.into_inner().to_string()));
-        }
-    }
-    errors
-}
-
-/// The path of a serde error as the loader names it: `$` for the root.
-fn path_of<E>(e: &serde_path_to_error::Error<E>) -> String {
-    let path = e.path().to_string();
-    if path.is_empty() || path == "." {
-        "$".into()
-    } else {
-        path
-    }
-}
-
 /// The parse half of [`load_plan_limited`]: size, JSON, shape and types, no
 /// semantic validation.
-fn parse_plan(text: &str, limit: usize) -> Result<Plan, Error> {
+pub(crate) fn parse_plan(text: &str, limit: usize) -> Result<Plan, Error> {
     // A UTF-8 byte-order mark (Windows editors write one) is not part of the JSON.
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     if text.len() > limit {
@@ -228,9 +139,88 @@ fn parse_plan(text: &str, limit: usize) -> Result<Plan, Error> {
             let path = path.find("][").map_or(path, |i| &path[..=i]);
             return Error::invalid(path, NESTED_TOO_DEEPLY);
         }
-        Error::invalid(path, e.into_inner().to_string())
+        let reason = planner_words(path, &e.into_inner().to_string());
+        Error::invalid(path, reason)
     })?;
     Ok(plan)
+}
+
+/// The integer fields that do not count seconds.
+const NOT_SECONDS: [&str; 4] = ["priority", "sequence_engines", "first_sol", "power_mw"];
+
+/// The reason serde gives for a value of the wrong type (`invalid type: string
+/// "high", expected i64`) in the planner's words (`must be a whole number (got
+/// the text "high")`), for the field at `path`; other reasons as they are.
+pub(crate) fn planner_words(path: &str, reason: &str) -> String {
+    // Read from text, serde adds the position; the path names the place.
+    let at_line = reason
+        .rfind(" at line ")
+        .filter(|&i| {
+            let tail = &reason[i + " at line ".len()..];
+            tail.split_once(" column ").is_some_and(|(l, c)| {
+                [l, c]
+                    .iter()
+                    .all(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+            })
+        })
+        .map_or(reason, |i| &reason[..i]);
+    let body = at_line
+        .strip_prefix("invalid type: ")
+        .or_else(|| at_line.strip_prefix("invalid value: "));
+    let Some((got, expected)) = body.and_then(|b| b.rsplit_once(", expected ")) else {
+        return reason.to_string();
+    };
+    let field = path
+        .rsplit(['.', '['])
+        .next()
+        .unwrap_or(path)
+        .trim_end_matches(']');
+    let seconds = !NOT_SECONDS.contains(&field) && field.parse::<usize>().is_err();
+    let unsigned = ["u32", "u64", "usize"].contains(&expected);
+    let wanted = match expected {
+        "i64" | "i32" | "u32" | "u64" | "usize" => {
+            let what = if seconds {
+                "a whole number of seconds"
+            } else {
+                "a whole number"
+            };
+            if unsigned {
+                format!("{what} >= 0")
+            } else {
+                what.to_string()
+            }
+        }
+        "f64" | "f32" => "a number".into(),
+        "a string" => "text in double quotes".into(),
+        "a boolean" => "true or false".into(),
+        "a sequence" => "a list [ … ]".into(),
+        "a map" => "an object { … }".into(),
+        e if e.starts_with("struct ") => "an object { … }".into(),
+        e => match e.strip_prefix("an integer number of seconds") {
+            Some(rest) => format!("a whole number of seconds{rest}"),
+            None => e.to_string(),
+        },
+    };
+    format!("must be {wanted} (got {})", value_words(got))
+}
+
+/// The value serde names (`string "high"`, ``floating point `1.5` ``) as a
+/// planner reads it (`the text "high"`, `1.5`).
+fn value_words(got: &str) -> String {
+    if let Some(s) = got.strip_prefix("string ") {
+        return format!("the text {s}");
+    }
+    for kind in ["floating point ", "integer ", "boolean "] {
+        if let Some(v) = got.strip_prefix(kind) {
+            return v.trim_matches('`').to_string();
+        }
+    }
+    match got {
+        "sequence" => "a list".into(),
+        "map" => "an object".into(),
+        "unit value" => "null".into(),
+        other => other.to_string(),
+    }
 }
 
 /// The text with every number literal too small for a 64-bit float but not zero
@@ -536,48 +526,6 @@ mod tests {
     fn the_text_limit_is_said_in_mib() {
         let err = load_plan_limited(&" ".repeat(2 << 20), 1 << 20).expect_err("too big");
         assert!(err.to_string().contains("larger than 1 MiB"), "{err}");
-    }
-
-    #[test]
-    fn plan_errors_reads_a_plan_that_does_not_parse_piece_by_piece() {
-        let plan = r#"{"format":"solscope.plan/1","horizon":{"start":0,"end":100},
-            "battery":{"capacity":10.0,"initial":"full","min_soc":1.0},
-            "power":{"rtg":10.0,"asleep":1.0,"awake":2.0},"activities":[
-            {"id":"a","priority":"high","duration":10},
-            {"id":"b","priority":2,"duration":10},
-            {"id":"c","priority":3,"duration":10,"awake":{"any":null}},
-            {"id":"d","priority":4,"duration":10.5}]}"#;
-        let errors: Vec<String> = plan_errors(plan).iter().map(|e| e.to_string()).collect();
-        let first = load_plan(plan).expect_err("invalid").to_string();
-        assert_eq!(errors[0], first, "led by load_plan's error");
-        let paths: Vec<&str> = errors
-            .iter()
-            .map(|e| e.split(": ").next().unwrap_or(""))
-            .collect();
-        assert_eq!(
-            paths,
-            [
-                // The shape check goes first in `load_plan`.
-                "activities[2].awake",
-                "battery.initial",
-                "activities[0].priority",
-                "activities[3].duration"
-            ]
-        );
-        // Valid: none; not JSON: the one error.
-        let valid = include_str!("../../assets/examples/pitfall.json");
-        assert!(plan_errors(valid).is_empty());
-        assert_eq!(plan_errors("{").len(), 1);
-        // Parsed: every semantic error.
-        let bad = valid.replace("\"energy_rate\": 20.0", "\"energy_rate\": -20.0");
-        let errors: Vec<String> = plan_errors(&bad).iter().map(|e| e.to_string()).collect();
-        assert_eq!(
-            errors,
-            [
-                "activities[0].energy_rate: must be >= 0 (got -20)",
-                "activities[1].energy_rate: must be >= 0 (got -20)"
-            ]
-        );
     }
 
     #[test]

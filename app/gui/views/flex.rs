@@ -11,7 +11,7 @@ use solscope_engine::{
 use super::Model;
 use crate::gui::theme::{WHISKER_MIN_REACH, WHISKER_STROKE, WHISKER_TICK};
 use crate::gui::time_axis::TimeAxis;
-use crate::state::{Command, FreeSlackProgress};
+use crate::state::{Command, FLEX_LAYER_MAX_ACTIVITIES, FreeSlackProgress};
 
 /// A bound as read: `10 min after zcam_tau_412 starts`, `when drive ends`.
 pub fn bound_line(m: &Model<'_>, b: &Bound) -> String {
@@ -410,7 +410,16 @@ pub fn flex_section_ui(ui: &mut egui::Ui, m: &Model<'_>, a: usize, cmds: &mut Ve
         }
     }
     ui.label(skip_line(m, fa));
-    if fa.free_slack.is_none() {
+    if fa.free_slack.is_none()
+        && !m.flex_shown()
+        && m.doc.plan.activities.len() > FLEX_LAYER_MAX_ACTIVITIES
+    {
+        ui.label(format!(
+            "Its free slack is computed once the flexibility layer is on (it starts off on \
+             plans of more than {FLEX_LAYER_MAX_ACTIVITIES} activities)."
+        ))
+        .on_hover_text(crate::gui::help::FREE_SLACK_PROGRESS);
+    } else if fa.free_slack.is_none() {
         if let Some(p) = m.free_slack {
             ui.horizontal_wrapped(|ui| {
                 if p.computing == Some(a) {

@@ -30,25 +30,28 @@ fn search_ui(
             key(UiCommand::PreviousMatch)
         ));
         let mut search = m.nav.filter.search.clone();
+        let id = ui.make_persistent_id("list_search");
+        if std::mem::take(&mut w.text.focus_search) {
+            // Focused before the field is drawn, so it takes the keys typed
+            // in the frame Ctrl+F came in; and Ctrl+F again selects what was
+            // typed, to type over it.
+            ui.memory_mut(|mem| mem.request_focus(id));
+            let mut state = egui::TextEdit::load_state(ui.ctx(), id).unwrap_or_default();
+            let all = egui::text::CCursorRange::two(
+                egui::text::CCursor::new(0),
+                egui::text::CCursor::new(search.chars().count()),
+            );
+            state.cursor.set_char_range(Some(all));
+            state.store(ui.ctx(), id);
+        }
         let field = ui
             .add(
                 egui::TextEdit::singleline(&mut search)
+                    .id(id)
                     .hint_text("id or name")
                     .desired_width(ui.available_width()),
             )
             .labelled_by(label.id);
-        if std::mem::take(&mut w.text.focus_search) {
-            field.request_focus();
-            // Ctrl+F again selects what was typed, to type over it.
-            if let Some(mut state) = egui::TextEdit::load_state(ui.ctx(), field.id) {
-                let all = egui::text::CCursorRange::two(
-                    egui::text::CCursor::new(0),
-                    egui::text::CCursor::new(search.chars().count()),
-                );
-                state.cursor.set_char_range(Some(all));
-                state.store(ui.ctx(), field.id);
-            }
-        }
         if field.changed() {
             cmds.push(Command::SetFilter(search));
         }

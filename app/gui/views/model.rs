@@ -149,10 +149,16 @@ impl Model<'_> {
         self.flex.and_then(|r| r.as_ref().ok()).map(AsRef::as_ref)
     }
 
+    /// Whether the flexibility layer is on (see [`Navigation::flex_shown`]).
+    pub fn flex_shown(&self) -> bool {
+        self.nav
+            .flex_shown(self.persisted.hide_flex, self.doc.plan.activities.len())
+    }
+
     /// The flexible schedule when the Gantt shows its layer (schedule mode,
     /// not hidden, derived).
     pub fn flex_layer(&self) -> Option<&'_ solscope_engine::Flex> {
-        let shown = self.nav.mode == Mode::Schedule && !self.persisted.hide_flex;
+        let shown = self.nav.mode == Mode::Schedule && self.flex_shown();
         self.flex_ready().filter(|_| shown)
     }
 

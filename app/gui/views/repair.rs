@@ -7,7 +7,7 @@ use eframe::egui::{self, RichText};
 use egui::text::CCursor;
 
 use super::{Model, command_button};
-use crate::gui::theme::{REPAIR_LIST_WIDTH, REPAIR_VALUE_HEIGHT};
+use crate::gui::theme::{REPAIR_LIST_WIDTH, REPAIR_PICK_SHOWN, REPAIR_VALUE_HEIGHT};
 use crate::state::repair::{Repair, char_range, locate};
 use crate::state::{Command, TextBuffers, UiCommand};
 
@@ -35,6 +35,7 @@ pub fn repair_ui(
         );
         ui.horizontal(|ui| {
             command_button(ui, UiCommand::RecheckRepair, true, cmds);
+            command_button(ui, UiCommand::UndoRepair, !repair.undo.is_empty(), cmds);
             command_button(ui, UiCommand::CancelRepair, true, cmds);
             if repair.checks > 1 {
                 ui.label(
@@ -86,6 +87,9 @@ pub fn repair_ui(
                     .labelled_by(label.id);
                 });
             command_button(ui, UiCommand::ReplaceAtError, true, cmds);
+            if e.is_unknown_activity() {
+                pick_id_ui(ui, m, repair, st, cmds);
+            }
             ui.separator();
         }
         let label = ui.label("Plan text");
@@ -136,4 +140,59 @@ pub fn repair_ui(
                 }
             });
     });
+}
+
+/// The plan's activity ids to put in place of an unknown `after` target:
+/// narrowed by what is typed, one click each.
+fn pick_id_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    repair: &Repair,
+    st: &mut TextBuffers,
+    cmds: &mut Vec<Command>,
+) {
+    ui.horizontal(|ui| {
+        let label = ui.label("Or pick one of the plan's activities:");
+        ui.add(
+            egui::TextEdit::singleline(&mut st.repair_pick)
+                .hint_text("type to narrow")
+                .desired_width(180.0),
+        )
+        .labelled_by(label.id);
+    });
+    let needle = st.repair_pick.to_lowercase();
+    let matching: Vec<&String> = repair
+        .ids
+        .iter()
+        .filter(|id| id.to_lowercase().contains(&needle))
+        .collect();
+    if matching.is_empty() {
+        ui.label(RichText::new("No activity id contains this.").color(m.theme.muted));
+        return;
+    }
+    egui::ScrollArea::vertical()
+        .id_salt("repair_pick")
+        .max_height(REPAIR_VALUE_HEIGHT)
+        .show(ui, |ui| {
+            ui.horizontal_wrapped(|ui| {
+                for id in matching.iter().take(REPAIR_PICK_SHOWN) {
+                    if ui
+                        .button(RichText::new(id.as_str()).monospace())
+                        .on_hover_text("Put this id here and re-check (Undo replace takes it back)")
+                        .clicked()
+                    {
+                        cmds.push(Command::RepairPickId((*id).clone()));
+                    }
+                }
+            });
+        });
+    if matching.len() > REPAIR_PICK_SHOWN {
+        ui.label(
+            RichText::new(format!(
+                "{} more: type to narrow them.",
+                matching.len() - REPAIR_PICK_SHOWN
+            ))
+            .color(m.theme.muted),
+        );
+    }
 }

@@ -74,7 +74,7 @@ pub(super) fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Comman
         }
         if m.nav.mode == Mode::Schedule {
             let cmd = UiCommand::ToggleFlex;
-            let mut shown = !m.persisted.hide_flex;
+            let mut shown = m.flex_shown();
             let mut resp = ui.checkbox(&mut shown, cmd.label());
             if let Some(shortcut) = kb_shortcut(cmd) {
                 resp = resp.on_hover_text(format!(
@@ -98,21 +98,37 @@ pub(super) fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Comman
         }
         ui.separator();
         let dirty = if m.doc.dirty { " (unsaved)" } else { "" };
-        ui.label(RichText::new(format!("{}{dirty}", m.doc.title())).strong());
+        // Whole, never wrapped inside the row (a wrapped label spans the
+        // row's width, under the mode switch): one that does not fit goes to
+        // the next row.
+        ui.add(
+            egui::Label::new(RichText::new(format!("{}{dirty}", m.doc.title())).strong()).extend(),
+        );
         let failed = m.analysis.failed();
         let n = m.doc.plan.activities.len();
-        ui.label(format!("{} of {n} scheduled, {failed} not", n - failed));
+        let counts = ui.add(
+            egui::Label::new(format!("{} of {n} scheduled, {failed} not", n - failed)).extend(),
+        );
         // The mode switch, at the right end (the other tools keep their place),
         // on a row of its own when the rest leaves it no room (it would be
         // drawn over the counts).
-        if ui.available_width() < mode_switch_width(ui) {
+        let modes = [
+            (UiCommand::ShowSchedule, Mode::Schedule),
+            (UiCommand::ShowExecution, Mode::Execution),
+        ];
+        // (From the counts' own rect: the row's cursor may stand past it.)
+        if ui.max_rect().right() - counts.rect.right() < mode_switch_width(ui) {
+            // A layout of its own would start on this row whatever: the
+            // next row, from the left.
             ui.end_row();
+            ui.label("View");
+            for (cmd, mode) in modes {
+                mode_button(ui, cmd, m.nav.mode == mode, cmds);
+            }
+            return;
         }
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-            for (cmd, mode) in [
-                (UiCommand::ShowExecution, Mode::Execution),
-                (UiCommand::ShowSchedule, Mode::Schedule),
-            ] {
+            for (cmd, mode) in modes.into_iter().rev() {
                 mode_button(ui, cmd, m.nav.mode == mode, cmds);
             }
             ui.label("View");
@@ -120,19 +136,24 @@ pub(super) fn toolbar_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Comman
     });
 }
 
-/// The width the mode switch ("View", "Schedule", "Execution") takes.
+/// The width the mode switch ("View", "Schedule", "Execution") takes, with
+/// a gap on its left.
 fn mode_switch_width(ui: &egui::Ui) -> f32 {
-    let font = egui::TextStyle::Button.resolve(ui.style());
     let spacing = ui.spacing();
-    let text = |t: &str| {
+    let text = |t: &str, style: egui::TextStyle| {
         ui.painter()
-            .layout_no_wrap(t.to_string(), font.clone(), egui::Color32::WHITE)
+            .layout_no_wrap(
+                t.to_string(),
+                style.resolve(ui.style()),
+                egui::Color32::WHITE,
+            )
             .size()
             .x
     };
     let buttons: f32 = [UiCommand::ShowSchedule, UiCommand::ShowExecution]
         .into_iter()
-        .map(|c| text(c.label()) + 2.0 * spacing.button_padding.x)
+        .map(|c| text(c.label(), egui::TextStyle::Button) + 2.0 * spacing.button_padding.x)
         .sum();
-    text("View") + buttons + 3.0 * spacing.item_spacing.x
+    // "View" is a label (body text); two spacings inside, one before it.
+    text("View", egui::TextStyle::Body) + buttons + 3.0 * spacing.item_spacing.x
 }

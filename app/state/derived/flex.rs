@@ -109,7 +109,40 @@ impl FlexCache {
                 compute_flex(&plan, &analysis, false)
             }));
         } else {
-            self.done = Some((revision, compute_flex(plan, analysis, true)));
+            // The free slack only when the layer is shown
+            // (`FlexCache::fill_free_slack`).
+            self.source = Some((revision, Arc::clone(&analysis.schedule)));
+            self.done = Some((revision, compute_flex(plan, analysis, false)));
+        }
+    }
+
+    /// In place (no worker: tests, `screenshot`), the free slack of every
+    /// activity at `revision` not known yet, once the first stage is in.
+    pub fn fill_free_slack(&mut self, revision: u64) {
+        let Some((r, Ok(flex))) = &mut self.done else {
+            return;
+        };
+        let Some((_, schedule)) = self.source.as_ref().filter(|(s, _)| *s == *r) else {
+            return;
+        };
+        if *r != revision {
+            return;
+        }
+        let todo: Vec<usize> = flex
+            .activities
+            .iter()
+            .filter(|fa| fa.free_slack.is_none())
+            .map(|fa| fa.activity)
+            .collect();
+        if todo.is_empty() {
+            return;
+        }
+        let found = solscope_engine::free_slack_each(schedule, &todo, None, &|_, _| {});
+        let flex = Arc::make_mut(flex);
+        for (a, fs) in todo.into_iter().zip(found) {
+            if let Some(fs) = fs {
+                flex.set_free_slack(a, fs);
+            }
         }
     }
 

@@ -210,8 +210,29 @@ impl AppState {
             .and_then(|r| r.errors.get(r.selected?))
             .and_then(|e| repair::locate(text, &e.path));
         if let Some(span) = at {
+            let before = text.clone();
             text.replace_range(span, &self.ui.text.repair_value);
+            if let Some(r) = self.ui.messages.repair.as_mut() {
+                r.undo.push(before);
+            }
         }
+        self.recheck_repair();
+    }
+
+    /// Repair view: puts `id` (as a JSON string) in place of the value at the
+    /// error looked at, as if typed there, and checks again.
+    pub(super) fn repair_pick_id(&mut self, id: &str) {
+        self.ui.text.repair_value = serde_json::Value::from(id).to_string();
+        self.replace_at_error();
+    }
+
+    /// Repair view: the plan text as it was before the last replacement,
+    /// checked again.
+    pub(super) fn undo_repair(&mut self) {
+        let Some(before) = self.ui.messages.repair.as_mut().and_then(|r| r.undo.pop()) else {
+            return;
+        };
+        self.ui.text.repair_text = before;
         self.recheck_repair();
     }
 
@@ -231,6 +252,7 @@ impl AppState {
             return;
         };
         repair.errors = repair::check(&self.ui.text.repair_text);
+        repair.ids = repair::activity_ids(&self.ui.text.repair_text);
         repair.checks += 1;
         repair.selected = None;
         if !repair.errors.is_empty() {

@@ -74,6 +74,7 @@ impl AppState {
             Command::SetFilter(f) => self.ui.nav.filter.search = f,
             Command::SetListFilter(f) => self.ui.nav.filter = f,
             Command::RepairJump(i) => self.repair_jump(i),
+            Command::RepairPickId(id) => self.repair_pick_id(&id),
             Command::ShowError(e) => self.ui.messages.error = Some(e),
             Command::OfferPin { activity, start } => {
                 self.ui.messages.pin = Some(super::PinOffer { activity, start });
@@ -108,6 +109,7 @@ impl AppState {
             | U::Quit => self.run_file(cmd),
             U::RecheckRepair => self.recheck_repair(),
             U::ReplaceAtError => self.replace_at_error(),
+            U::UndoRepair => self.undo_repair(),
             U::CancelRepair => self.cancel_repair(),
             U::Undo | U::Redo | U::AddActivity | U::DuplicateActivity | U::DeleteActivity => {
                 self.run_edit(cmd);
@@ -141,7 +143,7 @@ impl AppState {
             | U::PreviousCycle
             | U::NextCycle
             | U::CancelCampaign => self.run_execution(cmd),
-            U::ToggleFlex => self.persisted.hide_flex = !self.persisted.hide_flex,
+            U::ToggleFlex => self.toggle_flex(),
             U::TunePriorities
             | U::CancelTune
             | U::ApplyTuning

@@ -84,7 +84,7 @@ pub fn gantt_ui(ui: &mut egui::Ui, m: &Model<'_>, cache: &mut ViewCache, cmds: &
     };
     if run.is_some() {
         execution::legend_ui(ui, m);
-    } else if !m.persisted.hide_flex {
+    } else if m.flex_shown() {
         flex::legend_ui(ui, m);
     }
     if run.is_none() && cache.gantt_revealed != Some(m.nav.selected) {
