@@ -45,7 +45,7 @@ proptest! {
         prop_assert_eq!(models(&loaded.plan), models(&plan));
         let actuals = sample_actuals(&plan, run);
         for policy in [Policy::Replan, Policy::Dispatch, Policy::Fixed] {
-            let options = ExecuteOptions { policy, ..ExecuteOptions::default() };
+            let options = ExecuteOptions { policy };
             let ex = execute_with(&plan, &actuals, options)
                 .map_err(|e| TestCaseError::fail(format!("{policy:?}: {e}")))?;
             prop_assert!(!ex.cycles.is_empty());
