@@ -125,6 +125,16 @@ impl Plan {
             cycle: self.cycle.clone(),
         }
     }
+
+    /// Each activity's index in `activities`, by id (ids are unique in a
+    /// loaded plan).
+    pub(crate) fn index_by_id(&self) -> std::collections::BTreeMap<&str, usize> {
+        self.activities
+            .iter()
+            .enumerate()
+            .map(|(i, a)| (a.id.as_str(), i))
+            .collect()
+    }
 }
 
 /// The `execution` section: when scheduling cycles happen while the plan runs.

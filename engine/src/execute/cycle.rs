@@ -95,12 +95,7 @@ pub(super) struct Links {
 
 impl Links {
     pub(super) fn new(plan: &Plan) -> Self {
-        let ids: std::collections::BTreeMap<&str, usize> = plan
-            .activities
-            .iter()
-            .enumerate()
-            .map(|(i, a)| (a.id.as_str(), i))
-            .collect();
+        let ids = plan.index_by_id();
         Self {
             after: plan
                 .activities

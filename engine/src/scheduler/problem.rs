@@ -478,12 +478,7 @@ impl Problem {
         plan: &Plan,
         reuse: Option<(&Problem, Option<usize>)>,
     ) -> Result<Problem, Error> {
-        let ids: BTreeMap<&str, usize> = plan
-            .activities
-            .iter()
-            .enumerate()
-            .map(|(i, a)| (a.id.as_str(), i))
-            .collect();
+        let ids = plan.index_by_id();
         let mut resources: BTreeMap<&str, usize> = BTreeMap::new();
         let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
         let mut groups: BTreeMap<&str, usize> = BTreeMap::new();

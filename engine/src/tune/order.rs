@@ -55,12 +55,7 @@ impl Rules {
                 pinned_at[rank[a]] = Some(a);
             }
         }
-        let ids: std::collections::BTreeMap<&str, usize> = plan
-            .activities
-            .iter()
-            .enumerate()
-            .map(|(i, a)| (a.id.as_str(), i))
-            .collect();
+        let ids = plan.index_by_id();
         let mut before = vec![Vec::new(); n];
         let mut after = vec![Vec::new(); n];
         for (a, act) in plan.activities.iter().enumerate() {
