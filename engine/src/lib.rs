@@ -42,11 +42,11 @@ pub use execute::{
     sample_actuals, sample_run, summarize,
 };
 pub use explain::{
-    Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, ReasonRange, Relaxation,
-    Suggestion, energy_consumers, explain, explain_each, explain_rendered, explain_text,
-    explanation_notes, explanation_notes_and_lead, explanation_text, involved, minimal_conflicts,
-    peak_users, reason_line, reasons_in_reading_order, suggestion_description, suggestion_line,
-    verified_suggestions,
+    Blame, Consumer, Culprit, ExplainOptions, Explanation, Phase, REASON_RANGES_MAX, ReasonRange,
+    Relaxation, Suggestion, energy_consumers, explain, explain_each, explain_rendered,
+    explain_text, explanation_notes, explanation_notes_and_lead, explanation_text, involved,
+    minimal_conflicts, peak_users, reason_line, reasons_in_reading_order, suggestion_description,
+    suggestion_line, verified_suggestions,
 };
 pub use flex::{
     Bound, Constraint, Controllability, DispatchEdge, EventBounds, Flex, FlexActivity, FlexOptions,

@@ -128,6 +128,10 @@ pub struct Explanation {
     pub relaxations: Vec<Relaxation>,
     /// Phase-2 failures, grouped into ranges of starts, in the order tried.
     pub reasons: Vec<ReasonRange>,
+    /// When more than [`REASON_RANGES_MAX`] ranges failed: how many there were
+    /// before `reasons` joined those of one duration and reason across the
+    /// starts between them that were not tried (`None`: listed as tried).
+    pub reasons_joined: Option<usize>,
     /// Placed activities to blame.
     pub culprits: Vec<Culprit>,
     /// Verified suggestions, least disruptive first.
@@ -243,6 +247,7 @@ pub fn explain_rendered<R: Send>(
             let step = &sched.steps[step_of[a] - 1];
             let mut ex = from_probe(sched, a, step, k, record, trace);
             ex.culprits = culprits::culprits(state, &ex, &rank);
+            join_untried_gaps(&mut ex);
             ex
         },
         |i, ex| found.borrow_mut()[i] = Some(ex),
@@ -259,6 +264,7 @@ pub fn explain_rendered<R: Send>(
             let state = sched.state_after(step.step - 1);
             let mut ex = from_step(a, step, step_intervals(&state, step));
             ex.culprits = culprits::culprits(&state, &ex, &rank);
+            join_untried_gaps(&mut ex);
             found.borrow_mut()[i] = Some(ex);
         }
     }
@@ -276,6 +282,65 @@ pub fn explain_rendered<R: Send>(
         render_each(done.collect(), &render, each);
     }
     Ok(())
+}
+
+/// The most reason ranges an explanation lists one by one. Past it, ranges of
+/// one duration and one reason that only starts not tried separate (starts
+/// outside the windows, or failing phase 1) are joined: one entry per run of a
+/// reason instead of one per window, so that a plan of many windows gets an
+/// explanation in proportion to what differs, not to its windows. Plans with
+/// fewer ranges list them exactly as tried.
+pub const REASON_RANGES_MAX: usize = 1000;
+
+/// Whether two reasons are the same for [`join_untried_gaps`]: the same kind,
+/// about the same manual sleep or zone (numbers may differ).
+fn same_reason(x: &Phase2Reason, y: &Phase2Reason) -> bool {
+    use Phase2Reason as R;
+    match (x, y) {
+        (R::ForcedSleep { sleep: a }, R::ForcedSleep { sleep: b })
+        | (R::MinAwake { sleep: a }, R::MinAwake { sleep: b }) => a == b,
+        (R::MinSleep { sleep: a }, R::MinSleep { sleep: b }) => a == b,
+        (R::PreheatOutsidePlan { zone: a, .. }, R::PreheatOutsidePlan { zone: b, .. })
+        | (R::PreheatOperability { zone: a, .. }, R::PreheatOperability { zone: b, .. }) => a == b,
+        _ => x.kind() == y.kind(),
+    }
+}
+
+/// When `ex` lists more than [`REASON_RANGES_MAX`] reason ranges, joins each
+/// run of ranges (in their order: duration, longest first, then start) of one
+/// duration and the same reason ([`same_reason`]) into one range from the
+/// first start to the last, keeping the numbers of the range that came
+/// closest to passing (the earliest on a tie, as the ranges themselves keep
+/// theirs). Only in phase `placement`, where no start passed: the ranges of
+/// a duration list every start tried, in order, so no start between two
+/// joined ranges was tried with that duration and another outcome. The
+/// culprits are those of the ranges before joining (`ex.culprits` is filled
+/// first).
+fn join_untried_gaps(ex: &mut Explanation) {
+    if ex.reasons.len() <= REASON_RANGES_MAX
+        || ex.phase != Some(Phase::Placement)
+        || ex.outcome.placement().is_some()
+    {
+        return;
+    }
+    let before = ex.reasons.len();
+    let mut out: Vec<ReasonRange> = Vec::new();
+    for r in std::mem::take(&mut ex.reasons) {
+        match out.last_mut() {
+            Some(last) if last.duration == r.duration && same_reason(&last.reason, &r.reason) => {
+                let (lc, rc) = (last.reason.closeness(), r.reason.closeness());
+                // Later ranges start later: a tie keeps the earlier numbers.
+                if rc > lc {
+                    last.reason = r.reason;
+                    last.probe = r.probe;
+                }
+                last.last = last.last.max(r.last);
+            }
+            _ => out.push(r),
+        }
+    }
+    ex.reasons = out;
+    ex.reasons_joined = Some(before);
 }
 
 /// Hands `render(explanation)` of each explanation to `each`, in order,
@@ -338,6 +403,7 @@ fn from_step(a: usize, step: &Step, trace: StepTrace) -> Explanation {
         conflicts: Vec::new(),
         relaxations: Vec::new(),
         reasons: Vec::new(),
+        reasons_joined: None,
         culprits: Vec::new(),
         suggestions: Vec::new(),
         together: None,
@@ -399,6 +465,7 @@ fn from_probe(
         conflicts,
         relaxations,
         reasons,
+        reasons_joined: None,
         culprits: Vec::new(),
         suggestions: Vec::new(),
         together: None,

@@ -368,6 +368,11 @@ pub fn explanation_notes_and_lead(
                     ex.reasons.len() - 8
                 ));
             }
+            if let Some(before) = ex.reasons_joined {
+                notes.push(format!(
+                    "(The starts tried fell into {before} ranges; ranges of one duration failing for the same reason are joined across the starts between them that were not tried, so each range also spans starts outside the windows or ruled out by timing and resources.)"
+                ));
+            }
         }
     }
     match ex.together.as_deref() {

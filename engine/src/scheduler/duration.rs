@@ -188,12 +188,15 @@ fn shortest_starts(state: &State<'_>, a: usize, scope: &Scope, span: (i64, i64))
     let act = &state.problem.acts[a];
     let relaxed = scope.without_end_effects();
     let others = state.phase1_others(a, act.dur_min, &relaxed, span.0, span.1);
-    act.windows
-        .iter()
-        .map(|w| state.window_range(a, w, act.dur_min))
-        .fold(IntervalSet::empty(), |acc, r| {
-            acc.union(&others.clip(r.lo, r.hi))
-        })
+    // One set made from every window's pieces (a union per window would be
+    // quadratic in the windows).
+    IntervalSet::from_intervals(
+        act.windows
+            .iter()
+            .map(|w| state.window_range(a, w, act.dur_min))
+            .flat_map(|r| others.clip(r.lo, r.hi).intervals().to_vec())
+            .collect(),
+    )
 }
 
 /// Whether some start of `starts` can pass the peak power check with some

@@ -38,7 +38,7 @@ use trace::{Rejected, merge_tries_with};
 
 use crate::error::Error;
 use crate::model::Plan;
-use crate::timeline::IntervalSet;
+use crate::timeline::{Interval, IntervalSet};
 
 /// Which of an activity's dependencies and requirements a probe leaves out (the
 /// explainer's inclusion rule for failure steps). The scheduler itself includes all.
@@ -724,7 +724,9 @@ pub(super) fn try_duration(
     }
     let categories = state.phase1_in(a, d, scope, span.0, span.1);
     let others = outside_execution(&categories, span);
-    let mut union = IntervalSet::empty();
+    // Every window's candidates, made one set once all are walked (a union per
+    // window would copy the set so far each time: quadratic in the windows).
+    let mut pieces: Vec<Interval> = Vec::new();
     let mut found = None;
     let mut tries = Vec::new();
     let mut rejected = Rejected::default();
@@ -734,7 +736,7 @@ pub(super) fn try_duration(
         if cand.is_empty() {
             continue;
         }
-        union = union.union(&cand);
+        pieces.extend_from_slice(cand.intervals());
         if found.is_none() {
             found = if record {
                 let (chosen, t) = state.search(a, d, &cand, w.preferred);
@@ -747,6 +749,7 @@ pub(super) fn try_duration(
             };
         }
     }
+    let union = IntervalSet::from_intervals(pieces);
     Tried {
         categories,
         any: !union.is_empty(),

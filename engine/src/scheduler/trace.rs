@@ -186,7 +186,7 @@ pub struct Try {
 impl Phase2Reason {
     /// How close to passing the start that gave this reason came (higher is
     /// closer): the state of charge reached, minus the peak reached.
-    fn closeness(&self) -> i64 {
+    pub(crate) fn closeness(&self) -> i64 {
         match *self {
             Phase2Reason::MinSoc { soc_mj, .. } | Phase2Reason::HandoverSoc { soc_mj } => soc_mj,
             Phase2Reason::MaxPeakPower { peak_mw, .. } => peak_mw.saturating_neg(),
