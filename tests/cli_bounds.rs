@@ -150,12 +150,127 @@ fn few_windows_list_every_range_as_tried() {
     for r in reasons {
         let (start, end) = (r["start"].as_i64().unwrap(), r["end"].as_i64().unwrap());
         assert_eq!(start % 1000, 0);
-        assert!(end - start <= 300, "{start}..={end} spans more than a window");
+        assert!(
+            end - start <= 300,
+            "{start}..={end} spans more than a window"
+        );
     }
-    let joined = ex["notes"]
+    let joined = ex["notes"].as_array().unwrap().iter().any(|n| {
+        n.as_str()
+            .unwrap()
+            .starts_with("(The starts tried fell into")
+    });
+    assert!(!joined);
+}
+
+/// `activities` expanding activities (10 min to 2 h) heated in a zone with an
+/// operable period, without windows, over a horizon of `horizon` seconds; they
+/// draw little, so each fits in the first sols.
+fn heated_plan(activities: usize, horizon: i64) -> Value {
+    let acts: Vec<Value> = (0..activities)
+        .map(|a| {
+            json!({
+                "id": format!("h{a}"),
+                "priority": a + 1,
+                "duration": { "min": 600, "max": 7200 },
+                "energy_rate": 20.0,
+                "thermal_zones": ["arm"],
+                "awake": "required",
+            })
+        })
+        .collect();
+    json!({
+        "format": "solscope.plan/1",
+        "name": "heated over a long horizon",
+        "horizon": { "start": 0, "end": horizon },
+        "battery": { "capacity": 1600.0, "initial": 1150.0, "min_soc": 600.0 },
+        "power": { "rtg": 110.0, "asleep": 25.0, "awake": 180.0 },
+        "sleep": { "wakeup_duration": 300, "shutdown_duration": 300, "min_awake": 1800, "min_sleep": 3600 },
+        "thermal_zones": { "arm": {
+            "preheat": [ { "from": 0, "duration": 3600 }, { "from": 32000, "duration": 2400 } ],
+            "preheat_power": 45.0, "maintenance_power": 15.0,
+            "operable": [ { "from": 28800, "to": 64800 } ]
+        } },
+        "activities": acts,
+    })
+}
+
+fn write_plan(dir: &Path, plan: &Value) -> String {
+    let path = dir.join("plan.json");
+    std::fs::write(&path, serde_json::to_vec(plan).unwrap()).unwrap();
+    path.display().to_string()
+}
+
+#[test]
+fn heated_expanding_searches_over_too_many_sols_are_refused_path_named() {
+    let dir = scratch("heated");
+    // 1e9 s is 11,265 sols of 88,775 s: two such activities pass 20,000.
+    let path = write_plan(&dir, &heated_plan(2, 1_000_000_000));
+    for command in ["schedule", "explain", "execute", "flex"] {
+        let out = run(&[command, &path]);
+        assert_eq!(out.status.code(), Some(2), "{command}");
+        assert!(out.stdout.is_empty(), "{command} printed a document");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.starts_with("error: activities[1].duration: expanding activities heated in a zone with operable periods"),
+            "{command}: {err}"
+        );
+        assert!(
+            err.contains("\"h1\" brings the plan to 22530 (11265 of its own)"),
+            "{err}"
+        );
+    }
+    // One of them is within the limit and schedules.
+    let path = write_plan(&dir, &heated_plan(1, 1_000_000_000));
+    let out = run(&["schedule", &path]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let doc: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(doc["activities"][0]["status"], "scheduled");
+}
+
+#[test]
+fn suggestions_for_too_many_failures_are_refused_but_one_failure_is_explained() {
+    let dir = scratch("suggestions");
+    let generated = run(&["generate", "--activities", "2500", "--sols", "1"]);
+    assert!(generated.status.success());
+    let path = dir.join("plan.json");
+    std::fs::write(&path, &generated.stdout).unwrap();
+    let path = path.display().to_string();
+    let out = run(&["explain", &path]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.starts_with("error: activities: ") && err.contains(" of the 2500 activities fail;"),
+        "{err}"
+    );
+    assert!(
+        err.contains("use --no-suggestions, or --activity ID"),
+        "{err}"
+    );
+    // The last failure alone, with its suggestions verified (reruns from its
+    // step on: the cheapest for a debug build).
+    let sched = run(&["schedule", &path]);
+    let doc: Value = serde_json::from_slice(&sched.stdout).unwrap();
+    let failed = doc["activities"]
         .as_array()
         .unwrap()
         .iter()
-        .any(|n| n.as_str().unwrap().starts_with("(The starts tried fell into"));
-    assert!(!joined);
+        .rfind(|a| a["status"] == "failed")
+        .unwrap()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let out = run(&["explain", "--activity", &failed, &path]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let doc: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(doc["explanations"][0]["activity"], failed.as_str());
 }

@@ -21,11 +21,19 @@ pub fn run(args: &ExplainArgs, limit: usize, output: Option<&Path>) -> Result<()
     let text = args.text;
     let source = solscope_engine::read_plan_text(&args.plan, limit)?;
     let loaded = solscope_engine::load_plan_limited(&source, limit)?;
+    super::bounds::heated_search(&loaded.plan)?;
     let schedule = solscope_engine::schedule(&loaded.plan)?;
     if let Some(id) = &opts.activity {
         if !loaded.plan.activities.iter().any(|a| &a.id == id) {
             return Err(solscope_engine::Error::UnknownActivity(id.clone()).into());
         }
+    } else if !opts.no_suggestions {
+        let failures = schedule
+            .steps
+            .iter()
+            .filter(|s| s.outcome.placement().is_none())
+            .count();
+        super::bounds::suggested_work(failures, loaded.plan.activities.len())?;
     }
     let progress = Progress::new(schedule.steps.len() as u64);
     let mut file = match output {

@@ -11,6 +11,7 @@
 //! 0, quietly).
 
 pub mod args;
+mod bounds;
 mod check;
 mod execute;
 mod explain;
@@ -74,10 +75,13 @@ fn unwritable(path: &Path, e: &std::io::Error) -> Failure {
     Failure::Output(format!("{}: could not write: {e}", path.display()))
 }
 
-/// Reads and loads a plan file of at most `limit` bytes.
+/// Reads and loads a plan file of at most `limit` bytes, within the command
+/// line's limit on the duration searches ([`bounds::heated_search`]).
 fn load(plan: &Path, limit: usize) -> Result<solscope_engine::LoadedPlan, solscope_engine::Error> {
     let text = solscope_engine::read_plan_text(plan, limit)?;
-    solscope_engine::load_plan_limited(&text, limit)
+    let loaded = solscope_engine::load_plan_limited(&text, limit)?;
+    bounds::heated_search(&loaded.plan)?;
+    Ok(loaded)
 }
 
 /// The plan's display name when the file does not give one: the file name.

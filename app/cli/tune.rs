@@ -20,6 +20,7 @@ static CANCEL: AtomicBool = AtomicBool::new(false);
 pub fn run(args: &TuneArgs, limit: usize) -> Result<String, Failure> {
     let text = solscope_engine::read_plan_text(&args.plan, limit)?;
     let plan = solscope_engine::load_plan_limited(&text, limit)?.plan;
+    super::bounds::heated_search(&plan)?;
     if let Some(target) = &args.write_plan {
         check_target(target)?;
     }
