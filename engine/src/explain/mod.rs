@@ -290,7 +290,7 @@ pub fn explain_rendered<R: Send>(
 /// reason instead of one per window, so that a plan of many windows gets an
 /// explanation in proportion to what differs, not to its windows. Plans with
 /// fewer ranges list them exactly as tried.
-pub const REASON_RANGES_MAX: usize = 1000;
+pub const REASON_RANGES_MAX: usize = 5000;
 
 /// Whether two reasons are the same for [`join_untried_gaps`]: the same kind,
 /// about the same manual sleep or zone (numbers may differ).
