@@ -264,23 +264,32 @@ impl<'p> State<'p> {
     }
 
     /// The placement of an activity still executing when a cycle starts: at its
-    /// first window's start for its longest duration, generating nothing and
-    /// checking nothing (its loads are the problem's fixed loads).
+    /// first window's start for its longest duration, generating nothing (no
+    /// awake period, no preheat) and checking nothing. Applying it still adds
+    /// its own load and its zones' maintenance draw ([`State::apply`]), so its
+    /// `energy` is the charge those change, as for any evaluation: the
+    /// explainer bounds what a step can do to a witness's energy margin by it.
     pub fn held_placement(&self, a: usize) -> super::Evaluated {
         let act = &self.problem.acts[a];
         let start = act.windows.first().map_or(self.problem.h0, |w| w.start);
+        let duration = act.dur_max;
+        let energy =
+            super::phase2::drain_of_pieces(&self.load_pieces(a, start, duration, &[], None, &[]))
+                .iter()
+                .map(|&(x, y, r)| i128::from(r).abs() * i128::from(y - x))
+                .sum();
         super::Evaluated {
             placement: Placement {
                 act: a,
                 start,
-                duration: act.dur_max,
+                duration,
                 retire: Vec::new(),
                 new_awake: None,
                 preheats: Vec::new(),
             },
             margin: 0,
             soc_reason: None,
-            energy: 0,
+            energy,
         }
     }
 
@@ -451,6 +460,41 @@ mod tests {
             vec![(0, 10), (20, 50), (60, 100)]
         );
         assert_eq!(uncovered(0, 100, [(0, 100)].into_iter()), vec![]);
+    }
+
+    /// A held activity's evaluation counts the charge its application
+    /// drains (the explainer bounds a step's effect on the state of charge by
+    /// it), though it generates nothing and checks nothing.
+    #[test]
+    fn held_placement_counts_its_own_drain() {
+        let text = r#"{
+          "format": "solscope.plan/1",
+          "horizon": { "start": 0, "end": 20000 },
+          "local_time": { "sol_length": 88775, "offset": 0 },
+          "battery": { "capacity": 2000.0, "initial": 1500.0, "min_soc": 1000.0 },
+          "power": { "rtg": 25.0, "asleep": 25.0, "awake": 125.0 },
+          "sleep": { "wakeup_duration": 300, "shutdown_duration": 300, "min_awake": 0, "min_sleep": 0 },
+          "activities": [
+            { "id": "look", "priority": 1, "duration": 600,
+              "windows": [ { "start": 5000, "end": 10000 } ],
+              "energy_rate": 1.0, "awake": "any" }
+          ]
+        }"#;
+        let mut plan = crate::load::load_plan(text).expect("the plan loads").plan;
+        plan.cycle = Some(crate::model::CycleStart {
+            held: vec!["look".to_owned()],
+            ..Default::default()
+        });
+        let problem = super::super::Problem::compile(&plan).expect("compiles");
+        let mut state = State::new(&problem);
+        let ev = state.held_placement(0);
+        assert_eq!((ev.placement.start, ev.placement.duration), (5000, 600));
+        let before = state.soc.level_at(problem.h1);
+        state.apply(1, &ev.placement);
+        let drained = before - state.soc.level_at(problem.h1);
+        // 600 s at 1 W.
+        assert_eq!(drained, 600_000);
+        assert_eq!(ev.energy, drained);
     }
 
     #[test]
