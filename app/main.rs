@@ -11,13 +11,6 @@ use std::process::ExitCode;
 use clap::Parser;
 use solscope::cli::{Cli, Failure};
 
-/// The allocator of the whole process: an execution's cycles and a Monte Carlo
-/// campaign's runs build and drop a plan, a compiled problem and a scheduler
-/// state at every cycle, and the system allocator took about a third of their
-/// time (docs/performance.md, "Execution and Monte Carlo").
-#[global_allocator]
-static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
