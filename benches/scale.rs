@@ -11,7 +11,8 @@
 //! every failure without suggestions, and reports for each the median and the worst (the plan of a sweep that costs most, not only the seed-1
 //! plan the table measures). `--execution` measures executions instead: the bundled
 //! plan (nominal and sampled), 1,000 activities of both profiles, and a Monte Carlo
-//! campaign of 1,000 runs of the bundled plan. `--flex` measures flexible schedules:
+//! campaign of 1,000 runs of the bundled plan, then `tune` of the bundled plan with the
+//! defaults (the whole and its first improvement). `--flex` measures flexible schedules:
 //! the network, bounds, minimum dispatchable network and controllability, and the
 //! free slack apart, on 1,000 and 10,000 activities of both profiles (worst of
 //! `--sweep N` seeds too when given). `--huge` measures 200,000 activities over 30
@@ -667,6 +668,43 @@ fn execution() {
         std::thread::available_parallelism().map_or(1, |n| n.get()),
         ms(runs_time),
         ms(t.elapsed())
+    );
+    tune_defaults(&bundled);
+}
+
+/// `tune` of the bundled plan with the defaults, as `solscope tune` runs it:
+/// the whole (wall and process CPU time) and when the best score first
+/// changed (the first improvement), with the orders scored by then.
+fn tune_defaults(plan: &solscope_engine::Plan) {
+    use solscope_engine::{Score, TuneOptions, tune};
+    // The first best score seen, then when (and after how many orders) it changed.
+    type First = (Option<Score>, Option<(Duration, u64)>);
+    let first: std::sync::Mutex<First> = std::sync::Mutex::new((None, None));
+    let start = Instant::now();
+    let cpu = tuning::cpu_time();
+    let progress = |evaluations: u64, best: &Score| {
+        let mut f = first.lock().unwrap();
+        match &f.0 {
+            None => f.0 = Some(best.clone()),
+            Some(s) if s != best && f.1.is_none() => f.1 = Some((start.elapsed(), evaluations)),
+            Some(_) => {}
+        }
+    };
+    let options = TuneOptions {
+        progress: Some(&progress),
+        ..TuneOptions::default()
+    };
+    let tuned = tune(plan, &options).expect("tune");
+    let (wall, cpu) = (start.elapsed(), tuning::cpu_time() - cpu);
+    let improved = match first.lock().unwrap().1 {
+        Some((t, n)) => format!("first improvement at {} (after {n} orders)", ms(t)),
+        None => "no improvement".to_string(),
+    };
+    println!(
+        "tune, bundled plan, defaults: {} wall, {} CPU, {} orders scored; {improved}",
+        ms(wall),
+        ms(cpu),
+        tuned.evaluations
     );
 }
 

@@ -3,7 +3,8 @@
 //! bad actuals are refused at their path with nothing on stdout, a sampled run
 //! written with --write-actuals replays to the same document, a Monte Carlo run
 //! replays as `execute --sample S --run I`, and shards merge into exactly the
-//! one-machine summary, also as CSV.
+//! one-machine summary, also as CSV; a replanning campaign of a long
+//! dependency chain is refused at the chain.
 
 // Test helpers outside `#[test]` functions are not covered by clippy.toml's
 // allow-*-in-tests; a failed expectation here is a test failure.
@@ -424,4 +425,60 @@ fn an_activity_listed_twice_in_actuals_is_refused() {
         r#"{ "format": "solscope.actuals/1", "durations": { "drive": 6300, "arm_science": 2000 } }"#,
     );
     ok_json(&["execute", EXAMPLE, "--actuals", once.to_str().unwrap()]);
+}
+
+/// A chain of `n` activities of 600 s, each meeting the one before, every
+/// tenth with a duration model (the shape docs/performance.md measures).
+fn meets_chain(n: usize) -> String {
+    let activities: Vec<Value> = (0..n)
+        .map(|i| {
+            let mut a = serde_json::json!({
+                "id": format!("a{i}"), "priority": i + 1, "duration": 600,
+                "energy_rate": 40.0, "resources": ["arm"]
+            });
+            if i > 0 {
+                a["after"] =
+                    serde_json::json!([{ "activity": format!("a{}", i - 1), "meets": true }]);
+            }
+            if i % 10 == 5 {
+                a["duration_model"] = serde_json::json!({ "min": 400, "max": 900 });
+            }
+            a
+        })
+        .collect();
+    serde_json::json!({
+        "format": "solscope.plan/1",
+        "name": "chain",
+        "horizon": { "start": 0, "end": n * 1200 + 10000 },
+        "battery": { "capacity": 2000.0, "initial": 1500.0, "min_soc": 500.0 },
+        "power": { "rtg": 200.0, "asleep": 25.0, "awake": 150.0 },
+        "sleep": { "wakeup_duration": 300, "shutdown_duration": 300,
+                   "min_awake": 1800, "min_sleep": 3600 },
+        "activities": activities
+    })
+    .to_string()
+}
+
+#[test]
+fn a_replanning_campaign_of_a_long_dependency_chain_is_refused_at_the_chain() {
+    // 20 runs of a 2,000-activity chain: each run schedules the rest of the
+    // chain at every end (minutes of CPU), refused before any run.
+    let long = scratch("chain-2000.json", &meets_chain(2000));
+    let long = long.to_str().expect("UTF-8 path");
+    let err = refused(&["montecarlo", long, "--runs", "20"]);
+    assert!(err.contains("activities[1999].after"), "{err}");
+    assert!(err.contains("chain of 2000 activities"), "{err}");
+    assert!(err.contains("at most 5"), "{err}");
+    // The bound is on the work: a short chain runs a few runs, and is refused
+    // past the same work.
+    let short = scratch("chain-100.json", &meets_chain(100));
+    let short = short.to_str().expect("UTF-8 path");
+    let summary = ok_json(&["montecarlo", short, "--runs", "3"]);
+    assert_eq!(summary["runs"], 3, "{summary}");
+    let err = refused(&["montecarlo", short, "--runs", "2001"]);
+    assert!(err.contains("activities[99].after"), "{err}");
+    assert!(err.contains("at most 2000"), "{err}");
+    // A policy that does not replan is not bounded: one run past the bound.
+    let fixed = ok_json(&["montecarlo", long, "--runs", "6", "--policy", "fixed"]);
+    assert_eq!(fixed["runs"], 6, "{fixed}");
 }

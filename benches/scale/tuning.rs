@@ -266,7 +266,7 @@ fn timed<T>(f: impl FnOnce() -> T) -> (T, Duration, Duration) {
 }
 
 /// The CPU time of this process so far (user and system, all threads).
-fn cpu_time() -> Duration {
+pub fn cpu_time() -> Duration {
     let Ok(stat) = std::fs::read_to_string("/proc/self/stat") else {
         return Duration::ZERO;
     };

@@ -187,6 +187,9 @@ pub(crate) fn runs_of(
     // other policies share the schedule (and its flexible form).
     let problem = crate::scheduler::Problem::compile(plan)?;
     let policy = campaign.policy;
+    if policy.is_replan() {
+        chain_bound(plan, indices.len())?;
+    }
     let options = ExecuteOptions { policy };
     let (prefix, prepared) = if policy.is_replan() {
         (Some(Prefix::nominal(&problem, plan)?), None)
@@ -219,6 +222,77 @@ pub(crate) fn runs_of(
         }
     }
     Ok(Some(out))
+}
+
+/// The most replanning work one process takes on for a campaign, in scheduler
+/// steps: `runs` times `L * L` for the longest chain of `L` activities linked
+/// by dependencies. Each end in such a chain triggers a cycle that schedules
+/// the rest of the chain again, every step of it searched (a dependent's start
+/// is never its window's preferred time), so a run costs about `L * L / 2`
+/// searched steps (a 2,000-activity `meets` chain: 2,001 cycles, 13 s of CPU;
+/// docs/performance.md, "Replanning chains and long horizons"). The bound keeps
+/// a campaign of such a chain near a minute on two cores.
+const MAX_CHAIN_WORK: u128 = 20_000_000;
+
+/// Chains shorter than this never decide the bound: their cycles are few.
+const MIN_BOUNDED_CHAIN: usize = 64;
+
+/// Refuses a replanning campaign of `runs` runs in one process whose longest
+/// dependency chain makes it cost more than [`MAX_CHAIN_WORK`] steps, naming
+/// the chain's last activity.
+fn chain_bound(plan: &Plan, runs: usize) -> Result<(), Error> {
+    let Some((len, last)) = longest_chain(plan) else {
+        return Ok(());
+    };
+    let per_run = (len as u128) * (len as u128);
+    if len < MIN_BOUNDED_CHAIN || (runs as u128) * per_run <= MAX_CHAIN_WORK {
+        return Ok(());
+    }
+    let most = MAX_CHAIN_WORK / per_run;
+    Err(Error::invalid(
+        format!("activities[{last}].after"),
+        format!(
+            "`{}` ends a chain of {len} activities linked by dependencies: replanning \
+             schedules the rest of the chain again at each of its ends, so {runs} runs \
+             in one process are more than this chain allows (at most {most}); ask for \
+             fewer runs (--runs), split the campaign (--shard I/K), or use \
+             --policy dispatch or fixed",
+            plan.activities[last].id
+        ),
+    ))
+}
+
+/// The longest chain of activities linked by dependencies (`after`): its
+/// length in activities and its last activity (the first in file order among
+/// the longest), if the plan has activities. Dependencies that form a cycle
+/// (a plan the loader refuses) are not followed.
+fn longest_chain(plan: &Plan) -> Option<(usize, usize)> {
+    let n = plan.activities.len();
+    let ids = plan.index_by_id();
+    let mut dependents: Vec<Vec<usize>> = vec![Vec::new(); n];
+    let mut waiting = vec![0usize; n];
+    for (i, a) in plan.activities.iter().enumerate() {
+        for d in &a.after {
+            if let Some(&j) = ids.get(d.activity.as_str()) {
+                dependents[j].push(i);
+                waiting[i] += 1;
+            }
+        }
+    }
+    let mut len = vec![1usize; n];
+    let mut ready: Vec<usize> = (0..n).filter(|&i| waiting[i] == 0).collect();
+    while let Some(j) = ready.pop() {
+        for &i in &dependents[j] {
+            len[i] = len[i].max(len[j] + 1);
+            waiting[i] -= 1;
+            if waiting[i] == 0 {
+                ready.push(i);
+            }
+        }
+    }
+    let best = len.iter().copied().max()?;
+    let last = len.iter().position(|&l| l == best)?;
+    Some((best, last))
 }
 
 /// One run's record (executed from the start).
