@@ -77,3 +77,72 @@ fn a_big_plan_opened_with_the_list_scrolled_down_lists_from_row_0() {
     );
     assert!(!row(&mut h, 36), "row 36 is out of view");
 }
+
+/// The valid starts of `id`, selected in the tutorial plan with the
+/// inspector `width` wide: the strip's rect, the inspector's, and the
+/// labels of its time axis with their rects.
+fn valid_starts_strip(
+    width: f32,
+    id: &str,
+) -> (
+    eframe::egui::Rect,
+    eframe::egui::Rect,
+    Vec<(String, eframe::egui::Rect)>,
+) {
+    use egui_kittest::kittest::NodeT;
+    let mut app = tutorial();
+    app.persisted.inspector_width = Some(width);
+    let view = View {
+        select: Some(id.into()),
+        ..View::default()
+    };
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &view).unwrap();
+    h.run_steps(3);
+    let strip = h.get_by_label("Valid starts by constraint").rect();
+    // The inspector's content: from its heading to the window's right edge
+    // less the panel's margin (the heading's distance from the Gantt).
+    let heading = h.get_by_label("Inspector").rect();
+    let margin = heading.left() - gantt(&h).right();
+    let inspector = eframe::egui::Rect::from_x_y_ranges(
+        heading.left()..=SNAPSHOT_SIZE[0] - margin,
+        heading.top()..=SNAPSHOT_SIZE[1],
+    );
+    let ticks = h
+        .query_all(egui_kittest::kittest::by().role(eframe::egui::accesskit::Role::Label))
+        .filter(|n| strip.intersects(n.rect()))
+        .filter_map(|n| {
+            let node = n.accesskit_node();
+            let text = node.label().or(node.value())?.to_string();
+            Some((text, n.rect()))
+        })
+        .collect();
+    (strip, inspector, ticks)
+}
+
+#[test]
+fn the_valid_starts_strip_has_a_time_axis_and_fits_the_inspector() {
+    for width in [220.0, 300.0, 420.0, 640.0] {
+        for id in ["sky_flats_mast_busy", "zcam_pano"] {
+            let (strip, inspector, ticks) = valid_starts_strip(width, id);
+            assert!(
+                strip.right() <= inspector.right(),
+                "{id} at {width}: the strip {strip:?} is cut at the inspector's right edge \
+                 {inspector:?}"
+            );
+            assert!(
+                strip.width() >= inspector.width() / 2.0,
+                "{strip:?} in {inspector:?}"
+            );
+            // A time axis in LMST: times of day or sol starts, inside the strip.
+            assert!(ticks.len() >= 2, "{id} at {width}: no time axis: {ticks:?}");
+            for (label, r) in &ticks {
+                let lmst = label.starts_with("Sol ")
+                    || label
+                        .split(':')
+                        .all(|p| p.len() == 2 && p.parse::<u8>().is_ok());
+                assert!(lmst, "{label} is not an LMST time");
+                assert!(r.right() <= strip.right(), "{label} {r:?} cut in {strip:?}");
+            }
+        }
+    }
+}
