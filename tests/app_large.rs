@@ -62,3 +62,46 @@ fn a_plan_at_the_size_limit_shows_the_layer_as_set() {
     assert!(!app.flex_shown());
     assert!(app.persisted.hide_flex, "in the settings");
 }
+
+/// What the frame drawn last tessellates to: its vertex count.
+fn vertices(h: &egui_kittest::Harness<'_, SolscopeApp>) -> usize {
+    let out = h.output();
+    h.ctx
+        .tessellate(out.shapes.clone(), out.pixels_per_point)
+        .iter()
+        .map(|p| match &p.primitive {
+            eframe::epaint::Primitive::Mesh(m) => m.vertices.len(),
+            eframe::epaint::Primitive::Callback(_) => 0,
+        })
+        .sum()
+}
+
+/// The whole plan in view at step `k` (`None`: the last step).
+fn whole_plan_vertices(activities: usize, k: Option<usize>) -> usize {
+    let plan = solscope_engine::generate_plan(activities, 3, 1);
+    let app = SolscopeApp::from_text(&serde_json::to_string(&plan).unwrap(), None).unwrap();
+    let view = View {
+        step: k,
+        ..View::default()
+    };
+    let mut h = harness(app, SNAPSHOT_SIZE.into(), &view).unwrap();
+    h.run_steps(2);
+    vertices(&h)
+}
+
+/// The frame draws what fits its pixels: ten times the activities over the
+/// same sols (thousands of pending or failed activities' windows stacked in
+/// one lane) tessellate to as many vertices, within a tenth, not more with
+/// every window (before overlapping windows were merged: 83,052 vertices at
+/// 2,000 activities, 110,224 at 20,000, at the last step).
+#[test]
+fn a_dense_plan_s_frame_is_bounded_by_its_pixels() {
+    for k in [Some(0), None] {
+        let small = whole_plan_vertices(2_000, k);
+        let large = whole_plan_vertices(20_000, k);
+        assert!(
+            large * 10 <= small * 11,
+            "at step {k:?}: {large} vertices at 20,000 activities, {small} at 2,000"
+        );
+    }
+}

@@ -5,10 +5,13 @@
 
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
+mod support;
+
 use egui_kittest::kittest::Queryable;
 use solscope::gui::SolscopeApp;
 use solscope::gui::screenshot::{SNAPSHOT_SIZE, View, harness};
 use solscope::state::{Command, UiCommand};
+use support::index;
 
 type H = egui_kittest::Harness<'static, SolscopeApp>;
 
@@ -18,15 +21,6 @@ type H = egui_kittest::Harness<'static, SolscopeApp>;
 fn order_matters() -> SolscopeApp {
     let text = include_str!("../assets/tuning-examples/order-matters.json");
     SolscopeApp::from_text(text, None).expect("example plan")
-}
-
-fn index(app: &SolscopeApp, id: &str) -> usize {
-    app.doc
-        .plan
-        .activities
-        .iter()
-        .position(|a| a.id == id)
-        .expect("activity")
 }
 
 fn priorities(app: &SolscopeApp) -> Vec<i64> {

@@ -2,19 +2,13 @@
 
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
+mod support;
+
 use egui_kittest::kittest::{NodeT, Queryable};
 use solscope::gui::screenshot::{SNAPSHOT_SIZE, View, harness};
 use solscope::gui::{Look, SolscopeApp};
 use solscope::state::{Command, Dialog, ListFilter, Mode, StatusFilter, UiCommand};
-
-fn tutorial() -> SolscopeApp {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/assets/tutorial-plan.json"
-    ))
-    .unwrap();
-    SolscopeApp::from_text(&text, None).expect("tutorial plan")
-}
+use support::{frames_until, generated_plan_file, index, scratch_file, tutorial};
 
 /// The tutorial plan at step 0 (nothing placed yet), in a harness.
 fn tutorial_at_step_zero() -> egui_kittest::Harness<'static, SolscopeApp> {
@@ -36,15 +30,6 @@ fn tutorial_with_selected(id: &str) -> egui_kittest::Harness<'static, SolscopeAp
         ..View::default()
     };
     harness(tutorial(), SNAPSHOT_SIZE.into(), &view).unwrap()
-}
-
-fn index(app: &SolscopeApp, id: &str) -> usize {
-    app.doc
-        .plan
-        .activities
-        .iter()
-        .position(|a| a.id == id)
-        .expect("activity")
 }
 
 #[test]
@@ -598,15 +583,6 @@ fn uncertain_drive() -> SolscopeApp {
     );
     let text = std::fs::read_to_string(path).unwrap();
     SolscopeApp::from_text(&text, Some(path.into())).expect("uncertain drive")
-}
-
-/// A file `name` holding `text` in a fresh temporary directory of this test.
-fn scratch_file(test: &str, name: &str, text: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("solscope-ui-{test}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
 }
 
 /// `(completed, aborted, not run)` of the execution shown, once derived.
@@ -3093,30 +3069,6 @@ fn the_valid_starts_of_an_expanding_activity_name_their_duration() {
             .is_some()
     );
     assert!(h.query_by_label_contains(", for ").is_none());
-}
-
-/// A generated plan (standard profile, seed 1) of `n` activities over `sols`
-/// sols written to a file of test `test`, with the plan's name.
-fn generated_plan_file(test: &str, n: usize, sols: usize) -> (std::path::PathBuf, String) {
-    let plan = solscope_engine::generate_plan(n, sols, 1);
-    let name = plan.name.clone().expect("generated plans are named");
-    let text = serde_json::to_string(&plan).unwrap();
-    (scratch_file(test, "big-plan.json", &text), name)
-}
-
-/// Runs frames until `done` holds (panics after a minute).
-fn frames_until(
-    h: &mut egui_kittest::Harness<'static, SolscopeApp>,
-    done: impl Fn(&SolscopeApp) -> bool,
-) {
-    for _ in 0..6000 {
-        if done(h.state()) {
-            return;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(10));
-        h.run_steps(1);
-    }
-    panic!("never happened");
 }
 
 #[test]

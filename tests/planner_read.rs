@@ -4,21 +4,15 @@
 
 #![allow(clippy::expect_used, clippy::unwrap_used, clippy::panic)]
 
+mod support;
+
 use egui_kittest::kittest::{NodeT, Queryable};
 use solscope::gui::SolscopeApp;
 use solscope::gui::screenshot::{SNAPSHOT_SIZE, View, harness};
 use solscope::state::{Command, Dialog, UiCommand};
+use support::index;
 
 type H = egui_kittest::Harness<'static, SolscopeApp>;
-
-fn index(app: &SolscopeApp, id: &str) -> usize {
-    app.doc
-        .plan
-        .activities
-        .iter()
-        .position(|a| a.id == id)
-        .expect("activity")
-}
 
 /// Plan time `t` as the planner reads it, worked out here from the plan's
 /// clock: the sol, then the 24-hour Mars clock (LMST: a Mars second is

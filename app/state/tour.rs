@@ -327,8 +327,8 @@ pub fn text(page: Page, facts: &Facts<'_>) -> Text {
             ));
             match facts.suggestions {
                 _ if placed.is_some() => paragraphs.push(format!(
-                    "{id} is scheduled now, at {}: the banner at the top lists what the change \
-                     did to the other activities.",
+                    "{id} is scheduled now, at {}: the banner at the foot of the chart lists what the \
+                     change did to the other activities.",
                     placed.map(|t| facts.time(t)).unwrap_or_default()
                 )),
                 Some([first, ..]) => {
@@ -336,7 +336,7 @@ pub fn text(page: Page, facts: &Facts<'_>) -> Text {
                     paragraphs.push(format!(
                         "The first one: \"{}\"{windows}. Press its Apply button in the \
                          inspector, or the one here: the plan is scheduled again and the \
-                         banner at the top says what changed.",
+                         banner at the foot of the chart says what changed.",
                         first.description
                     ));
                     action = Some((

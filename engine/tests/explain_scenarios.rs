@@ -297,6 +297,50 @@ fn dependency_and_group_phases() {
     );
 }
 
+/// An activity that depends on one later in the step order fails before
+/// that one is tried: the note says so (not that it did not get scheduled),
+/// and scheduling it first, by priority, is a verified suggestion.
+#[test]
+fn a_dependency_later_in_step_order_is_said_so_and_moved_first() {
+    let p = plan(
+        json!({}),
+        json!([
+            { "id": "img", "priority": 2, "duration": 100, "awake": "any",
+              "after": [ { "activity": "drive" } ] },
+            { "id": "drive", "priority": 5, "duration": 1000, "awake": "any" }
+        ]),
+    );
+    let (s, ex) = explain_one(&p, "img");
+    assert_eq!(ex.phase, Some(Phase::Dependency));
+    // drive is placed, at step 2, after img failed at step 1.
+    assert!(s.placement(1).is_some());
+    let notes = solscope_engine::explanation_notes(&p, &s.problem, &ex);
+    assert_eq!(
+        notes[0],
+        "img must come after drive, but drive comes later in step order (priority 5), so it \
+         cannot have run first; img cannot be scheduled."
+    );
+    assert!(notes.iter().all(|n| !n.contains("did not get scheduled")));
+    let first = ex
+        .suggestions
+        .iter()
+        .find(|x| x.target == "activity:drive")
+        .expect("the reordering is suggested");
+    assert_eq!(
+        first.description,
+        "Schedule drive before img by giving it priority 1"
+    );
+    assert_eq!(first.set["priority"], json!(1));
+    assert!(first.side_effects.is_empty());
+    // Verified: with it, img schedules.
+    let mut moved = p.clone();
+    moved.activities[1].priority = 1;
+    assert!(schedule(&moved).unwrap().placement(0).is_some());
+    // The drop names why, too.
+    assert!(ex.suggestions.iter().any(|x| x.description
+        == "Drop the dependency of img on drive (which comes later in step order)"));
+}
+
 #[test]
 fn a_dependency_is_loosened_before_it_is_dropped() {
     let p = plan(

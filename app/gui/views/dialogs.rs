@@ -8,29 +8,47 @@ use super::Model;
 use crate::gui::theme::{MESSAGE_MARGIN, PROMPT_WIDTH};
 use crate::state::{Command, Pending};
 
-/// The outcome of the last edit, and the last error.
-pub(super) fn banner_ui(ui: &mut egui::Ui, m: &Model<'_>, cmds: &mut Vec<Command>) {
-    if let Some(diff) = &m.messages.banner {
-        egui::Frame::new()
-            .fill(m.theme.banner)
-            .inner_margin(MESSAGE_MARGIN)
-            .show(ui, |ui| {
-                ui.horizontal_wrapped(|ui| {
-                    ui.label(diff.summary());
-                    if ui.button("Dismiss").clicked() {
-                        cmds.push(Command::DismissBanner);
+/// The outcome of the last edit, and the last error: drawn over the foot of
+/// `area` (the Gantt and plots), so that neither moves the layout when it
+/// comes or goes.
+pub(super) fn banner_ui(
+    ui: &mut egui::Ui,
+    m: &Model<'_>,
+    area: egui::Rect,
+    cmds: &mut Vec<Command>,
+) {
+    if m.messages.banner.is_none() && m.messages.error.is_none() {
+        return;
+    }
+    egui::Area::new(egui::Id::unique("change_banner"))
+        .order(egui::Order::Foreground)
+        .pivot(egui::Align2::LEFT_BOTTOM)
+        .fixed_pos(area.left_bottom())
+        .constrain_to(area)
+        .show(ui.ctx(), |ui| {
+            egui::Frame::new()
+                .fill(m.theme.banner)
+                .inner_margin(MESSAGE_MARGIN)
+                .show(ui, |ui| {
+                    ui.set_width(area.width() - 2.0 * MESSAGE_MARGIN);
+                    if let Some(diff) = &m.messages.banner {
+                        ui.horizontal_wrapped(|ui| {
+                            ui.label(diff.summary());
+                            if ui.button("Dismiss").clicked() {
+                                cmds.push(Command::DismissBanner);
+                            }
+                        });
+                    }
+                    if let Some(err) = &m.messages.error {
+                        ui.horizontal_wrapped(|ui| {
+                            ui.label(RichText::new(err).color(m.theme.error));
+                            if ui.button("Dismiss error").clicked() {
+                                cmds.push(Command::DismissError);
+                            }
+                        });
                     }
                 });
-            });
-    }
-    if let Some(err) = &m.messages.error {
-        ui.horizontal_wrapped(|ui| {
-            ui.label(RichText::new(err).color(m.theme.error));
-            if ui.button("Dismiss error").clicked() {
-                cmds.push(Command::DismissError);
-            }
         });
-    }
 }
 
 /// "Pin it at this start and reschedule?" after a bar was dropped outside its

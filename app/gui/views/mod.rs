@@ -71,7 +71,6 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
                 execution::cycle_steps_ui(ui, m, cmds);
             }
         }
-        dialogs::banner_ui(ui, m, cmds);
         opening::opening_ui(ui, m, cmds);
     });
     w.cache.tour_anchors.top = Some(top.response.rect);
@@ -128,7 +127,7 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
                     });
             });
     }
-    egui::CentralPanel::default().show(ui, |ui| {
+    let central = egui::CentralPanel::default().show(ui, |ui| {
         axis::axis_ui(ui, m, &mut w.text.range_text, cmds);
         gantt::ruler_ui(ui, m, w.cache);
         egui::ScrollArea::vertical()
@@ -138,6 +137,9 @@ pub fn layout_ui(ui: &mut egui::Ui, m: &Model<'_>, w: &mut Widgets<'_>, cmds: &m
                 plots::plots_ui(ui, m, w.cache, cmds);
             });
     });
+    // Over the foot of the Gantt and plots: showing or dismissing it moves
+    // nothing under it.
+    dialogs::banner_ui(ui, m, central.response.rect, cmds);
     tour::tour_ui(ui, m, &w.cache.tour_anchors, cmds);
     dialogs::confirm_ui(ui, m, cmds);
     dialogs::pin_ui(ui, m, cmds);

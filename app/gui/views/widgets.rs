@@ -10,18 +10,28 @@ use super::Model;
 use super::text::percent;
 use crate::gui::help;
 use crate::gui::theme::{
-    BAR_OUTLINE_STROKE, LABEL_WIDTH, SHARE_MIN_WIDTH, TRACK_FONT_SIZE, TRACK_LINE_STROKE,
-    TRACK_ROW_GAP, TRACK_ROW_HEIGHT,
+    BAR_OUTLINE_STROKE, LABEL_WIDTH, SHARE_MIN_WIDTH, SOL_LINE_STROKE, TICK_GAP, TRACK_FONT_SIZE,
+    TRACK_LINE_STROKE, TRACK_ROW_GAP, TRACK_ROW_HEIGHT,
 };
+use crate::gui::time_axis::ticks;
 
-/// One row per category with its valid starts, then their intersection.
+/// One row per category with its valid starts, then their intersection,
+/// over a time axis in LMST (the shared time range). As wide as the part of
+/// the panel in view, whatever the content beside it: a wide panel's
+/// horizontal scroll never cuts the strip at the right edge.
 pub fn intervals_ui(ui: &mut egui::Ui, m: &Model<'_>, cats: &[CategoryIntervals]) {
     let row_h = TRACK_ROW_HEIGHT;
     let n = cats.len() + 1;
+    let axis_h = TRACK_FONT_SIZE + 2.0 * TRACK_ROW_GAP;
+    // The visible width left of the scroll bar (the panel's content may be
+    // wider than its view), never more than the layout offers.
+    let in_view = ui.clip_rect().right() - ui.cursor().left() - ui.spacing().scroll.bar_width;
+    let width = ui.available_width().min(in_view).max(1.0);
     let (rect, resp) = ui.allocate_exact_size(
-        egui::vec2(ui.available_width(), n as f32 * (row_h + TRACK_ROW_GAP)),
+        egui::vec2(width, n as f32 * (row_h + TRACK_ROW_GAP) + axis_h),
         Sense::hover(),
     );
+    resp.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, STRIP_LABEL));
     // The row under the pointer says what its rule is.
     if let Some(pos) = resp.hover_pos() {
         let row = ((pos.y - rect.top()) / (row_h + TRACK_ROW_GAP)).max(0.0) as usize;
@@ -32,7 +42,11 @@ pub fn intervals_ui(ui: &mut egui::Ui, m: &Model<'_>, cats: &[CategoryIntervals]
     }
     let painter = ui.painter_at(rect);
     let label_w = LABEL_WIDTH.min(rect.width() / 3.0);
-    let track = Rect::from_min_max(Pos2::new(rect.left() + label_w, rect.top()), rect.max);
+    let rows_bottom = rect.top() + n as f32 * (row_h + TRACK_ROW_GAP);
+    let track = Rect::from_min_max(
+        Pos2::new(rect.left() + label_w, rect.top()),
+        Pos2::new(rect.right(), rows_bottom),
+    );
     let axis = m.nav.axis;
     let font = egui::FontId::proportional(TRACK_FONT_SIZE);
     let mut inter =
@@ -72,6 +86,48 @@ pub fn intervals_ui(ui: &mut egui::Ui, m: &Model<'_>, cats: &[CategoryIntervals]
         draw(i, c.category.name(), &c.valid, m.theme.valid);
     }
     draw(cats.len(), "all together", &inter, m.theme.current);
+    time_axis_ui(ui, m, &painter, track, rect.bottom());
+}
+
+/// The accessibility label of the valid-starts strip.
+pub const STRIP_LABEL: &str = "Valid starts by constraint";
+
+/// Under the valid-starts strip's `track`: a tick at each round LMST time of
+/// day and sol start of the time range, labelled where there is room (each
+/// label a node of its own for screen readers), down to `bottom`.
+fn time_axis_ui(ui: &egui::Ui, m: &Model<'_>, painter: &egui::Painter, track: Rect, bottom: f32) {
+    let axis = m.nav.axis;
+    let font = egui::FontId::proportional(TRACK_FONT_SIZE);
+    let clock = &m.doc.plan.local_time;
+    for tick in ticks(&axis, f64::from(track.width()), clock, TICK_GAP) {
+        let x = axis.x(tick.t, track) as f32;
+        let colour = if tick.sol_start {
+            m.theme.label
+        } else {
+            m.theme.muted
+        };
+        painter.line_segment(
+            [
+                Pos2::new(x, track.top()),
+                Pos2::new(x, track.bottom() + TRACK_ROW_GAP),
+            ],
+            Stroke::new(SOL_LINE_STROKE, colour.gamma_multiply(0.4)),
+        );
+        if tick.label.is_empty() {
+            continue;
+        }
+        let galley = painter.layout_no_wrap(tick.label.clone(), font.clone(), colour);
+        // Kept inside the strip: a label past its right end is left out.
+        let at = Pos2::new(x + 2.0, bottom - galley.size().y);
+        if at.x + galley.size().x > track.right() {
+            continue;
+        }
+        let r = Rect::from_min_size(at, galley.size());
+        painter.galley(at, galley, colour);
+        let id = ui.scope_id().with(("valid starts tick", tick.t.to_bits()));
+        let resp = ui.interact(r, id, Sense::hover());
+        resp.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Label, true, &tick.label));
+    }
 }
 
 /// An activity's completed / aborted / not-run shares of `runs` as a stacked

@@ -246,9 +246,20 @@ pub fn explanation_notes_and_lead(
         }
         Phase::Dependency => {
             let by = ex.blocked_by.map(name).unwrap_or_default();
-            notes.push(format!(
-                "{me} must come after {by}, which did not get scheduled, so {me} cannot be either."
-            ));
+            // Depended on but not tried yet: later in the step order.
+            let later = ex
+                .blocked_by
+                .filter(|&b| problem.step_of.get(b).is_some_and(|&k| k > ex.step));
+            notes.push(match later {
+                Some(b) => format!(
+                    "{me} must come after {by}, but {by} comes later in step order (priority {}), \
+                     so it cannot have run first; {me} cannot be scheduled.",
+                    plan.activities[b].priority
+                ),
+                None => format!(
+                    "{me} must come after {by}, which did not get scheduled, so {me} cannot be either."
+                ),
+            });
         }
         Phase::ValidIntervals => {
             notes.push(format!(

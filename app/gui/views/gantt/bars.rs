@@ -50,8 +50,22 @@ pub(super) struct Canvas<'a, 'm> {
     pub(super) drawn: Vec<(usize, Rect)>,
 }
 
+/// A run of overlapping window bars of one colour, none of them marked: a
+/// lone one is drawn as any bar, two or more as one window bar over their
+/// union (hatching and outlines stacked up thousands deep in an overflow
+/// lane of pending or failed activities' windows cost a frame and show
+/// nothing more).
+struct Windows<'r> {
+    /// The first bar, where it is drawn and how it looks.
+    first: (&'r Bar, Rect, Look, Color32),
+    /// The union so far.
+    span: (f64, f64),
+    /// More than the first joined it.
+    many: bool,
+}
+
 /// One row's bars as they are drawn, left to right.
-struct Strip {
+struct Strip<'r> {
     /// The row's top and height.
     y: f32,
     h: f32,
@@ -74,9 +88,11 @@ struct Strip {
     /// windows stays faded instead of stacking back up to full colour
     /// (`outline`: windows).
     faded: Option<(f64, f64, Color32, bool)>,
+    /// The run of overlapping window bars so far.
+    windows: Option<Windows<'r>>,
 }
 
-impl Strip {
+impl<'r> Strip<'r> {
     fn new(row: &Row, y: f32, current: Option<usize>) -> Self {
         Self {
             y,
@@ -87,6 +103,7 @@ impl Strip {
             merged: None,
             painted: (f64::INFINITY, f64::NEG_INFINITY, Color32::TRANSPARENT),
             faded: None,
+            windows: None,
         }
     }
 
@@ -233,6 +250,7 @@ impl<'a, 'm> Canvas<'a, 'm> {
                     self.bar_ui(&mut strip, bar);
                 }
             }
+            self.flush_windows(&mut strip);
             strip.flush_merged(&self.painter);
             strip.flush_faded(&self.painter);
         }
@@ -247,6 +265,11 @@ impl<'a, 'm> Canvas<'a, 'm> {
         let k = m.nav.step;
         for bar in row.bars.iter().filter(|b| b.placed && b.shown_at(k)) {
             if bar.extent.1 < axis.start || bar.extent.0 > axis.end {
+                continue;
+            }
+            // A layer narrower than a pixel is under its bar (drawn a pixel
+            // wide at least): nothing of it would show.
+            if axis.x(bar.extent.1, self.timeline) - axis.x(bar.extent.0, self.timeline) < 1.0 {
                 continue;
             }
             if let Some(fa) = bar.activity.and_then(|a| f.activity(a)) {
@@ -277,7 +300,7 @@ impl<'a, 'm> Canvas<'a, 'm> {
     }
 
     /// One bar of the row `s`, when it is in the time range shown.
-    fn bar_ui(&mut self, s: &mut Strip, bar: &Bar) {
+    fn bar_ui<'r>(&mut self, s: &mut Strip<'r>, bar: &'r Bar) {
         let axis = self.m.nav.axis;
         if bar.end < axis.start || bar.start > axis.end {
             return;
@@ -304,6 +327,12 @@ impl<'a, 'm> Canvas<'a, 'm> {
             return;
         }
         let r = Rect::from_min_max(Pos2::new(x0 as f32, s.y), Pos2::new(x1 as f32, s.y + s.h));
+        if bar.outline && look == Look::Plain && !self.marked(s, bar) {
+            self.window_run(s, (bar, r, look, color), (x0, x1));
+            self.hover(bar, r, s.steps);
+            return;
+        }
+        self.flush_windows(s);
         self.paint_bar(bar, r, look, color, s.current);
         if s.bar_labels {
             self.label_ui(bar, r, look, s.h);
@@ -311,12 +340,63 @@ impl<'a, 'm> Canvas<'a, 'm> {
         self.hover(bar, r, s.steps);
     }
 
+    /// Whether `bar` is outlined: the current step's activity, the
+    /// selection, a culprit or a neighbour.
+    fn marked(&self, s: &Strip<'_>, bar: &Bar) -> bool {
+        bar.activity.is_some_and(|a| {
+            Some(a) == s.current
+                || Some(a) == self.m.nav.selected
+                || self.culprits.contains(&a)
+                || self.neighbours.contains(&a)
+        })
+    }
+
+    /// Adds an unmarked window bar drawn at `first.1` (`[x0, x1]`) to the
+    /// row's run of overlapping ones of its colour, or starts a new run.
+    fn window_run<'r>(
+        &mut self,
+        s: &mut Strip<'r>,
+        first: (&'r Bar, Rect, Look, Color32),
+        (x0, x1): (f64, f64),
+    ) {
+        if let Some(w) = s.windows.as_mut() {
+            if w.first.3 == first.3 && x0 < w.span.1 {
+                w.span.1 = w.span.1.max(x1);
+                w.many = true;
+                return;
+            }
+        }
+        self.flush_windows(s);
+        s.windows = Some(Windows {
+            first,
+            span: (x0, x1),
+            many: false,
+        });
+    }
+
+    /// Draws the row's run of window bars so far: a lone one as itself,
+    /// several as one window bar over their union.
+    fn flush_windows(&mut self, s: &mut Strip<'_>) {
+        let Some(w) = s.windows.take() else {
+            return;
+        };
+        let (bar, r, look, color) = w.first;
+        if w.many {
+            window_bar(&self.painter, s.rect(w.span.0, w.span.1), color);
+            return;
+        }
+        self.paint_bar(bar, r, look, color, s.current);
+        if s.bar_labels {
+            self.label_ui(bar, r, look, s.h);
+        }
+    }
+
     /// Whether a bar (not a marker) at `[x0, x1]` is drawn on its own; else
     /// it joined the row's run of faded bars or its merged thin ones, or is
     /// hidden under the bars painted before it.
     fn stands_alone(
         &mut self,
-        s: &mut Strip,
+        s: &mut Strip<'_>,
         bar: &Bar,
         look: Look,
         color: Color32,

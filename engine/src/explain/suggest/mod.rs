@@ -207,7 +207,10 @@ fn own_candidates(runs: &verify::Runs<'_>, ex: &Explanation) -> (Vec<Candidate>,
     match ex.phase {
         Some(Phase::Group) => (vec![leave_group(activity)], Vec::new()),
         Some(Phase::Dependency) => (
-            drop_failed_dependency(plan, ex).into_iter().collect(),
+            drop_failed_dependency(plan, runs.sched, ex)
+                .into_iter()
+                .chain(dependency_first(plan, runs.sched, ex))
+                .collect(),
             Vec::new(),
         ),
         Some(Phase::ValidIntervals) => intervals::candidates(runs, ex),
@@ -276,9 +279,15 @@ fn leave_group(activity: &Activity) -> Candidate {
 }
 
 /// Phase `dependency`: drop the dependency on the target that did not schedule.
-fn drop_failed_dependency(plan: &Plan, ex: &Explanation) -> Option<Candidate> {
+fn drop_failed_dependency(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Option<Candidate> {
     let activity = &plan.activities[ex.activity];
-    let other = &plan.activities[ex.blocked_by?].id;
+    let b = ex.blocked_by?;
+    let other = &plan.activities[b].id;
+    let why = if comes_later(sched, b, ex) {
+        "which comes later in step order"
+    } else {
+        "which did not schedule"
+    };
     let after: Vec<Value> = activity
         .after
         .iter()
@@ -287,13 +296,37 @@ fn drop_failed_dependency(plan: &Plan, ex: &Explanation) -> Option<Candidate> {
         .collect();
     Some(Candidate::activity(
         activity,
-        format!(
-            "Drop the dependency of {} on {other} (which did not schedule)",
-            activity.id
-        ),
+        format!("Drop the dependency of {} on {other} ({why})", activity.id),
         "after",
         Value::Array(after),
     ))
+}
+
+/// Phase `dependency`, when the activity depended on comes later in the
+/// step order (it was not tried when the activity failed): give it the
+/// priority just below the activity's, so that it runs first.
+fn dependency_first(plan: &Plan, sched: &Schedule, ex: &Explanation) -> Option<Candidate> {
+    let b = ex.blocked_by?;
+    if !comes_later(sched, b, ex) {
+        return None;
+    }
+    let activity = &plan.activities[ex.activity];
+    let other = &plan.activities[b];
+    let p = activity.priority.saturating_sub(1);
+    Some(Candidate::activity(
+        other,
+        format!(
+            "Schedule {} before {} by giving it priority {p}",
+            other.id, activity.id
+        ),
+        "priority",
+        json!(p),
+    ))
+}
+
+/// Whether activity `b` comes after the failure `ex` in the step order.
+fn comes_later(sched: &Schedule, b: usize, ex: &Explanation) -> bool {
+    sched.step_of(b).is_some_and(|s| s.step > ex.step)
 }
 
 /// Every kind: schedule a blocking culprit (placed at an earlier step) after the
