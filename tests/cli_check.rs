@@ -390,8 +390,17 @@ fn every_input_is_read_through_the_size_limit() {
         &plan_with(json!([{ "id": "a", "priority": 1, "duration": 60 }])),
     );
     let plan = plan.to_str().expect("UTF-8 path");
-    let commands: [&[&str]; 10] = [
+    let commands: [&[&str]; 12] = [
         &["check", zero],
+        &["screenshot", zero, "--out", "never-written.png"],
+        &[
+            "screenshot",
+            "--max-input-mib",
+            "1",
+            zero,
+            "--out",
+            "never-written.png",
+        ],
         &["schedule", zero],
         &["explain", zero],
         &["explain", "--text", zero],
@@ -438,27 +447,33 @@ fn the_size_limit_is_set_in_mib_on_the_commands_that_read_files() {
         "{}",
         stderr(&refused)
     );
+    let png =
+        std::env::temp_dir().join(format!("solscope-over-one-mib-{}.png", std::process::id()));
+    let png = png.to_str().expect("UTF-8 path");
     for args in [
         &["check", "--max-input-mib", "2", path][..],
         &["check", path],
         &["schedule", "--max-input-mib", "2", path],
+        &["screenshot", "--max-input-mib", "2", path, "--out", png],
     ] {
         let out = solscope(args);
         assert_eq!(out.status.code(), Some(0), "{args:?}: {}", stderr(&out));
     }
-    // Refused where it would change nothing (the app and screenshot read up to
-    // 32 MiB, generate reads no file) and out of range: clap's usage error.
+    // The raised limit let the screenshot read the plan and render it.
+    assert!(Path::new(png).is_file(), "{png} was not written");
+    std::fs::remove_file(png).expect("remove the screenshot");
+    let refused = solscope(&["screenshot", "--max-input-mib", "1", path, "--out", png]);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(
+        stderr(&refused).contains("is larger than 1 MiB, the input size limit"),
+        "{}",
+        stderr(&refused)
+    );
+    // Refused where it would change nothing (the app reads up to 32 MiB,
+    // generate reads no file) and out of range: clap's usage error.
     for args in [
         &["--max-input-mib", "64", path][..],
         &["generate", "--max-input-mib", "64"],
-        &[
-            "screenshot",
-            path,
-            "--out",
-            "x.png",
-            "--max-input-mib",
-            "64",
-        ],
         &["check", "--max-input-mib", "0", path],
     ] {
         let out = solscope(args);

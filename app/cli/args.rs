@@ -30,15 +30,14 @@ pub struct Cli {
 #[derive(clap::Args, Debug, Clone, Copy)]
 pub struct InputLimit {
     /// Largest input file read (plan, actuals, Monte Carlo parts), in MiB
-    /// (default: 32). The app and `screenshot` read up to 32 MiB.
+    /// (default: 32). The app reads up to 32 MiB.
     #[arg(long, value_name = "MIB", value_parser = clap::value_parser!(u64).range(1..=MAX_INPUT_MIB))]
     pub max_input_mib: Option<u64>,
 }
 
 impl InputLimit {
-    /// The size limit on the files a command reads, in bytes (the app and
-    /// `screenshot` read up to [`solscope_engine::MAX_PLAN_BYTES`], and so does
-    /// File > Open in the app).
+    /// The size limit on the files a command reads, in bytes (the app reads
+    /// up to [`solscope_engine::MAX_PLAN_BYTES`], File > Open included).
     pub fn bytes(self) -> Result<usize, solscope_engine::Error> {
         match self.max_input_mib {
             None => Ok(solscope_engine::MAX_PLAN_BYTES),
@@ -339,6 +338,8 @@ pub struct GenerateArgs {
 pub struct ScreenshotArgs {
     /// The plan file (solscope.plan/1 JSON).
     pub plan: PathBuf,
+    #[command(flatten)]
+    pub input: InputLimit,
     /// Output PNG file.
     #[arg(long)]
     pub out: PathBuf,

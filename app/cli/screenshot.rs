@@ -25,7 +25,7 @@ pub fn run(args: &ScreenshotArgs) -> Result<ExitCode, Failure> {
         )));
     };
     check_out(&args.out)?;
-    let text = solscope_engine::read_plan_text(&args.plan, solscope_engine::MAX_PLAN_BYTES)?;
+    let text = solscope_engine::read_plan_text(&args.plan, args.input.bytes()?)?;
     let app = crate::gui::SolscopeApp::from_text(&text, Some(args.plan.clone()))?;
     // What names nothing in the plan is invalid input, as in every command.
     if let Some(id) = &args.select {
