@@ -462,6 +462,19 @@ fn the_size_limit_is_set_in_mib_on_the_commands_that_read_files() {
     // The raised limit let the screenshot read the plan and render it.
     assert!(Path::new(png).is_file(), "{png} was not written");
     std::fs::remove_file(png).expect("remove the screenshot");
+    // Past the default 32 MiB too: read, parsed and drawn under the raised limit.
+    let mut big = serde_json::to_string(&plan).expect("json");
+    big.push_str(&" ".repeat(33 << 20));
+    let big = write_scratch("over-32-mib.json", big.as_bytes());
+    let big = big.to_str().expect("UTF-8 path");
+    let drawn = solscope(&["screenshot", "--max-input-mib", "40", big, "--out", png]);
+    assert_eq!(drawn.status.code(), Some(0), "{}", stderr(&drawn));
+    assert!(Path::new(png).is_file(), "{png} was not written");
+    std::fs::remove_file(png).expect("remove the screenshot");
+    let refused = solscope(&["screenshot", big, "--out", png]);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(!Path::new(png).exists());
+    std::fs::remove_file(big).expect("remove the plan");
     let refused = solscope(&["screenshot", "--max-input-mib", "1", path, "--out", png]);
     assert_eq!(refused.status.code(), Some(2));
     assert!(

@@ -25,8 +25,9 @@ pub fn run(args: &ScreenshotArgs) -> Result<ExitCode, Failure> {
         )));
     };
     check_out(&args.out)?;
-    let text = solscope_engine::read_plan_text(&args.plan, args.input.bytes()?)?;
-    let app = crate::gui::SolscopeApp::from_text(&text, Some(args.plan.clone()))?;
+    let limit = args.input.bytes()?;
+    let text = solscope_engine::read_plan_text(&args.plan, limit)?;
+    let app = crate::gui::SolscopeApp::from_text_limited(&text, Some(args.plan.clone()), limit)?;
     // What names nothing in the plan is invalid input, as in every command.
     if let Some(id) = &args.select {
         if !app.doc.plan.activities.iter().any(|a| &a.id == id) {

@@ -63,6 +63,16 @@ impl SolscopeApp {
         AppState::from_text(text, path).map(Self::from)
     }
 
+    /// [`SolscopeApp::from_text`] with another size limit (`screenshot
+    /// --max-input-mib`).
+    pub fn from_text_limited(
+        text: &str,
+        path: Option<PathBuf>,
+        limit: usize,
+    ) -> Result<Self, solscope_engine::Error> {
+        AppState::from_text_limited(text, path, limit).map(Self::from)
+    }
+
     /// The app on the bundled default plan.
     pub fn with_default_plan() -> Result<Self, solscope_engine::Error> {
         AppState::with_default_plan().map(Self::from)

@@ -6,8 +6,8 @@
 use std::path::PathBuf;
 
 use solscope_engine::{
-    Error, ExplainOptions, Explanation, Plan, Schedule, Warning, explain, load_plan, reschedule,
-    schedule,
+    Error, ExplainOptions, Explanation, Plan, Schedule, Warning, explain, load_plan_limited,
+    reschedule, schedule,
 };
 
 /// The open plan.
@@ -35,7 +35,17 @@ pub struct Document {
 impl Document {
     /// Loads a plan from JSON text. A bad plan is an error naming the JSON path.
     pub fn from_text(text: &str, path: Option<PathBuf>) -> Result<Self, Error> {
-        let loaded = load_plan(text)?;
+        Self::from_text_limited(text, path, solscope_engine::MAX_PLAN_BYTES)
+    }
+
+    /// [`Document::from_text`] with another size limit (`screenshot
+    /// --max-input-mib`).
+    pub fn from_text_limited(
+        text: &str,
+        path: Option<PathBuf>,
+        limit: usize,
+    ) -> Result<Self, Error> {
+        let loaded = load_plan_limited(text, limit)?;
         Ok(Self {
             plan: loaded.plan,
             path,

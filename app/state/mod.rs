@@ -139,7 +139,17 @@ impl std::fmt::Debug for AppState {
 impl AppState {
     /// Opens a plan from JSON text.
     pub fn from_text(text: &str, path: Option<PathBuf>) -> Result<Self, solscope_engine::Error> {
-        let doc = Document::from_text(text, path)?;
+        Self::from_text_limited(text, path, solscope_engine::MAX_PLAN_BYTES)
+    }
+
+    /// [`AppState::from_text`] with another size limit (`screenshot
+    /// --max-input-mib`).
+    pub fn from_text_limited(
+        text: &str,
+        path: Option<PathBuf>,
+        limit: usize,
+    ) -> Result<Self, solscope_engine::Error> {
+        let doc = Document::from_text_limited(text, path, limit)?;
         let analysis = Analysis::of(&doc.plan)?;
         Ok(Self::from_analysis(doc, analysis))
     }
