@@ -171,6 +171,9 @@ pub const DIMMED: f32 = 0.2;
 pub const RANGE_FIELD_WIDTH: f32 = 120.0;
 /// Inner margin of the banner and error frames.
 pub const MESSAGE_MARGIN: f32 = 4.0;
+/// The largest share of the Gantt-and-plots area the change banner's text
+/// covers; a longer summary scrolls inside it, so the chart stays in view.
+pub const BANNER_MAX_SHARE: f32 = 0.25;
 /// Height of the thin predicted bar under an executed one (execution mode).
 pub const BASELINE_HEIGHT: f32 = 5.0;
 /// Smallest width of a marker on the Gantt (cycles, violations), so it can be

@@ -5,7 +5,7 @@
 use eframe::egui::{self, RichText};
 
 use super::Model;
-use crate::gui::theme::{MESSAGE_MARGIN, PROMPT_WIDTH};
+use crate::gui::theme::{BANNER_MAX_SHARE, MESSAGE_MARGIN, PROMPT_WIDTH};
 use crate::state::{Command, Pending};
 
 /// The outcome of the last edit, and the last error: drawn over the foot of
@@ -32,12 +32,16 @@ pub(super) fn banner_ui(
                 .show(ui, |ui| {
                     ui.set_width(area.width() - 2.0 * MESSAGE_MARGIN);
                     if let Some(diff) = &m.messages.banner {
-                        ui.horizontal_wrapped(|ui| {
-                            ui.label(diff.summary());
-                            if ui.button("Dismiss").clicked() {
-                                cmds.push(Command::DismissBanner);
-                            }
-                        });
+                        // A rerun that moves hundreds of activities has a
+                        // long summary: it scrolls in a quarter of the area,
+                        // and Dismiss stays in reach below it.
+                        egui::ScrollArea::vertical()
+                            .id_salt("change_banner_text")
+                            .max_height(area.height() * BANNER_MAX_SHARE)
+                            .show(ui, |ui| ui.label(diff.summary()));
+                        if ui.button("Dismiss").clicked() {
+                            cmds.push(Command::DismissBanner);
+                        }
                     }
                     if let Some(err) = &m.messages.error {
                         ui.horizontal_wrapped(|ui| {
