@@ -146,3 +146,40 @@ fn the_valid_starts_strip_has_a_time_axis_and_fits_the_inspector() {
         }
     }
 }
+
+#[test]
+fn a_long_change_banner_scrolls_within_a_quarter_of_the_chart() {
+    let mut h = harness(tutorial(), SNAPSHOT_SIZE.into(), &View::default()).unwrap();
+    let before = gantt(&h);
+    // A rerun that moved hundreds of activities: its summary runs to
+    // hundreds of lines at this width.
+    let clock = h.state().doc.plan.local_time;
+    h.state_mut().ui.messages.banner = Some(solscope::state::document::OutcomeDiff {
+        description: "Raise the battery minimum".into(),
+        moved: (0..600)
+            .map(|i| (format!("moved_activity_{i:03}"), 1000 + i, 90_000 + i))
+            .collect(),
+        clock,
+        ..Default::default()
+    });
+    h.run_steps(3);
+    let text = h.get_by_label_contains("Raise the battery minimum").rect();
+    let dismiss = h.get_by_label("Dismiss").rect();
+    let window = eframe::egui::Vec2::from(SNAPSHOT_SIZE);
+    // The text's visible part starts at most a quarter of the chart area
+    // above the banner's foot (the area is less than the window).
+    let shown = dismiss.bottom() - text.top();
+    assert!(
+        shown <= 0.25 * window.y + 2.0 * dismiss.height() + 24.0,
+        "the banner is {shown} px tall in a {} px window",
+        window.y
+    );
+    assert!(dismiss.bottom() <= window.y, "Dismiss is out of reach");
+    assert!(
+        text.top() > before.top(),
+        "the banner's text covers the whole Gantt"
+    );
+    h.get_by_label("Dismiss").click();
+    h.run_steps(3);
+    assert!(h.state().ui.messages.banner.is_none());
+}

@@ -67,6 +67,10 @@ impl ActualsSource {
 /// One execution of the plan, with its profiles as plot points.
 #[derive(Debug)]
 pub struct ExecutionRun {
+    /// The plan executed (shared with the workers that rebuild a cycle's plan
+    /// or explain a loss, so that asking for one copies nothing on the UI
+    /// thread).
+    pub plan: std::sync::Arc<Plan>,
     /// The execution.
     pub execution: Execution,
     /// The actual durations it ran with.
@@ -82,12 +86,15 @@ impl ExecutionRun {
     /// Executes `plan` with the actuals of `source`; also returns the first
     /// cycle's scheduler run (its final profiles are the prediction), so that it
     /// need not be run twice.
-    pub fn of(plan: &Plan, source: &ActualsSource) -> Result<(Self, Option<CycleRun>), String> {
+    pub fn of(
+        plan: std::sync::Arc<Plan>,
+        source: &ActualsSource,
+    ) -> Result<(Self, Option<CycleRun>), String> {
         let actuals = source
-            .actuals(plan)
+            .actuals(&plan)
             .map_err(|e| format!("actuals ({}): {e}", source.describe()))?;
-        let execution = execute(plan, &actuals).map_err(|e| e.to_string())?;
-        let first = CycleRun::of(0, &execution, plan);
+        let execution = execute(&plan, &actuals).map_err(|e| e.to_string())?;
+        let first = CycleRun::of(0, &execution, &plan);
         let predicted = match &first {
             Some(run) => run
                 .schedule
@@ -98,6 +105,7 @@ impl ExecutionRun {
         };
         let executed = executed_view(&execution);
         let run = Self {
+            plan,
             execution,
             actuals,
             executed,

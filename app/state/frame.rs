@@ -220,11 +220,9 @@ impl AppState {
             Some(Ok(run)) => run.cycle_index(self.ui.nav.cycle),
             _ => return,
         };
-        self.execution
-            .request_cycle(&self.doc.plan, key, cycle, self.background);
+        self.execution.request_cycle(key, cycle, self.background);
         if let Some(a) = self.ui.nav.selected {
-            self.execution
-                .request_loss(&self.doc.plan, key, a, self.background);
+            self.execution.request_loss(key, a, self.background);
         }
         if let Some(n) = self.execution.cycle(key, cycle).map(|c| c.steps()) {
             self.execution

@@ -64,12 +64,12 @@ impl ExecutionCache {
             return;
         }
         if background {
-            let (plan, source) = (plan.clone(), source.clone());
+            let (plan, source) = (Arc::new(plan.clone()), source.clone());
             self.pending = Some(Job::spawn(key, move |_: &Signal| {
-                ExecutionRun::of(&plan, &source)
+                ExecutionRun::of(plan, &source)
             }));
         } else {
-            self.store(key, ExecutionRun::of(plan, source));
+            self.store(key, ExecutionRun::of(Arc::new(plan.clone()), source));
         }
     }
 
@@ -155,7 +155,7 @@ impl ExecutionCache {
     /// Starts finding out why activity `a` did not complete in the execution at
     /// `key` (the explainer at the cycle that decided it: one explanation of
     /// that cycle's plan), unless it completed, it is known, or a worker is busy.
-    pub fn request_loss(&mut self, plan: &Plan, key: ExecKey, a: usize, background: bool) {
+    pub fn request_loss(&mut self, key: ExecKey, a: usize, background: bool) {
         if self.loss(key, a).is_some() || self.pending_loss.is_some() {
             return;
         }
@@ -168,14 +168,14 @@ impl ExecutionCache {
         {
             return;
         }
-        let explain = move |plan: &Plan, run: &ExecutionRun| {
-            solscope_engine::loss(plan, &run.execution, a).map_err(|e| e.to_string())
+        let explain = move |run: &ExecutionRun| {
+            solscope_engine::loss(&run.plan, &run.execution, a).map_err(|e| e.to_string())
         };
         if background {
-            let (plan, run) = (plan.clone(), Arc::clone(run));
-            self.pending_loss = Some(Job::spawn((key, a), move |_: &Signal| explain(&plan, &run)));
+            let run = Arc::clone(run);
+            self.pending_loss = Some(Job::spawn((key, a), move |_: &Signal| explain(&run)));
         } else {
-            let value = explain(plan, run);
+            let value = explain(run);
             self.loss = Some(((key, a), value));
         }
     }
@@ -205,25 +205,26 @@ impl ExecutionCache {
     }
 
     /// Starts repeating cycle `k`'s scheduler run of the execution at `key`
-    /// unless it is known or a worker is busy.
-    pub fn request_cycle(&mut self, plan: &Plan, key: ExecKey, k: usize, background: bool) {
+    /// unless it is known or a worker is busy: the cycle's plan is rebuilt
+    /// and scheduled on the worker (both linear in the activities or more),
+    /// from the plan the execution shares with it.
+    pub fn request_cycle(&mut self, key: ExecKey, k: usize, background: bool) {
         if self.cycle(key, k).is_some() || self.pending_cycle.is_some() {
             return;
         }
         let Some(Ok(run)) = self.run(key) else {
             return;
         };
-        // The cycle's plan is rebuilt here (linear in the activities); its
-        // run, on the worker.
-        let Some(cycle) = run.execution.cycle_plan(plan, k) else {
+        if k >= run.execution.cycles.len() {
             return;
-        };
+        }
         if background {
+            let run = Arc::clone(run);
             self.pending_cycle = Some(Job::spawn((key, k), move |_: &Signal| {
-                Some(CycleRun::from_plan(k, cycle))
+                CycleRun::of(k, &run.execution, &run.plan)
             }));
-        } else {
-            self.keep_cycle(k, CycleRun::from_plan(k, cycle));
+        } else if let Some(cycle) = CycleRun::of(k, &run.execution, &run.plan) {
+            self.keep_cycle(k, cycle);
         }
     }
 

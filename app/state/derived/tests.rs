@@ -53,7 +53,7 @@ fn an_execution_for_an_older_key_is_dropped() {
     // The first cycle's run came with it; another cycle is derived on request.
     assert!(cache.cycle(new, 0).is_some());
     assert!(cache.cycle(new, 3).is_none());
-    cache.request_cycle(&plan, new, 3, false);
+    cache.request_cycle(new, 3, false);
     let three = cache.cycle(new, 3).expect("cycle 3");
     assert_eq!(three.index, 3);
     assert!(three.schedule.is_ok());
@@ -78,7 +78,7 @@ fn at_most_a_bounded_number_of_cycle_runs_are_kept() {
     };
     assert!(n > KEPT_CYCLE_RUNS);
     for k in 0..n {
-        cache.request_cycle(&plan, key, k, false);
+        cache.request_cycle(key, k, false);
         assert!(cache.cycle(key, k).is_some());
     }
     assert!(cache.cycles.len() <= KEPT_CYCLE_RUNS);
@@ -106,9 +106,9 @@ fn why_an_activity_was_lost_is_explained_off_the_frame_for_its_key() {
         .expect("activity");
     let drive = plan.activities.iter().position(|a| a.id == "drive");
     // A completed activity has nothing to explain.
-    cache.request_loss(&plan, key, drive.expect("drive"), true);
+    cache.request_loss(key, drive.expect("drive"), true);
     assert!(!cache.busy());
-    cache.request_loss(&plan, key, post, true);
+    cache.request_loss(key, post, true);
     for _ in 0..2000 {
         cache.reap(key).expect("worker result");
         if !cache.busy() {
