@@ -263,7 +263,8 @@ impl<'a, 'm> Canvas<'a, 'm> {
         };
         let (m, axis, h) = (self.m, self.m.nav.axis, row.height);
         let k = m.nav.step;
-        for bar in row.bars.iter().filter(|b| b.placed && b.shown_at(k)) {
+        let in_view = row.extents_in(axis.start, axis.end);
+        for bar in in_view.iter().filter(|b| b.placed && b.shown_at(k)) {
             if bar.extent.1 < axis.start || bar.extent.0 > axis.end {
                 continue;
             }

@@ -111,6 +111,11 @@ pub(super) struct Row {
     /// With bars sorted by start: the latest end of each bar and those
     /// before it, so the bars in a time range are found by bisection.
     pub(super) reach: Vec<f64>,
+    /// The same for the ends of the bars' extents (with their flexibility
+    /// layers), and how far any extent starts before its bar: the layers in
+    /// a time range are found by bisection too.
+    pub(super) extent_reach: Vec<f64>,
+    pub(super) lead: f64,
 }
 
 impl Row {
@@ -129,11 +134,27 @@ impl Row {
         } else {
             Vec::new()
         };
+        let extent_reach = if sorted {
+            bars.iter()
+                .scan(f64::NEG_INFINITY, |r, b| {
+                    *r = r.max(b.extent.1);
+                    Some(*r)
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let lead = bars
+            .iter()
+            .map(|b| b.start - b.extent.0)
+            .fold(0.0, f64::max);
         Self {
             label,
             bars,
             steps_shown,
             reach,
+            extent_reach,
+            lead,
             height: LANE_HEIGHT,
             steps: true,
             activity: None,
@@ -156,6 +177,17 @@ impl Row {
         }
         let first = self.reach.partition_point(|&r| r < t0);
         let last = self.bars.partition_point(|b| b.start <= t1);
+        self.bars.get(first..last.max(first)).unwrap_or_default()
+    }
+
+    /// Its bars whose extent ([`Bar::extent`]) may meet `[t0, t1]`: found by
+    /// bisection when they are sorted by start, else all of them.
+    pub(super) fn extents_in(&self, t0: f64, t1: f64) -> &[Bar] {
+        if self.extent_reach.len() != self.bars.len() {
+            return &self.bars;
+        }
+        let first = self.extent_reach.partition_point(|&r| r < t0);
+        let last = self.bars.partition_point(|b| b.start <= t1 + self.lead);
         self.bars.get(first..last.max(first)).unwrap_or_default()
     }
 }
@@ -277,17 +309,15 @@ pub(super) fn failed_shown(rows: &[Row], k: usize) -> usize {
 /// then.
 #[cfg(test)]
 pub(super) fn rows(m: &Model<'_>, k: usize, unfold: bool) -> Vec<Row> {
-    let mut rows = generated_rows(m, k);
-    rows.extend(
-        schedule_rows(m, unfold)
-            .into_iter()
-            .filter(|r| r.shown_at(k))
-            .map(|r| {
-                let bars = r.bars.into_iter().filter(|b| b.shown_at(k)).collect();
-                Row { bars, ..r }
-            }),
-    );
-    rows
+    generated_rows(m)
+        .into_iter()
+        .chain(schedule_rows(m, unfold))
+        .filter(|r| r.shown_at(k))
+        .map(|r| {
+            let bars = r.bars.into_iter().filter(|b| b.shown_at(k)).collect();
+            Row { bars, ..r }
+        })
+        .collect()
 }
 
 /// The rows of schedule mode, laid out once per schedule (each bar drawn
@@ -296,7 +326,7 @@ pub(super) fn rows(m: &Model<'_>, k: usize, unfold: bool) -> Vec<Row> {
 /// bar keeps its lane at every step; failed or skipped ones as their
 /// windows, one row each (folded into one unlabelled row when there are more
 /// than [`FOLD_FAILED_OVER`], unless `unfold`); and pending ones as their
-/// windows. The generated rows change with the step ([`generated_rows`]).
+/// windows. The generated rows are laid out the same way ([`generated_rows`]).
 pub(super) fn schedule_rows(m: &Model<'_>, unfold: bool) -> Vec<Row> {
     let plan = &m.doc.plan;
     let t = &m.theme;
@@ -397,21 +427,29 @@ fn failed_rows(mut failed: Vec<Vec<Bar>>, unfold: bool) -> Vec<Row> {
         .collect()
 }
 
-/// The generated activities alive after step `k`: the awake periods with
-/// their wakeup and shutdown, and each thermal zone's heating.
-pub(super) fn generated_rows(m: &Model<'_>, k: usize) -> Vec<Row> {
+/// The generated rows of schedule mode, laid out once per schedule like
+/// [`schedule_rows`]: the awake periods with their wakeup and shutdown, and
+/// each thermal zone's heating, every bar drawn while its generated activity
+/// is alive (`[added_at, retired_at)`). Moving the step slider then formats no
+/// label and packs no lane again (at 10,000 activities that was a tenth of a
+/// drag frame), and a heater bar keeps its lane at every step. The awake row
+/// and each zone's first lane are drawn at every step, empty or not.
+pub(super) fn generated_rows(m: &Model<'_>) -> Vec<Row> {
     let plan = &m.doc.plan;
     let problem = &m.analysis.schedule.problem;
     let t = &m.theme;
     let mut rows = Vec::new();
-    // Generated activities alive after step k.
     let mut awake = Vec::new();
     let mut heat: Vec<Vec<Bar>> = vec![Vec::new(); problem.zone_names.len()];
-    for g in m.analysis.schedule.generated_after(k) {
+    for g in &m.analysis.schedule.generated {
         let (start, end) = (g.start as f64, g.end as f64);
+        let steps = (g.added_at, g.retired_at.unwrap_or(usize::MAX));
         let (zone, activity, color, what) = match g.kind {
             GeneratedKind::Awake => {
-                awake.push(Bar::new(start, end, t.awake, None, "awake".into()));
+                awake.push(Bar {
+                    steps,
+                    ..Bar::new(start, end, t.awake, None, "awake".into())
+                });
                 continue;
             }
             GeneratedKind::Preheat { zone, activity } => (zone, activity, t.preheat, "preheat"),
@@ -420,7 +458,10 @@ pub(super) fn generated_rows(m: &Model<'_>, k: usize) -> Vec<Row> {
             }
         };
         let label = format!("{what} {}", plan.activities[activity].id);
-        heat[zone].push(Bar::new(start, end, color, Some(activity), label));
+        heat[zone].push(Bar {
+            steps,
+            ..Bar::new(start, end, color, Some(activity), label)
+        });
     }
     // Wakeup and shutdown drawn over the start and end of each awake period.
     let (wake, shut) = (problem.wake as f64, problem.shut as f64);
@@ -431,18 +472,40 @@ pub(super) fn generated_rows(m: &Model<'_>, k: usize) -> Vec<Row> {
             (bar.end - shut, bar.end, "shutdown"),
         ] {
             if end > start {
-                edges.push(Bar::new(start, end, t.wake, None, label.into()));
+                edges.push(Bar {
+                    steps: bar.steps,
+                    ..Bar::new(start, end, t.wake, None, label.into())
+                });
             }
         }
     }
-    awake.sort_by(|a, b| a.start.total_cmp(&b.start));
-    edges.sort_by(|a, b| a.start.total_cmp(&b.start));
-    awake.extend(edges);
-    rows.push(Row::new("Awake".into(), awake));
+    // Sorted by start, so that a frame finds the bars in view by bisection
+    // (the row holds every period of every step); a wakeup after the period
+    // it starts, so it is drawn over it. The periods alive after one step are
+    // disjoint and each edge lies inside its own, so this is the drawing
+    // order of periods first, edges over them.
+    let mut bars: Vec<(bool, Bar)> = awake
+        .into_iter()
+        .map(|b| (false, b))
+        .chain(edges.into_iter().map(|b| (true, b)))
+        .collect();
+    bars.sort_by(|(x, a), (y, b)| a.start.total_cmp(&b.start).then(x.cmp(y)));
+    let awake = bars.into_iter().map(|(_, b)| b).collect();
+    rows.push(always_shown(Row::new("Awake".into(), awake)));
     for (z, bars) in heat.into_iter().enumerate() {
-        rows.extend(pack(bars, &format!("Heat: {}", problem.zone_names[z]), 3));
+        let mut lanes = pack(bars, &format!("Heat: {}", problem.zone_names[z]), 3).into_iter();
+        rows.extend(lanes.next().map(always_shown));
+        rows.extend(lanes);
     }
     rows
+}
+
+/// `row`, drawn after every step even while none of its bars is.
+fn always_shown(row: Row) -> Row {
+    Row {
+        steps_shown: (0, usize::MAX),
+        ..row
+    }
 }
 
 /// Scheduled bars in one row per unit resource (resource names in order; an

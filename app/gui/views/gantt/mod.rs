@@ -53,27 +53,19 @@ struct RowsKey {
 
 /// The rows, kept between frames: building them sorts and packs every
 /// activity, which at 10k activities costs more than drawing them. In
-/// schedule mode they are laid out once per schedule (each bar knows the
-/// steps it is drawn after), so moving the step builds only the generated
-/// rows again.
+/// schedule mode they are laid out once per schedule, the generated rows
+/// too (each bar knows the steps it is drawn after), so moving the step
+/// builds nothing.
 #[derive(Clone, Debug)]
 pub struct GanttRows {
     key: RowsKey,
     rows: Vec<Row>,
-    /// Schedule mode's generated rows (awake, heating) and the step they
-    /// are of.
-    generated: (Option<usize>, Vec<Row>),
 }
 
 impl GanttRows {
     /// The rows drawn after step `k`, top to bottom.
     fn shown(&self, k: usize) -> Vec<&Row> {
-        self.generated
-            .1
-            .iter()
-            .chain(&self.rows)
-            .filter(|r| r.shown_at(k))
-            .collect()
+        self.rows.iter().filter(|r| r.shown_at(k)).collect()
     }
 }
 
@@ -199,26 +191,18 @@ fn rows_of(m: &Model<'_>, run: Option<&ExecutionRun>, cache: &mut ViewCache) -> 
             )
         }),
     };
-    let (rows, generated) = match cache.gantt.take() {
-        Some(cached) if cached.key == key => (cached.rows, cached.generated),
+    let rows = match cache.gantt.take() {
+        Some(cached) if cached.key == key => cached.rows,
         _ => match run {
-            Some(run) => (execution::execution_rows(m, run), (None, Vec::new())),
-            None => (
-                layout::schedule_rows(m, cache.failed_unfolded),
-                (None, Vec::new()),
-            ),
+            Some(run) => execution::execution_rows(m, run),
+            None => {
+                let mut rows = layout::generated_rows(m);
+                rows.extend(layout::schedule_rows(m, cache.failed_unfolded));
+                rows
+            }
         },
     };
-    let generated = match generated {
-        (Some(g), rows) if g == k => (Some(g), rows),
-        _ if run.is_some() => (None, Vec::new()),
-        _ => (Some(k), layout::generated_rows(m, k)),
-    };
-    GanttRows {
-        key,
-        rows,
-        generated,
-    }
+    GanttRows { key, rows }
 }
 
 /// A new selection: its row scrolled into view (its time range was moved to
