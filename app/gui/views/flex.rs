@@ -204,8 +204,9 @@ const SLACK_BAND: f32 = 0.4;
 /// Draws `fa`'s slack behind its bar, inside its own lane `[y, y + h]`
 /// (scheduled duration `d`; the bars of the lane are drawn over it): a band
 /// along the lane's bottom where it can sit with every check passing (free
-/// slack) and where only temporally (the phase-1 part), then the whisker
-/// from `lb` to `ub + d` with ticks at both ends.
+/// slack) and where only temporally (the phase-1 part); its whisker from
+/// `lb` to `ub + d` with ticks at both ends is gathered into `whiskers`, drawn
+/// with the lane's others over the bands.
 #[allow(clippy::too_many_arguments)]
 pub fn underlay(
     painter: &Painter,
@@ -216,6 +217,7 @@ pub fn underlay(
     timeline: Rect,
     y: f32,
     h: f32,
+    whiskers: &mut Whiskers,
 ) {
     let x = |t: i64| {
         axis.x(t as f64, timeline)
@@ -243,21 +245,66 @@ pub fn underlay(
             fa.start.ub.saturating_add(d),
         );
     if fa.start.ub > fa.start.lb && seen {
-        let stroke = Stroke::new(WHISKER_STROKE, m.theme.whisker);
-        let (x0, x1) = (x(fa.start.lb), x(fa.start.ub.saturating_add(d)));
-        let mid = y + h / 2.0;
-        let tick = WHISKER_TICK.min(h) / 2.0;
-        painter.line_segment([Pos2::new(x0, mid), Pos2::new(x1, mid)], stroke);
+        whiskers
+            .spans
+            .push((x(fa.start.lb), x(fa.start.ub.saturating_add(d))));
         // A tick only where the bound is in view (not where the line is cut).
         for t in [fa.start.lb, fa.start.ub.saturating_add(d)] {
             if axis.start <= t as f64 && t as f64 <= axis.end {
-                let xe = x(t);
+                whiskers.ticks.push(x(t));
+            }
+        }
+    }
+}
+
+/// The whiskers of one lane's bars, gathered by [`underlay`] and drawn at
+/// once by [`Whiskers::flush`]: lines that overlap are drawn as their union,
+/// and a tick once per pixel column. A lane of a zoomed-out plan of
+/// thousands of activities holds thousands of overlapping whiskers on one
+/// line; drawn one by one they cost most of a frame's tessellation, and
+/// looked the same.
+#[derive(Debug, Default)]
+pub struct Whiskers {
+    /// `[x0, x1]` of each whisker line (screen x).
+    spans: Vec<(f32, f32)>,
+    /// The screen x of each end tick.
+    ticks: Vec<f32>,
+}
+
+impl Whiskers {
+    /// Draws what was gathered across a lane whose middle is at `mid`, and
+    /// empties it.
+    pub fn flush(&mut self, painter: &Painter, m: &Model<'_>, mid: f32, h: f32) {
+        let stroke = Stroke::new(WHISKER_STROKE, m.theme.whisker);
+        let tick = WHISKER_TICK.min(h) / 2.0;
+        self.spans.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut run: Option<(f32, f32)> = None;
+        for &(a, b) in &self.spans {
+            match &mut run {
+                Some(r) if a <= r.1 => r.1 = r.1.max(b),
+                _ => {
+                    if let Some((x0, x1)) = run.replace((a, b)) {
+                        painter.line_segment([Pos2::new(x0, mid), Pos2::new(x1, mid)], stroke);
+                    }
+                }
+            }
+        }
+        if let Some((x0, x1)) = run {
+            painter.line_segment([Pos2::new(x0, mid), Pos2::new(x1, mid)], stroke);
+        }
+        self.ticks.sort_by(f32::total_cmp);
+        let mut last = f32::NEG_INFINITY;
+        for &xe in &self.ticks {
+            if xe - last >= 1.0 {
                 painter.line_segment(
                     [Pos2::new(xe, mid - tick), Pos2::new(xe, mid + tick)],
                     stroke,
                 );
+                last = xe;
             }
         }
+        self.spans.clear();
+        self.ticks.clear();
     }
 }
 

@@ -264,6 +264,10 @@ impl<'a, 'm> Canvas<'a, 'm> {
         let (m, axis, h) = (self.m, self.m.nav.axis, row.height);
         let k = m.nav.step;
         let in_view = row.extents_in(axis.start, axis.end);
+        let mut faded = self.painter.clone();
+        faded.multiply_opacity(DIMMED);
+        // The plain and the faded layers' whiskers, each joined across the lane.
+        let (mut plain_whiskers, mut faded_whiskers) = Default::default();
         for bar in in_view.iter().filter(|b| b.placed && b.shown_at(k)) {
             if bar.extent.1 < axis.start || bar.extent.0 > axis.end {
                 continue;
@@ -278,15 +282,17 @@ impl<'a, 'm> Canvas<'a, 'm> {
                 // Faded with its bar when the search leaves it out.
                 let left_out = self.listed.as_ref().is_some_and(|l| !l.shows(fa.activity))
                     && m.nav.selected != Some(fa.activity);
-                if left_out {
-                    let mut faded = self.painter.clone();
-                    faded.multiply_opacity(DIMMED);
-                    flex::underlay(&faded, m, fa, d, axis, self.timeline, y, h);
+                let (painter, whiskers) = if left_out {
+                    (&faded, &mut faded_whiskers)
                 } else {
-                    flex::underlay(&self.painter, m, fa, d, axis, self.timeline, y, h);
-                }
+                    (&self.painter, &mut plain_whiskers)
+                };
+                flex::underlay(painter, m, fa, d, axis, self.timeline, y, h, whiskers);
             }
         }
+        let mid = y + h / 2.0;
+        faded_whiskers.flush(&faded, m, mid, h);
+        plain_whiskers.flush(&self.painter, m, mid, h);
     }
 
     /// How `bar` looks against the search and filters.
