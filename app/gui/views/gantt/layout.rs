@@ -123,27 +123,22 @@ impl Row {
         let steps_shown = bars.iter().fold((usize::MAX, 0), |(lo, hi), b| {
             (lo.min(b.steps.0), hi.max(b.steps.1))
         });
+        // With the bars sorted by start, the latest end of each bar and those
+        // before it (for bisection); else nothing.
         let sorted = bars.windows(2).all(|w| w[0].start <= w[1].start);
-        let reach = if sorted {
+        let running_max = |end: fn(&Bar) -> f64| -> Vec<f64> {
+            if !sorted {
+                return Vec::new();
+            }
             bars.iter()
                 .scan(f64::NEG_INFINITY, |r, b| {
-                    *r = r.max(b.end);
+                    *r = r.max(end(b));
                     Some(*r)
                 })
                 .collect()
-        } else {
-            Vec::new()
         };
-        let extent_reach = if sorted {
-            bars.iter()
-                .scan(f64::NEG_INFINITY, |r, b| {
-                    *r = r.max(b.extent.1);
-                    Some(*r)
-                })
-                .collect()
-        } else {
-            Vec::new()
-        };
+        let reach = running_max(|b| b.end);
+        let extent_reach = running_max(|b| b.extent.1);
         let lead = bars
             .iter()
             .map(|b| b.start - b.extent.0)
