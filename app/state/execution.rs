@@ -191,7 +191,7 @@ impl CycleRun {
     }
 
     /// The scheduler run of cycle `index`, whose plan is `cycle`.
-    pub fn from_plan(index: usize, cycle: CyclePlan) -> Self {
+    fn from_plan(index: usize, cycle: CyclePlan) -> Self {
         let schedule = cycle.schedule().map_err(|e| e.to_string());
         let traces = schedule.as_ref().map_or(Vec::new(), Schedule::all_traces);
         Self {

@@ -277,21 +277,18 @@ impl Whiskers {
     pub fn flush(&mut self, painter: &Painter, m: &Model<'_>, mid: f32, h: f32) {
         let stroke = Stroke::new(WHISKER_STROKE, m.theme.whisker);
         let tick = WHISKER_TICK.min(h) / 2.0;
+        let line = |(x0, x1): (f32, f32)| {
+            painter.line_segment([Pos2::new(x0, mid), Pos2::new(x1, mid)], stroke);
+        };
         self.spans.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut run: Option<(f32, f32)> = None;
         for &(a, b) in &self.spans {
             match &mut run {
                 Some(r) if a <= r.1 => r.1 = r.1.max(b),
-                _ => {
-                    if let Some((x0, x1)) = run.replace((a, b)) {
-                        painter.line_segment([Pos2::new(x0, mid), Pos2::new(x1, mid)], stroke);
-                    }
-                }
+                _ => run.replace((a, b)).into_iter().for_each(line),
             }
         }
-        if let Some((x0, x1)) = run {
-            painter.line_segment([Pos2::new(x0, mid), Pos2::new(x1, mid)], stroke);
-        }
+        run.into_iter().for_each(line);
         self.ticks.sort_by(f32::total_cmp);
         let mut last = f32::NEG_INFINITY;
         for &xe in &self.ticks {
