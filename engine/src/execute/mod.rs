@@ -21,6 +21,7 @@ mod cycle;
 mod montecarlo;
 mod policy;
 mod record;
+mod resume;
 mod sim;
 mod text;
 mod why;

@@ -8,6 +8,7 @@ use std::borrow::Cow;
 
 use super::cycle::{Dropped, Status};
 use super::record::{Integrator, Record, union};
+use super::resume::LastRun;
 use super::{ActivityRun, Actuals, Cycle, Event, Execution, Guard, RunOutcome, Trigger};
 use crate::error::Error;
 use crate::model::{AwakeMode, CycleStart, EffectAt, HeaterHold, Plan};
@@ -85,6 +86,13 @@ pub(super) struct Sim {
     /// (what the next cycle finds on).
     pub prev_awake: Vec<(i64, i64)>,
     pub prev_heat: Vec<Heat>,
+    /// The latest cycle's run, for the next cycle to keep what it can of it
+    /// (the replanning policy's).
+    pub last_run: Option<LastRun>,
+    /// Steps the cycles' runs kept from the cycle before, and steps run in
+    /// all (what tests read to see the shortcut at work).
+    pub kept: usize,
+    pub steps: usize,
     /// A fingerprint of every cycle's plan, to check
     /// [`Execution::cycle_plan`]'s rebuilt ones against (not the plans: the
     /// check must not make debug builds keep what release builds rebuild).
@@ -109,6 +117,9 @@ impl Sim {
             trigger: Trigger::Start,
             prev_awake: Vec::new(),
             prev_heat: Vec::new(),
+            last_run: None,
+            kept: 0,
+            steps: 0,
             #[cfg(debug_assertions)]
             plans: Vec::new(),
         }

@@ -637,7 +637,7 @@ fn outcome_step(state: &State<'_>, a: usize, step_no: usize) -> Option<Evaluated
 /// (a hint that it rarely fits: the activity failed in a run like this one)
 /// the step is searched at once: the same outcome, without the cost of the
 /// ideal placement's check where it fails.
-fn recorded_step(
+pub(super) fn recorded_step(
     state: &State<'_>,
     a: usize,
     step_no: usize,
@@ -696,7 +696,7 @@ fn ideal(state: &State<'_>, a: usize) -> Option<Evaluated> {
 }
 
 /// `[start, end)` of a placement.
-fn span(p: &Placement) -> (i64, i64) {
+pub(super) fn span(p: &Placement) -> (i64, i64) {
     (p.start, p.start + p.duration)
 }
 

@@ -552,7 +552,7 @@ impl State<'_> {
     /// Merges `q` with every awake period closer than `max(min_sleep, 1)`, repeatedly.
     /// The periods are sorted and disjoint, so those merged are a contiguous run,
     /// widened until no neighbour is within reach.
-    fn merge(&self, mut q: (i64, i64)) -> ((i64, i64), Vec<usize>) {
+    pub(super) fn merge(&self, mut q: (i64, i64)) -> ((i64, i64), Vec<usize>) {
         let gap = self.problem.min_sleep.max(1);
         let awake = &self.awake;
         #[cfg(debug_assertions)]

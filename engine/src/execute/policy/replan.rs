@@ -7,10 +7,11 @@ use std::borrow::Cow;
 
 use crate::error::Error;
 use crate::execute::cycle::{Links, Status, cycle_plan};
+use crate::execute::resume::LastRun;
 use crate::execute::sim::{CycleSchedule, Executive, Next, Sim, cycle_start, guard, state_values};
 use crate::execute::{Event, Trigger};
 use crate::model::Plan;
-use crate::scheduler::{Problem, run_outcomes};
+use crate::scheduler::{Problem, run_resuming};
 
 /// The replanning executive of one plan: its cycle period and whether an
 /// executing activity's end triggers a cycle.
@@ -49,7 +50,23 @@ impl Executive for Replan {
             &values,
             start.clone(),
         );
-        let outcomes = run_outcomes(&cp.plan)?;
+        let compiled = Problem::compile(&cp.plan)?;
+        let last = sim.last_run.take();
+        let prior = last
+            .as_ref()
+            .and_then(|last| last.prior(problem, sim, &cp, &compiled));
+        let run = run_resuming(&compiled, prior.as_ref());
+        sim.kept += run.kept;
+        sim.steps += compiled.order.len();
+        drop(prior);
+        sim.last_run = Some(LastRun::of(
+            &run,
+            &cp,
+            &compiled,
+            sim.t,
+            plan.activities.len(),
+        ));
+        let outcomes = run.outcomes;
         let k = sim.cycles.len();
         for &a in &cp.activity_of {
             if matches!(sim.status[a], Status::Waiting) {

@@ -1,0 +1,341 @@
+//! What a replanning cycle keeps of the cycle before it (docs/semantics.md,
+//! "Execution: cycles that keep the cycle before"): when everything between
+//! the two cycles went as the earlier one planned, the later cycle's scheduler
+//! run may keep an activity's earlier outcome without searching it, where the
+//! differences between the two runs can only take starts away from it.
+//!
+//! Between a cycle at `t0` and the next at `t1` the later run differs from
+//! the earlier one, before a waiting activity `j`'s step, by:
+//!
+//! - the activities that started in between and came after `j` in the earlier
+//!   run's step order (now held first, or ended and in the executed state),
+//!   and those that ran longer than the earlier run held them: each only adds
+//!   load, busy time and data unless it [`interacts`] with `j`;
+//! - the executed state of charge and data at `t1` (checked against the
+//!   earlier run's levels there: never more charge, never less data), and a
+//!   handover passed (then nothing is kept);
+//! - the awake period and heaters the rover is in at `t1`, which the earlier
+//!   run's later steps generated: more load (the plan's powers are checked
+//!   non-negative), and for the awake period, a difference the scheduler
+//!   side judges per step (`scheduler::resume`).
+//!
+//! A cycle whose interval saw an end earlier than planned keeps nothing: the
+//! charge given back can give any activity a start.
+
+use super::cycle::Built;
+use super::sim::Sim;
+use crate::scheduler::{AwakeChange, Before, Prior, Problem, Resumed};
+use crate::timeline::RateTimeline;
+
+/// The latest cycle's run, as the next cycle's run reads it.
+#[derive(Clone, Debug)]
+pub(super) struct LastRun {
+    /// The cycle's time.
+    t: i64,
+    /// The run's outcome by plan activity (`Unknown`: not in its plan).
+    before: Vec<Before>,
+    /// The run's step index by plan activity (`usize::MAX`: not in its plan).
+    pos: Vec<usize>,
+    /// The state of charge, data timeline, peak and awake periods after it.
+    soc: RateTimeline,
+    data: RateTimeline,
+    peak_max: Option<(i64, i64)>,
+    awake: Vec<(i64, i64)>,
+    /// Its awake periods at its start, and what each of its steps did to
+    /// them, in step order.
+    awake_start: Vec<(i64, i64)>,
+    awake_steps: Vec<AwakeChange>,
+    /// The heaters its plan found on that kept their zone warm for every
+    /// activity (no owner): `(zone, end, power)`.
+    warm: Vec<(usize, i64, i64)>,
+    /// Whether its plan still had a handover to keep.
+    handover: bool,
+}
+
+impl LastRun {
+    /// What the run `run` of the cycle at `t` (plan `built`, compiled as
+    /// `cycle`) leaves for the next cycle.
+    pub(super) fn of(run: &Resumed, built: &Built, cycle: &Problem, t: i64, n: usize) -> Self {
+        let mut before = vec![Before::Unknown; n];
+        let mut pos = vec![usize::MAX; n];
+        let mut awake_steps = Vec::with_capacity(cycle.order.len());
+        for (k, &i) in cycle.order.iter().enumerate() {
+            let a = built.activity_of[i];
+            pos[a] = k;
+            before[a] = match &run.placed[i] {
+                Some(p) => Before::Placed(p.clone()),
+                None => Before::Failed,
+            };
+            awake_steps.push(
+                run.placed[i]
+                    .as_ref()
+                    .and_then(|p| Some((p.retire.clone(), p.new_awake?))),
+            );
+        }
+        Self {
+            t,
+            before,
+            pos,
+            soc: run.soc.clone(),
+            data: run.data.clone(),
+            peak_max: run.peak_max,
+            awake: run.outcomes.awake.clone(),
+            awake_start: cycle.awake0.into_iter().collect(),
+            awake_steps,
+            warm: warm(cycle),
+            handover: cycle.handover_time.is_some(),
+        }
+    }
+
+    /// What the run of the cycle at `sim.t` (plan `built`, compiled as
+    /// `cycle`) may keep of this one; `None` when nothing can be kept.
+    /// `problem` is the whole plan's.
+    pub(super) fn prior(
+        &self,
+        problem: &Problem,
+        sim: &Sim,
+        built: &Built,
+        cycle: &Problem,
+    ) -> Option<Prior<'_>> {
+        let (t0, t1) = (self.t, sim.t);
+        if !restrictive(problem) || (self.handover && cycle.handover_time.is_none()) {
+            return None;
+        }
+        // The state of charge never higher than the earlier run had at `t1`,
+        // which never went under the minimum before `t1`; no peak over the
+        // limit anywhere (a check of every start).
+        let lowest_before = self
+            .soc
+            .profile()
+            .into_iter()
+            .filter(|&(t, _)| t0 <= t && t <= t1)
+            .map(|(_, level)| level)
+            .chain([self.soc.level_at(t1)])
+            .min()?;
+        if cycle.soc0 > self.soc.level_at(t1) || lowest_before < problem.min_soc {
+            return None;
+        }
+        if let (Some(max), Some((peak, _))) = (cycle.max_peak, self.peak_max) {
+            if peak > max {
+                return None;
+            }
+        }
+        // Never less data stored than the earlier run had at `t1` (its
+        // timeline holds `-D`), or no activity producing data is kept.
+        let data_ok = -cycle.data0 <= self.data.level_at(t1);
+        // What ran in between, against the earlier run: `(activity, its step
+        // there, ran longer than held)`.
+        let mut extras: Vec<(usize, usize, bool)> = Vec::new();
+        for (x, r) in sim.runs.iter().enumerate() {
+            let Some(r) = r else { continue };
+            if r.start >= t0 {
+                // Started as the earlier run placed it.
+                let Before::Placed(p) = &self.before[x] else {
+                    return None;
+                };
+                if p.start != r.start || p.start + p.duration != r.planned_end {
+                    return None;
+                }
+                if r.end <= t1 && r.end != r.planned_end {
+                    return None;
+                }
+                extras.push((x, self.pos[x], r.end > t1 && r.planned_end <= t1));
+            } else if r.end > t0 {
+                // Executing at `t0`: the earlier run held it until `held`.
+                let held = r.planned_end.max(t0 + 1);
+                let now = if r.end <= t1 {
+                    r.end
+                } else {
+                    r.planned_end.max(t1 + 1)
+                };
+                if r.end <= t1 && r.end < held {
+                    return None;
+                }
+                if now != held {
+                    extras.push((x, 0, true));
+                }
+            }
+        }
+        // Everything the earlier run placed before `t1` started (the guard
+        // held nothing back).
+        let started = |x: usize| sim.runs[x].is_some();
+        if self.before.iter().enumerate().any(
+            |(x, b)| matches!(b, Before::Placed(p) if t0 <= p.start && p.start < t1 && !started(x)),
+        ) {
+            return None;
+        }
+        // A kept placement's loads, with those of the steps before it, are
+        // among the earlier run's final loads (every step so far came out
+        // as there, and nothing ran longer than held): from the same charge
+        // at `t1`, its levels are at least that run's final levels, which
+        // keep the minima.
+        let level = self.soc.level_at(t1);
+        let energy_proved = cycle.soc0 == level
+            && extras.iter().all(|&(_, _, long)| !long)
+            && self.soc.lowest_from(t1) >= cycle.min_soc
+            && match (cycle.handover_time, cycle.handover_soc) {
+                (Some(at), Some(min)) => self.soc.level_at(at) >= min,
+                _ => true,
+            };
+        let awake_reach = self
+            .awake
+            .iter()
+            .filter(|&&(a, _)| a <= t1)
+            .map(|&(_, b)| b)
+            .chain(cycle.awake0.map(|(_, b)| b))
+            .fold(t1, i64::max);
+        // A heater that keeps its zone warm for every activity now but did not
+        // in the earlier run (its owner started since, at another time than
+        // the preheat was for) can spare an activity of the zone its preheat.
+        let warmer: Vec<usize> = warm(cycle)
+            .into_iter()
+            .filter(|&(_, end, _)| end > t1)
+            .filter(|h| !self.warm.contains(h))
+            .map(|(z, _, _)| z)
+            .collect();
+        let mut before = Vec::with_capacity(built.activity_of.len());
+        let mut may_keep = Vec::with_capacity(built.activity_of.len());
+        let mut pos = Vec::with_capacity(built.activity_of.len());
+        for (i, &j) in built.activity_of.iter().enumerate() {
+            let act = &problem.acts[j];
+            before.push(self.before[j].clone());
+            pos.push(self.pos[j]);
+            may_keep.push(
+                !cycle.acts[i].held
+                    && (data_ok || act.data <= 0)
+                    && !act.zones.iter().any(|z| warmer.contains(z))
+                    && extras.iter().all(|&(x, pos, long)| {
+                        !(long || pos > self.pos[j]) || !interacts(problem, x, j)
+                    }),
+            );
+        }
+        Some(Prior {
+            before,
+            may_keep,
+            pos,
+            energy_proved,
+            awake_reach,
+            awake_start: &self.awake_start,
+            awake_steps: &self.awake_steps,
+        })
+    }
+}
+
+/// The heaters `cycle`'s plan found on that keep their zone warm for every
+/// activity: `(zone, end, power)`.
+fn warm(cycle: &Problem) -> Vec<(usize, i64, i64)> {
+    cycle
+        .heaters
+        .iter()
+        .filter(|h| h.owner.is_none())
+        .map(|h| (h.zone, h.end, h.power))
+        .collect()
+}
+
+/// Whether every load the plan can add is a load (never charge given back,
+/// never less peak): activities' energy and peak, being awake against
+/// asleep, heaters.
+fn restrictive(problem: &Problem) -> bool {
+    problem.awake >= problem.asleep
+        && problem
+            .zones
+            .iter()
+            .all(|z| z.preheat >= 0 && z.maintenance >= 0)
+        && problem.acts.iter().all(|a| a.energy >= 0 && a.peak >= 0)
+}
+
+/// Whether activity `x` having run (or run longer) can give activity `j` a
+/// start it did not have (plan activity indices): `j` depends on `x` or
+/// shares its group; `x` changes a state `j` requires or changes; `x`
+/// downlinks data `j` would produce; they share a heating zone (a zone left
+/// warm). An awake period left on is judged per step, on the periods
+/// themselves (`scheduler::resume`).
+fn interacts(problem: &Problem, x: usize, j: usize) -> bool {
+    let (a, b) = (&problem.acts[x], &problem.acts[j]);
+    b.after.iter().any(|d| d.target == x)
+        || (a.group.is_some() && a.group == b.group)
+        || a.effects.iter().any(|e| {
+            b.requires.iter().any(|r| r.state == e.state)
+                || b.effects.iter().any(|f| f.state == e.state)
+        })
+        || (a.data < 0 && b.data > 0)
+        || a.zones.iter().any(|z| b.zones.contains(z))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::sim::Sim;
+    use super::super::{Replan, sample_run};
+    use crate::generate::{Profile, add_duration_models, generate_plan_with};
+    use crate::model::Plan;
+    use crate::scheduler::{Problem, run_outcomes};
+
+    fn bundled() -> Plan {
+        crate::load::load_plan(include_str!("../../../assets/default-plan.json"))
+            .expect("the bundled plan loads")
+            .plan
+    }
+
+    /// Runs `runs` sampled executions of `plan` (seed 1) cycle by cycle and
+    /// checks that every cycle fails exactly the activities a full scheduler
+    /// run of its plan fails (debug builds also check each kept step against
+    /// the full step); returns the steps kept and the steps run.
+    fn kept_in(plan: &Plan, runs: u64) -> (usize, usize) {
+        let problem = Problem::compile(plan).expect("compiles");
+        let (mut kept, mut steps) = (0, 0);
+        for run in 0..runs {
+            let actuals = sample_run(plan, 1, run);
+            let mut sim = Sim::new(&problem, plan, &actuals);
+            let replan = Replan::new(plan);
+            while sim.cycle(&problem, plan, &replan).expect("a cycle runs") {}
+            kept += sim.kept;
+            steps += sim.steps;
+            let execution = sim.finish(problem.clone(), plan);
+            for (k, cycle) in execution.cycles.iter().enumerate() {
+                let cp = execution.cycle_plan(plan, k).expect("a cycle plan");
+                let full = run_outcomes(&cp.plan).expect("schedules");
+                let failed: Vec<usize> = (0..cp.activity_of.len())
+                    .filter(|&i| full.placements[i].is_none())
+                    .map(|i| cp.activity_of[i])
+                    .collect();
+                assert_eq!(cycle.failed(), failed.as_slice(), "run {run}, cycle {k}");
+            }
+        }
+        (kept, steps)
+    }
+
+    /// Sampled executions of the bundled plan keep most of their cycles'
+    /// steps from the cycle before, and come out as full runs would.
+    #[test]
+    fn replanning_cycles_of_the_bundled_plan_keep_most_steps() {
+        let (kept, steps) = kept_in(&bundled(), 6);
+        assert!(
+            kept * 2 > steps,
+            "only {kept} of {steps} steps were kept from the cycle before"
+        );
+    }
+
+    /// Generated plans of every profile with duration models (thermal zones
+    /// with heaters left on, states, downlinks, sleep rules): cycles that keep
+    /// steps come out as full runs would. The realistic 200-activity plan of
+    /// seed 5 has a heater left on by an activity that started earlier than
+    /// its preheat was for: the zone is warm for everyone from then on, which
+    /// gives another activity of the zone a start it did not have.
+    #[test]
+    fn replanning_cycles_of_generated_plans_come_out_as_full_runs() {
+        let mut kept = 0;
+        for (profile, activities, seed) in [
+            (Profile::Standard, 120, 1),
+            (Profile::Standard, 120, 2),
+            (Profile::Realistic, 120, 1),
+            (Profile::Realistic, 200, 5),
+            (Profile::Starved, 120, 1),
+            (Profile::Starved, 120, 2),
+        ] {
+            let plan = generate_plan_with(profile, activities, 1, seed);
+            kept += kept_in(&plan, 1).0;
+            kept += kept_in(&add_duration_models(plan, 0.3, seed), 2).0;
+        }
+        assert!(kept > 0, "no step was kept");
+    }
+}
