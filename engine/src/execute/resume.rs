@@ -24,7 +24,8 @@
 
 use super::cycle::Built;
 use super::sim::Sim;
-use crate::scheduler::{AwakeChange, Before, Prior, Problem, Resumed};
+use crate::model::AwakeMode;
+use crate::scheduler::{Before, Placement, Prior, Problem, Resumed, RunOutcomes};
 use crate::timeline::RateTimeline;
 
 /// The latest cycle's run, as the next cycle's run reads it.
@@ -32,19 +33,20 @@ use crate::timeline::RateTimeline;
 pub(super) struct LastRun {
     /// The cycle's time.
     t: i64,
-    /// The run's outcome by plan activity (`Unknown`: not in its plan).
-    before: Vec<Before>,
-    /// The run's step index by plan activity (`usize::MAX`: not in its plan).
+    /// Its placements, by activity of its plan, and its step order.
+    placed: Vec<Option<Placement>>,
+    order: Vec<usize>,
+    /// Its plan's index of each plan activity (`usize::MAX`: not in it),
+    /// and that activity's step index there.
+    index: Vec<usize>,
     pos: Vec<usize>,
     /// The state of charge, data timeline, peak and awake periods after it.
     soc: RateTimeline,
     data: RateTimeline,
     peak_max: Option<(i64, i64)>,
     awake: Vec<(i64, i64)>,
-    /// Its awake periods at its start, and what each of its steps did to
-    /// them, in step order.
+    /// Its awake periods at its start.
     awake_start: Vec<(i64, i64)>,
-    awake_steps: Vec<AwakeChange>,
     /// The heaters its plan found on that kept their zone warm for every
     /// activity (no owner): `(zone, end, power)`.
     warm: Vec<(usize, i64, i64)>,
@@ -54,36 +56,44 @@ pub(super) struct LastRun {
 
 impl LastRun {
     /// What the run `run` of the cycle at `t` (plan `built`, compiled as
-    /// `cycle`) leaves for the next cycle.
-    pub(super) fn of(run: &Resumed, built: &Built, cycle: &Problem, t: i64, n: usize) -> Self {
-        let mut before = vec![Before::Unknown; n];
+    /// `cycle`) leaves for the next cycle, and the run's outcomes.
+    pub(super) fn of(
+        run: Resumed,
+        built: &Built,
+        cycle: &Problem,
+        t: i64,
+        n: usize,
+    ) -> (Self, RunOutcomes) {
+        let mut index = vec![usize::MAX; n];
         let mut pos = vec![usize::MAX; n];
-        let mut awake_steps = Vec::with_capacity(cycle.order.len());
         for (k, &i) in cycle.order.iter().enumerate() {
             let a = built.activity_of[i];
+            index[a] = i;
             pos[a] = k;
-            before[a] = match &run.placed[i] {
-                Some(p) => Before::Placed(p.clone()),
-                None => Before::Failed,
-            };
-            awake_steps.push(
-                run.placed[i]
-                    .as_ref()
-                    .and_then(|p| Some((p.retire.clone(), p.new_awake?))),
-            );
         }
-        Self {
+        let last = Self {
             t,
-            before,
+            placed: run.placed,
+            order: cycle.order.clone(),
+            index,
             pos,
-            soc: run.soc.clone(),
-            data: run.data.clone(),
+            soc: run.soc,
+            data: run.data,
             peak_max: run.peak_max,
             awake: run.outcomes.awake.clone(),
             awake_start: cycle.awake0.into_iter().collect(),
-            awake_steps,
             warm: warm(cycle),
             handover: cycle.handover_time.is_some(),
+        };
+        (last, run.outcomes)
+    }
+
+    /// The run's outcome for plan activity `a`.
+    fn before(&self, a: usize) -> Before<'_> {
+        match self.placed.get(self.index[a]) {
+            None => Before::Unknown,
+            Some(None) => Before::Failed,
+            Some(Some(p)) => Before::Placed(p),
         }
     }
 
@@ -130,7 +140,7 @@ impl LastRun {
             let Some(r) = r else { continue };
             if r.start >= t0 {
                 // Started as the earlier run placed it.
-                let Before::Placed(p) = &self.before[x] else {
+                let Before::Placed(p) = self.before(x) else {
                     return None;
                 };
                 if p.start != r.start || p.start + p.duration != r.planned_end {
@@ -159,9 +169,9 @@ impl LastRun {
         // Everything the earlier run placed before `t1` started (the guard
         // held nothing back).
         let started = |x: usize| sim.runs[x].is_some();
-        if self.before.iter().enumerate().any(
-            |(x, b)| matches!(b, Before::Placed(p) if t0 <= p.start && p.start < t1 && !started(x)),
-        ) {
+        let waiting_before =
+            |x: usize| matches!(self.before(x), Before::Placed(p) if t0 <= p.start && p.start < t1);
+        if (0..self.index.len()).any(|x| waiting_before(x) && !started(x)) {
             return None;
         }
         // A kept placement's loads, with those of the steps before it, are
@@ -184,6 +194,18 @@ impl LastRun {
             .map(|&(_, b)| b)
             .chain(cycle.awake0.map(|(_, b)| b))
             .fold(t1, i64::max);
+        // A manual sleep that ran where a start of this run can reach (its
+        // wakeup from the awake period the rover is in or from the cycle,
+        // merged `min_sleep` further): the run before saw it, this one
+        // does not.
+        let reach_back = cycle
+            .awake0
+            .map_or(t1, |(w, _)| w.min(t1))
+            .saturating_sub(cycle.wake + cycle.min_sleep.max(1));
+        let no_sleep_near = !sim.runs.iter().enumerate().any(|(x, r)| {
+            r.is_some_and(|r| r.start < t1 && r.end > reach_back)
+                && problem.acts[x].awake == AwakeMode::Forbidden
+        });
         // A heater that keeps its zone warm for every activity now but did not
         // in the earlier run (its owner started since, at another time than
         // the preheat was for) can spare an activity of the zone its preheat.
@@ -198,7 +220,7 @@ impl LastRun {
         let mut pos = Vec::with_capacity(built.activity_of.len());
         for (i, &j) in built.activity_of.iter().enumerate() {
             let act = &problem.acts[j];
-            before.push(self.before[j].clone());
+            before.push(self.before(j));
             pos.push(self.pos[j]);
             may_keep.push(
                 !cycle.acts[i].held
@@ -215,8 +237,10 @@ impl LastRun {
             pos,
             energy_proved,
             awake_reach,
+            no_sleep_near,
             awake_start: &self.awake_start,
-            awake_steps: &self.awake_steps,
+            placed_before: &self.placed,
+            order_before: &self.order,
         })
     }
 }

@@ -28,7 +28,7 @@ pub use outcomes::{RunOutcomes, run_outcomes};
 pub(crate) use phase2::Evaluated;
 pub use problem::{Act, Problem};
 pub use profiles::Profiles;
-pub(crate) use resume::{AwakeChange, Before, Prior, Resumed, run_resuming};
+pub(crate) use resume::{Before, Prior, Resumed, run_resuming};
 pub use state::{Placement, State};
 #[cfg(debug_assertions)]
 use trace::merge_tries;

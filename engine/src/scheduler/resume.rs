@@ -28,25 +28,21 @@ use crate::model::AwakeMode;
 use crate::timeline::RateTimeline;
 
 /// The outcome the run before gave an activity of this run.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub(crate) enum Before {
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Before<'a> {
     /// It had no step there that can stand for this one.
     Unknown,
     /// It failed (or was skipped).
     Failed,
     /// It was placed so.
-    Placed(Placement),
+    Placed(&'a Placement),
 }
-
-/// What a step did to the awake periods: the periods it retired (indices
-/// into the list before it) and the one it made; `None`: nothing.
-pub(crate) type AwakeChange = Option<(Vec<usize>, (i64, i64))>;
 
 /// What a run may keep of the run before it.
 #[derive(Clone, Debug)]
 pub(crate) struct Prior<'a> {
     /// By activity of this run's problem.
-    pub before: Vec<Before>,
+    pub before: Vec<Before<'a>>,
     /// By activity: whether every difference between this run's starting
     /// state and the run before's state at that activity's step, apart from
     /// the awake periods, can only take starts away from it.
@@ -61,16 +57,23 @@ pub(crate) struct Prior<'a> {
     /// The latest time up to which the awake periods of the two runs may
     /// differ (the cycle, or the end of the awake period the rover is in).
     pub awake_reach: i64,
-    /// The run before's awake periods at its start, and what each of its
-    /// steps did to them (`(retired, new period)`), in its step order: its
-    /// periods before any of its steps are replayed from these.
+    /// Whether no activity that keeps the rover asleep ran within reach of
+    /// the cycle (`min_sleep` before the awake period the rover is in, or
+    /// before the cycle): the run before knew such a sleep, this run does
+    /// not, so equal awake periods alone do not make the runs agree.
+    pub no_sleep_near: bool,
+    /// The run before's awake periods at its start, its placements (by its
+    /// activity) and its step order: its periods before any of its steps
+    /// are replayed from these.
     pub awake_start: &'a [(i64, i64)],
-    pub awake_steps: &'a [AwakeChange],
+    pub placed_before: &'a [Option<Placement>],
+    pub order_before: &'a [usize],
 }
 
 /// The run before's awake periods, replayed step by step alongside this run.
 struct AwakeBefore<'a> {
-    steps: &'a [AwakeChange],
+    placed: &'a [Option<Placement>],
+    order: &'a [usize],
     done: usize,
     periods: Vec<(i64, i64)>,
 }
@@ -79,15 +82,16 @@ impl AwakeBefore<'_> {
     /// The run before's periods before its step `k` (0-based; `k` never
     /// decreases from one call to the next).
     fn before_step(&mut self, k: usize) -> &[(i64, i64)] {
-        while self.done < k.min(self.steps.len()) {
-            if let Some((retire, (qa, qb))) = &self.steps[self.done] {
+        while self.done < k.min(self.order.len()) {
+            let placed = self.placed[self.order[self.done]].as_ref();
+            if let Some((retire, (qa, qb))) = placed.and_then(|p| Some((&p.retire, p.new_awake?))) {
                 let mut i = 0;
                 self.periods.retain(|_| {
                     i += 1;
                     !retire.contains(&(i - 1))
                 });
-                let at = self.periods.partition_point(|x| x.0 < *qa);
-                self.periods.insert(at, (*qa, *qb));
+                let at = self.periods.partition_point(|x| x.0 < qa);
+                self.periods.insert(at, (qa, qb));
             }
             self.done += 1;
         }
@@ -124,7 +128,8 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
     let mut same = prior.is_some();
     let mut kept = 0;
     let mut awake_before = prior.map(|p| AwakeBefore {
-        steps: p.awake_steps,
+        placed: p.placed_before,
+        order: p.order_before,
         done: 0,
         periods: p.awake_start.to_vec(),
     });
@@ -138,13 +143,14 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
     for (k, &a) in problem.order.iter().enumerate() {
         let step_no = k + 1;
         let prior = prior.filter(|_| same && !problem.acts[a].held);
-        let before = prior.map(|p| &p.before[a]);
+        let before = prior.map(|p| p.before[a]);
         let keep = prior.is_some_and(|p| {
             p.may_keep[a]
                 && (awake_clear(&state, a, p.awake_reach)
-                    || awake_before.as_mut().is_some_and(|b| {
-                        same_periods(&state.awake, b.before_step(p.pos[a]), awake_cut)
-                    }))
+                    || p.no_sleep_near
+                        && awake_before.as_mut().is_some_and(|b| {
+                            same_periods(&state.awake, b.before_step(p.pos[a]), awake_cut)
+                        }))
         });
         let ev = match before.filter(|_| keep) {
             Some(Before::Failed) => {

@@ -59,14 +59,8 @@ impl Executive for Replan {
         sim.kept += run.kept;
         sim.steps += compiled.order.len();
         drop(prior);
-        sim.last_run = Some(LastRun::of(
-            &run,
-            &cp,
-            &compiled,
-            sim.t,
-            plan.activities.len(),
-        ));
-        let outcomes = run.outcomes;
+        let (last, outcomes) = LastRun::of(run, &cp, &compiled, sim.t, plan.activities.len());
+        sim.last_run = Some(last);
         let k = sim.cycles.len();
         for &a in &cp.activity_of {
             if matches!(sim.status[a], Status::Waiting) {
