@@ -10,7 +10,7 @@
 //! - the activities that started in between and came after `j` in the earlier
 //!   run's step order (now held first, or ended and in the executed state),
 //!   and those that ran longer than the earlier run held them: each only adds
-//!   load, busy time and data unless it [`interacts`] with `j`;
+//!   load, busy time and data unless it gives `j` starts (`gives_starts`);
 //! - the executed state of charge and data at `t1` (checked against the
 //!   earlier run's levels there: never more charge, never less data), and a
 //!   handover passed (then nothing is kept);
@@ -25,7 +25,7 @@
 use super::cycle::Built;
 use super::sim::Sim;
 use crate::model::AwakeMode;
-use crate::scheduler::{Before, Placement, Prior, Problem, Resumed, RunOutcomes};
+use crate::scheduler::{Before, Placement, Prior, Problem, Resumed, RunOutcomes, gives_starts};
 use crate::timeline::RateTimeline;
 
 /// The latest cycle's run, as the next cycle's run reads it.
@@ -114,15 +114,16 @@ impl LastRun {
         // The state of charge never higher than the earlier run had at `t1`,
         // which never went under the minimum before `t1`; no peak over the
         // limit anywhere (a check of every start).
+        let level = self.soc.level_at(t1);
         let lowest_before = self
             .soc
             .profile()
             .into_iter()
             .filter(|&(t, _)| t0 <= t && t <= t1)
             .map(|(_, level)| level)
-            .chain([self.soc.level_at(t1)])
+            .chain([level])
             .min()?;
-        if cycle.soc0 > self.soc.level_at(t1) || lowest_before < problem.min_soc {
+        if cycle.soc0 > level || lowest_before < problem.min_soc {
             return None;
         }
         if let (Some(max), Some((peak, _))) = (cycle.max_peak, self.peak_max) {
@@ -179,7 +180,6 @@ impl LastRun {
         // as there, and nothing ran longer than held): from the same charge
         // at `t1`, its levels are at least that run's final levels, which
         // keep the minima.
-        let level = self.soc.level_at(t1);
         let energy_proved = cycle.soc0 == level
             && extras.iter().all(|&(_, _, long)| !long)
             && self.soc.lowest_from(t1) >= cycle.min_soc
@@ -227,7 +227,7 @@ impl LastRun {
                     && (data_ok || act.data <= 0)
                     && !act.zones.iter().any(|z| warmer.contains(z))
                     && extras.iter().all(|&(x, pos, long)| {
-                        !(long || pos > self.pos[j]) || !interacts(problem, x, j)
+                        !(long || pos > self.pos[j]) || !gives_starts(problem, x, j)
                     }),
             );
         }
@@ -266,24 +266,6 @@ fn restrictive(problem: &Problem) -> bool {
             .iter()
             .all(|z| z.preheat >= 0 && z.maintenance >= 0)
         && problem.acts.iter().all(|a| a.energy >= 0 && a.peak >= 0)
-}
-
-/// Whether activity `x` having run (or run longer) can give activity `j` a
-/// start it did not have (plan activity indices): `j` depends on `x` or
-/// shares its group; `x` changes a state `j` requires or changes; `x`
-/// downlinks data `j` would produce; they share a heating zone (a zone left
-/// warm). An awake period left on is judged per step, on the periods
-/// themselves (`scheduler::resume`).
-fn interacts(problem: &Problem, x: usize, j: usize) -> bool {
-    let (a, b) = (&problem.acts[x], &problem.acts[j]);
-    b.after.iter().any(|d| d.target == x)
-        || (a.group.is_some() && a.group == b.group)
-        || a.effects.iter().any(|e| {
-            b.requires.iter().any(|r| r.state == e.state)
-                || b.effects.iter().any(|f| f.state == e.state)
-        })
-        || (a.data < 0 && b.data > 0)
-        || a.zones.iter().any(|z| b.zones.contains(z))
 }
 
 #[cfg(test)]

@@ -22,7 +22,7 @@ use duration::longest_by_scan;
 use duration::{duration_monotone, head_tail_split, longest_scanned, longest_split};
 pub use inspect::{PartialSchedule, partial_schedule, valid_intervals_at};
 pub(crate) use outcomes::{
-    Checkpoints, placement_after_edit, placements_if_placed, probe_after_edit,
+    Checkpoints, gives_starts, placement_after_edit, placements_if_placed, probe_after_edit,
 };
 pub use outcomes::{RunOutcomes, run_outcomes};
 pub(crate) use phase2::Evaluated;

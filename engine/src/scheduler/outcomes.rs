@@ -735,21 +735,28 @@ fn restrictive(problem: &super::Problem, ev: &Evaluated) -> bool {
 }
 
 /// Whether `a`'s placement `pa` can give activity `j` a start it did not have:
-/// `j` depends on `a` or shares its group; `a` changes a state `j` requires or
-/// changes; `a` downlinks data `j` would produce; `a` created or extended an
-/// awake period `j` could share; or they share a heating zone (`j` could find
-/// its zone already heated).
+/// the activities interact ([`gives_starts`]), or `a` created or extended an
+/// awake period `j` could share.
 fn interacts(problem: &super::Problem, pa: &Placement, j: usize) -> bool {
-    let (a, x) = (&problem.acts[pa.act], &problem.acts[j]);
-    x.after.iter().any(|d| d.target == pa.act)
-        || (a.group.is_some() && a.group == x.group)
-        || a.effects.iter().any(|e| {
-            x.requires.iter().any(|r| r.state == e.state)
-                || x.effects.iter().any(|f| f.state == e.state)
+    gives_starts(problem, pa.act, j)
+        || (pa.new_awake.is_some() && problem.acts[j].awake == AwakeMode::Required)
+}
+
+/// Whether activity `a` placed (or having run) can give activity `j` a start
+/// it did not have, apart from the awake periods it generates: `j` depends
+/// on `a` or shares its group; `a` changes a state `j` requires or changes;
+/// `a` downlinks data `j` would produce; or they share a heating zone (`j`
+/// could find its zone already heated).
+pub(crate) fn gives_starts(problem: &super::Problem, a: usize, j: usize) -> bool {
+    let (x, y) = (&problem.acts[a], &problem.acts[j]);
+    y.after.iter().any(|d| d.target == a)
+        || (x.group.is_some() && x.group == y.group)
+        || x.effects.iter().any(|e| {
+            y.requires.iter().any(|r| r.state == e.state)
+                || y.effects.iter().any(|f| f.state == e.state)
         })
-        || (a.data < 0 && x.data > 0)
-        || (pa.new_awake.is_some() && x.awake == AwakeMode::Required)
-        || a.zones.iter().any(|z| x.zones.contains(z))
+        || (x.data < 0 && y.data > 0)
+        || x.zones.iter().any(|z| y.zones.contains(z))
 }
 
 /// Whether two placements of one activity generate the same awake period and
