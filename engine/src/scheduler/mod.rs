@@ -36,7 +36,7 @@ pub use trace::{
     Category, CategoryIntervals, FailurePhase, Generated, GeneratedKind, Outcome, Phase2Reason,
     ReasonKind, Step, Try,
 };
-use trace::{Rejected, merge_tries_with};
+use trace::{Closeness, Numbers, Rejected, merge_tries_with};
 
 use crate::error::Error;
 use crate::model::Plan;
@@ -522,7 +522,7 @@ pub(crate) fn run_step(
     } else {
         window_span(problem, a)
     };
-    let mut pending: Vec<(Try, Option<i64>)> = Vec::new();
+    let mut pending: Vec<(Try, Closeness)> = Vec::new();
     let traced = matches!(detail, Detail::Trace | Detail::Horizon);
     let mut rejected = Rejected::default();
     let mut trace = StepTrace::default();
@@ -594,24 +594,30 @@ pub(crate) fn run_step(
     let all_exact = merge_tries(
         pending
             .iter()
-            .flat_map(|(t, bound)| match bound {
-                Some(_) => state.cell_tries(a, t.duration, t.starts.lo, t.starts.hi),
-                None => vec![t.clone()],
+            .flat_map(|(t, closeness)| match closeness {
+                Closeness::Cell(_) => state.cell_tries(a, t.duration, t.starts.lo, t.starts.hi),
+                Closeness::Cells(_) => state.span_tries(a, t.duration, t.starts.lo, t.starts.hi),
+                Closeness::Exact => vec![t.clone()],
             })
             .collect(),
     );
     let tries = merge_tries_with(
         std::mem::take(&mut pending),
-        |t| {
-            let exact = state.cell_tries(a, t.duration, t.starts.lo, t.starts.hi);
-            debug_assert!(exact.len() == 1 && exact[0].reason.is_some());
-            exact
-                .into_iter()
-                .find(|x| x.reason.is_some())
-                .unwrap_or_else(|| t.clone())
+        Numbers {
+            exact: |t: &Try| {
+                let exact = state.cell_tries(a, t.duration, t.starts.lo, t.starts.hi);
+                debug_assert!(exact.len() == 1 && exact[0].reason.is_some());
+                exact
+                    .into_iter()
+                    .find(|x| x.reason.is_some())
+                    .unwrap_or_else(|| t.clone())
+            },
+            refine: |t: &Try| state.generated_cell_bound(a, t.duration, t.starts.lo, t.starts.hi),
+            tighter: |t: &Try| {
+                state.failing_cell_soc_bound(a, t.duration, t.starts.lo, t.starts.hi)
+            },
+            split: |t: &Try| state.span_cells(a, t.duration, t.starts.lo, t.starts.hi),
         },
-        |t| state.generated_cell_bound(a, t.duration, t.starts.lo, t.starts.hi),
-        |t| state.failing_cell_soc_bound(a, t.duration, t.starts.lo, t.starts.hi),
     );
     #[cfg(debug_assertions)]
     debug_assert_eq!(tries, all_exact, "pruned cells changed the reported tries");
@@ -640,7 +646,7 @@ pub(super) struct Tried {
     /// when it is left out).
     any: bool,
     found: Option<Evaluated>,
-    tries: Vec<(Try, Option<i64>)>,
+    tries: Vec<(Try, Closeness)>,
     /// What an outcome-only search rejected (a recorded one: from its tries).
     rejected: Rejected,
 }

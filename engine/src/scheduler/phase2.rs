@@ -20,7 +20,7 @@ use super::Scope;
 use super::cells::{cells, concave_feasible, concave_nearest, tangent_bound};
 use super::problem::Problem;
 use super::state::{Placement, State, uncovered};
-use super::trace::{Phase2Reason, Rejected, Try};
+use super::trace::{Closeness, Phase2Reason, Rejected, Try};
 use crate::model::AwakeMode;
 use crate::timeline::{Interval, IntervalSet};
 
@@ -594,6 +594,74 @@ impl State<'_> {
         (q, merged)
     }
 
+    /// Whether the peak-power part of [`State::structurally_ok`] for activity
+    /// `a` passes at every start without looking at the peak timeline: no
+    /// limit, or one that the highest peak so far plus everything the
+    /// placement can add (its own peak, a new awake period's, every zone's
+    /// heater) stays within.
+    fn peak_surely_ok(&self, a: usize) -> bool {
+        let problem = self.problem;
+        let Some(max) = problem.max_peak else {
+            return true;
+        };
+        let act = &problem.acts[a];
+        let heaters: i64 = act
+            .zones
+            .iter()
+            .map(|&z| {
+                problem.zones[z]
+                    .preheat
+                    .max(problem.zones[z].maintenance)
+                    .max(0)
+            })
+            .sum();
+        let most = act.peak.max(0) + (problem.awake - problem.asleep).max(0) + heaters;
+        self.peak_max.map_or(0, |(v, _)| v) + most <= max
+    }
+
+    /// Whether activity `a` with duration `d` surely passes the structural
+    /// and peak checks ([`State::structurally_ok`]) at every start in
+    /// `[lo, hi]`: a sufficient condition, decided over the whole span at
+    /// once. An awake activity's needs `[s - wake, s + d + shutdown)` all lie
+    /// in the span's hull, whose merge with the awake periods near it,
+    /// widened by `min_awake` on both sides and merged again, holds every
+    /// merged period a start can make (merging is monotone in the query), so
+    /// no manual sleep meeting that keeps every sleep check passing; the
+    /// `min_awake` extension fits the horizon for every start when it does
+    /// for the latest (or the earliest, from the other end). A forbidden one
+    /// meets no awake period anywhere in the span's reach. A heated zone needs
+    /// its heater on before every start (one on-interval covering
+    /// `[lo - 1, hi - 1]`); and the peak check passes whatever is placed
+    /// ([`State::peak_surely_ok`]). `false` says nothing.
+    fn surely_structural(&self, a: usize, d: i64, lo: i64, hi: i64) -> bool {
+        let problem = self.problem;
+        let act = &problem.acts[a];
+        if !self.peak_surely_ok(a) {
+            return false;
+        }
+        let ok = match act.awake {
+            AwakeMode::Any => true,
+            AwakeMode::Forbidden => {
+                let i = self.awake.partition_point(|p| p.1 <= lo);
+                self.awake.get(i).is_none_or(|p| p.0 >= hi + d)
+            }
+            AwakeMode::Required => {
+                let hull = (lo - problem.wake, hi + d + problem.shut);
+                let (q, _) = self.merge(hull);
+                let (q2, _) = self.merge((q.0 - problem.min_awake, q.1 + problem.min_awake));
+                let extends = hi - problem.wake + problem.min_awake <= problem.h1
+                    || lo + d + problem.shut - problem.min_awake >= problem.h0;
+                extends && self.sleep_overlapping(q2).is_none()
+            }
+        };
+        ok && act.zones.iter().all(|&z| {
+            let on = &self.zone_on[z];
+            // The first on-interval `[x, y)` ending after `lo - 1`.
+            let i = on.partition_point(|x| x.1 < lo);
+            on.get(i).is_some_and(|x| x.0 < lo && hi - 1 < x.1)
+        })
+    }
+
     /// The critical points for activity `a` with duration `d` and starts in `[lo, hi]`.
     ///
     /// A generated piece `[s + o1, s + o2)` meets a fixed interval `[x, y)` iff
@@ -760,34 +828,51 @@ impl State<'_> {
     /// searched: its try carries the bound as its closeness (`Some`), and
     /// `merge_tries_with` (in `trace.rs`) computes exact numbers only for the cells that could
     /// end up reported (with [`State::cell_tries`]).
+    ///
+    /// A run of `SPAN_CELLS` adjacent cells that the bound proves failing
+    /// together, and that surely pass the structural and peak checks
+    /// (`State::surely_structural`, one check for the run), is one try
+    /// carrying the run's bound: `merge_tries_with` splits it into its cells
+    /// (`State::span_cells`) only when it could hold its range's closest
+    /// start.
     pub fn search(
         &self,
         a: usize,
         d: i64,
         cand: &IntervalSet,
         preferred: i64,
-    ) -> (Option<Evaluated>, Vec<(Try, Option<i64>)>) {
+    ) -> (Option<Evaluated>, Vec<(Try, Closeness)>) {
         let mut tries = Vec::new();
         let (Some(lo), Some(hi)) = (cand.first(), cand.intervals().last().map(|i| i.hi)) else {
             return (None, tries);
         };
+        let min_soc = self.problem.min_soc;
         // The cells in time order, and their order of search (index).
         let cells = cells(cand, self.critical_points(a, d, lo, hi));
         let dist = |c: &(i64, i64)| distance(c.0, c.1, preferred);
         let mut by_distance: Vec<usize> = (0..cells.len()).collect();
         by_distance.sort_by_key(|&i| (dist(&cells[i]), cells[i].0));
-        // The state-of-charge bound of each run of `SPAN_CELLS` cells in
-        // time order, on first use: a run it proves failing on `min_soc`
-        // gives its cells that bound, and `merge_tries_with` asks for a
-        // cell's own bound only when the cell's turn comes.
-        let mut spans: Vec<Option<Option<i128>>> = vec![None; cells.len().div_ceil(SPAN_CELLS)];
-        let mut span_bound = |i: usize| -> Option<i128> {
-            let k = i / SPAN_CELLS;
-            *spans[k].get_or_insert_with(|| {
+        // What each run of `SPAN_CELLS` cells in time order is, on first use.
+        let mut runs: Vec<Option<Run>> = vec![None; cells.len().div_ceil(SPAN_CELLS)];
+        let mut run_of = |k: usize| -> Run {
+            *runs[k].get_or_insert_with(|| {
                 let (x, y) = (k * SPAN_CELLS, ((k + 1) * SPAN_CELLS).min(cells.len()) - 1);
-                self.span_soc_bound(a, d, cells[x].0, cells[y].1)
+                let (rlo, rhi) = (cells[x].0, cells[y].1);
+                let Some(bound) = self.span_soc_bound(a, d, rlo, rhi) else {
+                    return Run::Cells(None);
+                };
+                // One interval of starts, surely passing the structural checks.
+                let adjacent = cells[x..=y].windows(2).all(|w| w[1].0 == w[0].1 + 1);
+                if bound < min_soc && x < y && adjacent && self.surely_structural(a, d, rlo, rhi) {
+                    Run::Failing(bound)
+                } else {
+                    Run::Cells(Some(bound))
+                }
             })
         };
+        // Cells of whole runs, searched (counted) but not recorded yet: a run
+        // is one try only if the search reached every cell of it.
+        let mut reached = vec![false; cells.len()];
         let mut best: Option<(i64, i64)> = None; // (distance, start)
         for i in by_distance {
             let cell = cells[i];
@@ -795,27 +880,20 @@ impl State<'_> {
                 break;
             }
             let (cell_lo, cell_hi) = cell;
-            let bound = match span_bound(i) {
+            let bound = match run_of(i / SPAN_CELLS) {
+                Run::Failing(_) => {
+                    reached[i] = true;
+                    continue;
+                }
                 // A structural or peak failure: the cell's tries say which.
-                Some(b) if b < self.problem.min_soc => {
+                Run::Cells(Some(b)) if b < min_soc => {
                     self.structurally_ok(a, cell_lo, d).then_some(b)
                 }
-                _ => self.failing_soc_bound(a, d, cell_lo, cell_hi),
+                Run::Cells(_) => self.failing_soc_bound(a, d, cell_lo, cell_hi),
             };
             if let Some(bound) = bound {
-                let closeness = clamp_i64(bound);
-                tries.push((
-                    Try {
-                        starts: Interval::new(cell_lo, cell_hi),
-                        duration: d,
-                        reason: Some(Phase2Reason::MinSoc {
-                            at: cell_lo,
-                            soc_mj: closeness,
-                        }),
-                        probe: cell_lo,
-                    },
-                    Some(closeness),
-                ));
+                let (t, c) = pruned_try(cell_lo, cell_hi, d, bound);
+                tries.push((t, Closeness::Cell(c)));
                 continue;
             }
             let cell_tries = self.cell_tries(a, d, cell_lo, cell_hi);
@@ -828,10 +906,67 @@ impl State<'_> {
                     }
                 }
             }
-            tries.extend(cell_tries.into_iter().map(|t| (t, None)));
+            tries.extend(cell_tries.into_iter().map(|t| (t, Closeness::Exact)));
+        }
+        for (k, run) in runs.iter().enumerate() {
+            let Some(Run::Failing(bound)) = *run else {
+                continue;
+            };
+            let (x, y) = (k * SPAN_CELLS, ((k + 1) * SPAN_CELLS).min(cells.len()) - 1);
+            #[cfg(debug_assertions)]
+            self.check_whole_run(a, d, &cells[x..=y]);
+            if reached[x..=y].iter().all(|&r| r) {
+                let (t, c) = pruned_try(cells[x].0, cells[y].1, d, bound);
+                tries.push((t, Closeness::Cells(c)));
+                continue;
+            }
+            // The search stopped inside the run: only the cells it reached.
+            for i in (x..=y).filter(|&i| reached[i]) {
+                let (t, c) = pruned_try(cells[i].0, cells[i].1, d, bound);
+                tries.push((t, Closeness::Cell(c)));
+            }
         }
         let chosen = best.and_then(|(_, s)| self.evaluate(a, s, d).ok());
         (chosen, tries)
+    }
+
+    /// Debug builds: every cell of a run that [`State::search`] records as
+    /// one try passes the structural and peak checks, as
+    /// [`State::surely_structural`] said.
+    #[cfg(debug_assertions)]
+    fn check_whole_run(&self, a: usize, d: i64, cells: &[(i64, i64)]) {
+        for &(x, y) in cells {
+            for s in [x, y] {
+                debug_assert!(
+                    self.evaluate_inner(a, s, d, false).is_ok(),
+                    "a run recorded whole fails a structural check at {s}"
+                );
+            }
+        }
+    }
+
+    /// The cells between critical points of a try of [`State::search`] that
+    /// holds several cells of activity `a` with duration `d` (`[lo, hi]`),
+    /// proved failing on `min_soc` and surely passing the structural checks:
+    /// each a try failing on `min_soc` (its numbers to be computed).
+    pub(super) fn span_cells(&self, a: usize, d: i64, lo: i64, hi: i64) -> Vec<Try> {
+        let span = IntervalSet::from_intervals(vec![Interval::new(lo, hi)]);
+        cells(&span, self.critical_points(a, d, lo, hi))
+            .into_iter()
+            .map(|(x, y)| pruned_try(x, y, d, i128::MAX).0)
+            .collect()
+    }
+
+    /// Debug builds: the tries of every cell between critical points in
+    /// `[lo, hi]` (what a try of [`State::search`] that holds several cells
+    /// stands for).
+    #[cfg(debug_assertions)]
+    pub(super) fn span_tries(&self, a: usize, d: i64, lo: i64, hi: i64) -> Vec<Try> {
+        let span = IntervalSet::from_intervals(vec![Interval::new(lo, hi)]);
+        cells(&span, self.critical_points(a, d, lo, hi))
+            .into_iter()
+            .flat_map(|(x, y)| self.cell_tries(a, d, x, y))
+            .collect()
     }
 
     /// The charge activity `a` drains over duration `d`, when a bound on the
@@ -1450,6 +1585,36 @@ impl<'s, 'p> CellMargins<'s, 'p> {
     }
 }
 
+/// What [`State::search`] makes of a run of [`SPAN_CELLS`] cells.
+#[derive(Clone, Copy, Debug)]
+enum Run {
+    /// Each cell on its own, with the run's bound on the lowest state of
+    /// charge (when one applies).
+    Cells(Option<i128>),
+    /// One try: every start fails on `min_soc` (the bound) and passes the
+    /// structural and peak checks.
+    Failing(i128),
+}
+
+/// The try of starts `[lo, hi]` with duration `d` that a bound (below
+/// `min_soc`) proves failing on `min_soc` at every start: its closeness is
+/// the bound, until `merge_tries_with` asks for the numbers.
+fn pruned_try(lo: i64, hi: i64, d: i64, bound: i128) -> (Try, i64) {
+    let closeness = clamp_i64(bound);
+    (
+        Try {
+            starts: Interval::new(lo, hi),
+            duration: d,
+            reason: Some(Phase2Reason::MinSoc {
+                at: lo,
+                soc_mj: closeness,
+            }),
+            probe: lo,
+        },
+        closeness,
+    )
+}
+
 /// How far the starts `[lo, hi]` are from `preferred` at their nearest (0 when
 /// they include it): the order both searches look at cells and spans in.
 fn distance(lo: i64, hi: i64, preferred: i64) -> i64 {
@@ -1546,5 +1711,68 @@ mod tests {
         // A period covering 300 s of the need at s = 5000, less elsewhere:
         // 900 s stay uncovered at every start.
         assert_eq!(g.energy, own + 100_000 * 900);
+    }
+
+    /// A span of starts surely passes the structural checks when every start
+    /// does, and not when a manual sleep meets some start's awake need.
+    #[test]
+    fn a_span_surely_passes_the_structural_checks_only_clear_of_a_sleep() {
+        let problem = starved_problem();
+        let mut state = State::new(&problem);
+        let (lo, hi) = (5000, 6000);
+        assert!(state.surely_structural(0, 600, lo, hi));
+        for s in lo..=hi {
+            assert!(state.evaluate_inner(0, s, 600, false).is_ok(), "{s}");
+        }
+        // The need of the last start is `[5700, 6900)`: a manual sleep from
+        // 6800 meets it, not the first start's `[4700, 5900)`.
+        state.sleeps = vec![(6800, 7500, 0)];
+        state.sleep_reach = vec![7500];
+        assert!(state.evaluate_inner(0, lo, 600, false).is_ok());
+        assert!(state.evaluate_inner(0, hi, 600, false).is_err());
+        assert!(!state.surely_structural(0, 600, lo, hi));
+        assert!(state.surely_structural(0, 600, lo, 5800));
+    }
+
+    /// A recorded search of a failing activity holds a run of cells that
+    /// surely passes the structural checks as one try (the merge's debug
+    /// check compares its ranges with every cell's exact tries).
+    #[test]
+    fn a_failing_run_of_cells_is_one_try() {
+        let text = r#"{
+          "format": "solscope.plan/1",
+          "horizon": { "start": 0, "end": 20000 },
+          "local_time": { "sol_length": 88775, "offset": 0 },
+          "battery": { "capacity": 2000.0, "initial": 1001.0, "min_soc": 1000.0 },
+          "power": { "rtg": 25.0, "asleep": 25.0, "awake": 125.0 },
+          "sleep": { "wakeup_duration": 300, "shutdown_duration": 300, "min_awake": 0, "min_sleep": 0 },
+          "activities": [
+            { "id": "look", "priority": 1, "duration": 600,
+              "windows": [ { "start": 5000, "end": 6000 } ],
+              "energy_rate": 1.0, "awake": "required" },
+            { "id": "warm", "priority": 2, "duration": 200,
+              "windows": [ { "start": 5200, "end": 5200 } ],
+              "energy_rate": 0.5, "awake": "any" }
+          ]
+        }"#;
+        let plan = load_plan(text).expect("the plan loads").plan;
+        let problem = Problem::compile(&plan).expect("compiles");
+        let mut state = State::new(&problem);
+        let warm = problem.acts.iter().position(|x| x.dur_max == 200);
+        let warm = warm.expect("the second activity");
+        let ev = state.evaluate(warm, 5200, 200).expect("it fits");
+        state.apply(1, &ev.placement);
+        let look = 1 - warm;
+        let cand = IntervalSet::from_intervals(vec![Interval::new(5000, 6000)]);
+        let (found, tries) = state.search(look, 600, &cand, 5000);
+        assert!(found.is_none());
+        assert!(
+            tries.iter().any(|(_, c)| matches!(c, Closeness::Cells(_))),
+            "{tries:?}"
+        );
+        let detail = super::super::Detail::Trace;
+        let merged = super::super::run_step(&state, look, 2, &Scope::default(), detail);
+        assert!(merged.found.is_none());
+        assert!(!merged.trace.tries.is_empty());
     }
 }

@@ -202,40 +202,57 @@ impl Phase2Reason {
 #[cfg_attr(not(debug_assertions), allow(dead_code))]
 pub fn merge_tries(tries: Vec<Try>) -> Vec<Try> {
     merge_tries_with(
-        tries.into_iter().map(|t| (t, None)).collect(),
-        |t| t.clone(),
-        |_| None,
-        |_| None,
+        tries.into_iter().map(|t| (t, Closeness::Exact)).collect(),
+        Numbers {
+            exact: |t: &Try| t.clone(),
+            refine: |_: &Try| None,
+            tighter: |_: &Try| None,
+            split: |_: &Try| Vec::new(),
+        },
     )
 }
 
+/// How far the numbers of a try that a search recorded are known.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Closeness {
+    /// Its numbers are exact.
+    Exact,
+    /// One cell between critical points, proved failing on `min_soc`: an
+    /// upper bound on its closeness; its numbers are not computed yet.
+    Cell(i64),
+    /// Several adjacent cells, each passing the structural checks and proved
+    /// failing on `min_soc`: an upper bound on the closeness of each.
+    Cells(i64),
+}
+
 /// [`merge_tries`] where some tries carry only an upper bound on their closeness
-/// (`Some(bound)`: numbers not computed yet). Within a range, tries are looked at
-/// from the highest bound down (best-first), and `exact` computes a try's
+/// ([`Closeness`]: numbers not computed yet). Within a range, tries are looked at
+/// from the highest bound down (best-first), and `numbers.exact` computes a cell's
 /// numbers only while it could still be the closest (ties: the earliest start,
-/// as in [`merge_tries`]). A bounded try is first given `refine`'s cheap
-/// second upper bound (`None`: none), and when that is lower it waits its turn
-/// again under it; once a range has a closest try, `tighter` may give a
-/// bounded try a third, dearer upper bound (`None`: none), asked before
-/// `exact`: a try it proves unable to come closer is not computed.
-pub fn merge_tries_with(
-    mut tries: Vec<(Try, Option<i64>)>,
-    mut exact: impl FnMut(&Try) -> Try,
-    mut refine: impl FnMut(&Try) -> Option<i64>,
-    mut tighter: impl FnMut(&Try) -> Option<i64>,
-) -> Vec<Try> {
+/// as in [`merge_tries`]). A bounded try of several cells is first split into
+/// its cells (`numbers.split`), which wait their turn under its bound; a
+/// bounded cell is first given `numbers.refine`'s cheap second upper bound
+/// (`None`: none), and when that is lower it waits its turn again under it;
+/// once a range has a closest try, `numbers.tighter` may give a bounded cell a
+/// third, dearer upper bound (`None`: none), asked before `exact`: a cell it
+/// proves unable to come closer is not computed.
+pub fn merge_tries_with<E, R, T, S>(
+    mut tries: Vec<(Try, Closeness)>,
+    mut numbers: Numbers<E, R, T, S>,
+) -> Vec<Try>
+where
+    E: FnMut(&Try) -> Try,
+    R: FnMut(&Try) -> Option<i64>,
+    T: FnMut(&Try) -> Option<i64>,
+    S: FnMut(&Try) -> Vec<Try>,
+{
     tries.sort_by_key(|(t, _)| (std::cmp::Reverse(t.duration), t.starts.lo, t.starts.hi));
     let mut out: Vec<Try> = Vec::with_capacity(tries.len().min(64));
-    let mut run: Vec<(Try, Option<i64>)> = Vec::new();
+    let mut run: Vec<(Try, Closeness)> = Vec::new();
     // The highest start of the run so far.
     let mut hi = i64::MIN;
-    let mut bounds = Bounds {
-        exact: &mut exact,
-        refine: &mut refine,
-        tighter: &mut tighter,
-    };
-    let mut flush = |run: &mut Vec<(Try, Option<i64>)>, out: &mut Vec<Try>| {
-        if let Some(merged) = merge_run(std::mem::take(run), &mut bounds) {
+    let mut flush = |run: &mut Vec<(Try, Closeness)>, out: &mut Vec<Try>| {
+        if let Some(merged) = merge_run(std::mem::take(run), &mut numbers) {
             out.push(merged);
         }
     };
@@ -257,19 +274,25 @@ pub fn merge_tries_with(
     out
 }
 
-/// The numbers and bounds [`merge_run`] asks for ([`merge_tries_with`]).
-struct Bounds<'f, E, R, T> {
-    exact: &'f mut E,
-    refine: &'f mut R,
-    tighter: &'f mut T,
+/// The numbers and bounds [`merge_tries_with`] asks for.
+pub struct Numbers<E, R, T, S> {
+    /// A bounded cell's exact try.
+    pub exact: E,
+    /// A bounded cell's cheap second upper bound.
+    pub refine: R,
+    /// A bounded cell's dearer third upper bound.
+    pub tighter: T,
+    /// The cells of a bounded try of several cells.
+    pub split: S,
 }
 
 /// One merged range: the span of the run, with the numbers of its closest try.
-fn merge_run<E, R, T>(run: Vec<(Try, Option<i64>)>, f: &mut Bounds<'_, E, R, T>) -> Option<Try>
+fn merge_run<E, R, T, S>(mut run: Vec<(Try, Closeness)>, f: &mut Numbers<E, R, T, S>) -> Option<Try>
 where
     E: FnMut(&Try) -> Try,
     R: FnMut(&Try) -> Option<i64>,
     T: FnMut(&Try) -> Option<i64>,
+    S: FnMut(&Try) -> Vec<Try>,
 {
     use std::cmp::Reverse;
     let lo = run.first()?.0.starts.lo;
@@ -279,8 +302,11 @@ where
     let mut order: std::collections::BinaryHeap<(i64, Reverse<i64>, Reverse<usize>, bool)> = run
         .iter()
         .enumerate()
-        .map(|(i, (t, bound))| {
-            let c = bound.unwrap_or_else(|| t.reason.as_ref().map_or(0, Phase2Reason::closeness));
+        .map(|(i, (t, closeness))| {
+            let c = match *closeness {
+                Closeness::Cell(b) | Closeness::Cells(b) => b,
+                Closeness::Exact => t.reason.as_ref().map_or(0, Phase2Reason::closeness),
+            };
             (c, Reverse(t.starts.lo), Reverse(i), false)
         })
         .collect();
@@ -295,7 +321,15 @@ where
             break;
         }
         let t = match run[i].1 {
-            Some(_) => {
+            Closeness::Cells(_) => {
+                // Several cells: each waits its turn under their bound.
+                for cell in (f.split)(&run[i].0) {
+                    order.push((c, Reverse(cell.starts.lo), Reverse(run.len()), false));
+                    run.push((cell, Closeness::Cell(c)));
+                }
+                continue;
+            }
+            Closeness::Cell(_) => {
                 if !refined {
                     // A cheap second bound: when lower, the try waits its turn.
                     match (f.refine)(&run[i].0) {
@@ -310,7 +344,7 @@ where
                 }
                 (f.exact)(&run[i].0)
             }
-            None => run[i].0.clone(),
+            Closeness::Exact => run[i].0.clone(),
         };
         let tc = t.reason.as_ref().map_or(0, Phase2Reason::closeness);
         if best
