@@ -258,27 +258,11 @@ impl State<'_> {
     /// not already keep the total under the limit.
     fn structurally_ok(&self, a: usize, s: i64, d: i64) -> bool {
         let problem = self.problem;
-        let act = &problem.acts[a];
         let ok = match (self.structure(a, s, d), problem.max_peak) {
             (Err(_), _) => false,
             (Ok(_), None) => true,
             (Ok(g), Some(max)) => {
-                let awake = if g.new_awake.is_some() {
-                    (problem.awake - problem.asleep).max(0)
-                } else {
-                    0
-                };
-                let heaters: i64 = act
-                    .zones
-                    .iter()
-                    .map(|&z| {
-                        problem.zones[z]
-                            .preheat
-                            .max(problem.zones[z].maintenance)
-                            .max(0)
-                    })
-                    .sum();
-                let most = act.peak.max(0) + awake + heaters;
+                let most = self.peak_added_at_most(a, g.new_awake.is_some());
                 match self.peak_max {
                     Some((v, _)) if v > max => false,
                     Some((v, _)) if v + most <= max => true,
@@ -604,7 +588,20 @@ impl State<'_> {
         let Some(max) = problem.max_peak else {
             return true;
         };
+        self.peak_max.map_or(0, |(v, _)| v) + self.peak_added_at_most(a, true) <= max
+    }
+
+    /// The most peak power a placement of activity `a` adds anywhere: its own
+    /// peak, every zone's heater at its higher power, and with `new_awake`
+    /// the awake draw above asleep of a new awake period.
+    fn peak_added_at_most(&self, a: usize, new_awake: bool) -> i64 {
+        let problem = self.problem;
         let act = &problem.acts[a];
+        let awake = if new_awake {
+            (problem.awake - problem.asleep).max(0)
+        } else {
+            0
+        };
         let heaters: i64 = act
             .zones
             .iter()
@@ -615,8 +612,7 @@ impl State<'_> {
                     .max(0)
             })
             .sum();
-        let most = act.peak.max(0) + (problem.awake - problem.asleep).max(0) + heaters;
-        self.peak_max.map_or(0, |(v, _)| v) + most <= max
+        act.peak.max(0) + awake + heaters
     }
 
     /// Whether activity `a` with duration `d` surely passes the structural
@@ -962,10 +958,9 @@ impl State<'_> {
     /// stands for).
     #[cfg(debug_assertions)]
     pub(super) fn span_tries(&self, a: usize, d: i64, lo: i64, hi: i64) -> Vec<Try> {
-        let span = IntervalSet::from_intervals(vec![Interval::new(lo, hi)]);
-        cells(&span, self.critical_points(a, d, lo, hi))
+        self.span_cells(a, d, lo, hi)
             .into_iter()
-            .flat_map(|(x, y)| self.cell_tries(a, d, x, y))
+            .flat_map(|t| self.cell_tries(a, d, t.starts.lo, t.starts.hi))
             .collect()
     }
 
