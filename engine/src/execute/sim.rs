@@ -93,6 +93,9 @@ pub(super) struct Sim {
     /// all (what tests read to see the shortcut at work).
     pub kept: usize,
     pub steps: usize,
+    /// Kept placements that store data whose check of the store's capacity
+    /// the earlier run proved (what tests read to see that proof at work).
+    pub capacity_proved: usize,
     /// A fingerprint of every cycle's plan, to check
     /// [`Execution::cycle_plan`]'s rebuilt ones against (not the plans: the
     /// check must not make debug builds keep what release builds rebuild).
@@ -120,6 +123,7 @@ impl Sim {
             last_run: None,
             kept: 0,
             steps: 0,
+            capacity_proved: 0,
             #[cfg(debug_assertions)]
             plans: Vec::new(),
         }

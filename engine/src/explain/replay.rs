@@ -91,6 +91,7 @@ impl Thresholds {
                 .filter(|&j| pending(&self.reqs[j]))
                 .collect(),
             skip_end_effects: false,
+            skip_data_capacity: false,
         }
     }
 }

@@ -61,6 +61,7 @@ pub(crate) fn free_slack(
                 .collect(),
             skip_reqs: Vec::new(),
             skip_end_effects: false,
+            skip_data_capacity: false,
         };
         let fits = if problem.acts[b].held {
             state.replay(step)

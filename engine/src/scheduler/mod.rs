@@ -54,6 +54,10 @@ pub struct Scope {
     /// never recorded, that bounds the duration of an expanding activity with an
     /// end effect (`duration::longest_bound`).
     pub skip_end_effects: bool,
+    /// Leave out the check of the data store's capacity (not the handover
+    /// data limit): a placement kept from the run before whose data the
+    /// caller proved to fit (`resume::Prior::data_proved`).
+    pub skip_data_capacity: bool,
 }
 
 /// The entries of `items` whose index `skip` does not list.

@@ -191,7 +191,9 @@ impl State<'_> {
             }
             Category::DataVolume => {
                 let mut data = all();
-                if let (true, Some(cap)) = (act.data > 0, problem.data_cap) {
+                if let (true, Some(cap), false) =
+                    (act.data > 0, problem.data_cap, scope.skip_data_capacity)
+                {
                     data = self.data_valid(act.data, d, cap, lo, hi);
                 }
                 // The handover limit binds every optional activity, even one producing

@@ -49,11 +49,20 @@ pub(crate) struct Prior<'a> {
     pub may_keep: Vec<bool>,
     /// By activity: its step index in the run before (`usize::MAX`: none).
     pub pos: Vec<usize>,
-    /// Whether a kept placement's energy needs no check: this run's loads up
-    /// to and with it are among the run before's final loads, from the same
-    /// state of charge at the cycle, and that run's final levels keep the
-    /// minimum (and the handover minimum) from the cycle on.
+    /// Whether a kept placement's energy needs no check against `min_soc`:
+    /// this run's loads up to and with it are among the run before's final
+    /// loads, from the same state of charge at the cycle, and that run's
+    /// final levels keep the minimum from the cycle on.
     pub energy_proved: bool,
+    /// Whether, besides, that run's final level at the handover keeps the
+    /// handover minimum, the limit only optional activities are held to
+    /// (mandatory ones may take the charge under it, so a run's final level
+    /// there often is).
+    pub handover_proved: bool,
+    /// By activity: whether a kept placement needs no check of the data
+    /// store's capacity: this run stores no more data than a run it fitted
+    /// in, at every time from the cycle on (see `execute::resume`).
+    pub data_proved: Vec<bool>,
     /// The latest time up to which the awake periods of the two runs may
     /// differ (the cycle, or the end of the awake period the rover is in).
     pub awake_reach: i64,
@@ -114,6 +123,9 @@ pub(crate) struct Resumed {
     pub peak_max: Option<(i64, i64)>,
     /// Steps that kept the run before's outcome without a search.
     pub kept: usize,
+    /// Kept placements that store data whose check of the store's capacity
+    /// the run before proved.
+    pub capacity_proved: usize,
 }
 
 /// Runs `problem` for its outcomes, keeping what `prior` allows: the same
@@ -127,6 +139,7 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
     // Whether every step so far came out as in the run before.
     let mut same = prior.is_some();
     let mut kept = 0;
+    let mut capacity_proved = 0;
     let mut awake_before = prior.map(|p| AwakeBefore {
         placed: p.placed_before,
         order: p.order_before,
@@ -162,9 +175,18 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
                 continue;
             }
             Some(Before::Placed(old)) => {
-                let soc = prior.is_none_or(|p| !p.energy_proved);
+                let soc = prior.is_none_or(|p| {
+                    !p.energy_proved || !p.handover_proved && problem.handover_soc_of(a).is_some()
+                });
+                let scope = Scope {
+                    skip_data_capacity: prior.is_some_and(|p| p.data_proved[a]),
+                    ..Scope::default()
+                };
+                if scope.skip_data_capacity && problem.acts[a].data > 0 {
+                    capacity_proved += 1;
+                }
                 state
-                    .fitting_inner(a, old.start, old.duration, &Scope::default(), soc)
+                    .fitting_inner(a, old.start, old.duration, &scope, soc)
                     .filter(|ev| equivalent(problem, &ev.placement, old))
             }
             _ => None,
@@ -214,6 +236,7 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
         data: state.data.clone(),
         peak_max: state.peak_max,
         kept,
+        capacity_proved,
     }
 }
 

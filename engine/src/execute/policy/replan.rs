@@ -57,6 +57,7 @@ impl Executive for Replan {
             .and_then(|last| last.prior(problem, sim, &cp, &compiled));
         let run = run_resuming(&compiled, prior.as_ref());
         sim.kept += run.kept;
+        sim.capacity_proved += run.capacity_proved;
         sim.steps += compiled.order.len();
         drop(prior);
         let (last, outcomes) = LastRun::of(run, &cp, &compiled, sim.t, plan.activities.len());
