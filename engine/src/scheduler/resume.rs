@@ -54,11 +54,13 @@ pub(crate) struct Prior<'a> {
     /// loads, from the same state of charge at the cycle, and that run's
     /// final levels keep the minimum from the cycle on.
     pub energy_proved: bool,
-    /// Whether, besides, that run's final level at the handover keeps the
-    /// handover minimum, the limit only optional activities are held to
-    /// (mandatory ones may take the charge under it, so a run's final level
-    /// there often is).
-    pub handover_proved: bool,
+    /// By activity: whether, besides, a kept placement's level at the
+    /// handover needs no check against the handover minimum, the limit only
+    /// optional activities are held to: the run before's final level there
+    /// keeps it (mandatory activities may take it under), or this run's loads
+    /// from the cycle on are the run before's at the same step (see
+    /// `execute::resume`).
+    pub handover_proved: Vec<bool>,
     /// By activity: whether a kept placement needs no check of the data
     /// store's capacity: this run stores no more data than a run it fitted
     /// in, at every time from the cycle on (see `execute::resume`).
@@ -176,7 +178,8 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
             }
             Some(Before::Placed(old)) => {
                 let soc = prior.is_none_or(|p| {
-                    !p.energy_proved || !p.handover_proved && problem.handover_soc_of(a).is_some()
+                    !p.energy_proved
+                        || !p.handover_proved[a] && problem.handover_soc_of(a).is_some()
                 });
                 let scope = Scope {
                     skip_data_capacity: prior.is_some_and(|p| p.data_proved[a]),
