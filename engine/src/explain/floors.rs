@@ -31,6 +31,10 @@ pub(super) struct Floors {
     /// Per grid time, a min tree over the placing steps of the lowest level
     /// from that time on (index 0: the lowest level of all).
     trees: Vec<Vec<i128>>,
+    /// The grid times, and the lowest levels from them on after the step
+    /// being recorded.
+    times: Vec<i64>,
+    lowest: Vec<i128>,
     /// The same for the level at the handover time, when there is one.
     handover: Option<Vec<i128>>,
 }
@@ -44,6 +48,8 @@ impl Floors {
             steps: Vec::new(),
             cap: 1,
             trees: Vec::new(),
+            times: Vec::new(),
+            lowest: Vec::new(),
             handover: None,
         }
     }
@@ -61,6 +67,10 @@ impl Floors {
             steps: Vec::with_capacity(placing),
             cap,
             trees: vec![vec![i128::MAX; 2 * cap]; times],
+            times: (0..times as i64)
+                .map(|g| problem.h0 + g * width.max(1))
+                .collect(),
+            lowest: Vec::with_capacity(times),
             handover: problem.handover_time.map(|_| vec![i128::MAX; 2 * cap]),
         }
     }
@@ -73,8 +83,9 @@ impl Floors {
         }
         self.steps.push(j);
         let soc = &state.soc;
-        for (g, tree) in self.trees.iter_mut().enumerate() {
-            tree[self.cap + r] = soc.lowest_from(self.h0 + g as i64 * self.width);
+        soc.lowest_from_each(&self.times, &mut self.lowest);
+        for (tree, &lowest) in self.trees.iter_mut().zip(&self.lowest) {
+            tree[self.cap + r] = lowest;
         }
         if let (Some(tree), Some(t)) = (self.handover.as_mut(), state.problem.handover_time) {
             tree[self.cap + r] = soc.level_at(t);

@@ -209,6 +209,12 @@ impl RateTimeline {
         self.levels().lowest_from(t)
     }
 
+    /// [`Self::lowest_from`] for each of `times` (ascending), into `out`: one
+    /// pass over the levels instead of a search per time.
+    pub fn lowest_from_each(&self, times: &[i64], out: &mut Vec<i128>) {
+        self.levels().lowest_from_each(times, out);
+    }
+
     /// For the explainer's witnesses, with `drain` added (sorted, disjoint
     /// pieces) and the lowest level allowed `floor`: `(budget, until)` such that
     /// whatever other rate changes of at most `budget` total charge (absolute)
@@ -525,6 +531,49 @@ impl Levels {
             here.min(self.points.suffix_min(i + 1).0)
         } else {
             here
+        }
+    }
+
+    /// [`Self::lowest_from`] for each of `times` (ascending), into `out`. The
+    /// segment of each time is found by walking the points once; the lowest
+    /// point level after a time's segment is the lowest of the points up to
+    /// each later time's segment, gathered in one more walk and taken from
+    /// the end.
+    fn lowest_from_each(&self, times: &[i64], out: &mut Vec<i128>) {
+        debug_assert!(times.is_sorted(), "times not ascending");
+        let n = self.n();
+        // The segment of each time, as `segment_at` finds it: the last point
+        // of `[0, n)` at or before it (0 when before them all).
+        let mut seg = Vec::with_capacity(times.len());
+        let mut i = 0;
+        for &t in times {
+            while i + 1 < n && self.points.time(i + 1) <= t {
+                i += 1;
+            }
+            seg.push(i);
+        }
+        // The lowest level of the points after each time's segment, up to and
+        // with the next time's segment (the last: to the domain end).
+        let mut bucket = vec![i128::MAX; times.len()];
+        if let Some(&first) = seg.first() {
+            let mut g = 0;
+            for (idx, (_, _, level, _)) in (first + 1..).zip(self.points.iter_from(first + 1)) {
+                while g + 1 < seg.len() && seg[g + 1] < idx {
+                    g += 1;
+                }
+                bucket[g] = bucket[g].min(level);
+            }
+        }
+        out.clear();
+        out.resize(times.len(), 0);
+        let mut after = i128::MAX;
+        for g in (0..times.len()).rev() {
+            after = after.min(bucket[g]);
+            let here = self
+                .level_and_waste_on(self.points.point(seg[g]), times[g])
+                .0;
+            out[g] = here.min(after);
+            debug_assert_eq!(out[g], self.lowest_from(times[g]), "at {}", times[g]);
         }
     }
 
@@ -870,6 +919,34 @@ mod tests {
                 Some(b[probe as usize]),
                 "{drain:?} probe {probe}"
             );
+        }
+    }
+
+    /// The lowest level from each of many times, in one pass, is the lowest
+    /// of the levels per second from that time on, through changes to the
+    /// rate after the levels were first derived.
+    #[test]
+    fn lowest_from_each_matches_per_second() {
+        let mut next = xorshift(0x6a09_e667_f3bc_c908);
+        for _ in 0..300 {
+            let (mut rate, initial, cap, mut tl) = random_timeline(&mut next);
+            for round in 0..3 {
+                if round > 0 {
+                    let (a, len, delta) = (next(120), 1 + next(30), next(21) - 10);
+                    rate.add(a, a + len, delta);
+                    tl.add_rate(a, a + len, delta);
+                }
+                let b = brute(&rate, &[], initial, cap);
+                let mut times: Vec<i64> = (0..next(12)).map(|_| next(140) - 10).collect();
+                times.sort_unstable();
+                let mut out = Vec::new();
+                tl.lowest_from_each(&times, &mut out);
+                for (&t, &got) in times.iter().zip(&out) {
+                    let from = t.clamp(0, 120) as usize;
+                    let want = *b[from..].iter().min().unwrap();
+                    assert_eq!(got, want, "t={t} times {times:?}");
+                }
+            }
         }
     }
 
