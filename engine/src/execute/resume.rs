@@ -440,8 +440,8 @@ mod tests {
     /// at 5,000 s in the first cycle's run beside X's 90 Mbit (0 to 1,000 s)
     /// because L's downlink (2,000 s, after J in step order) made room. At
     /// the cycle at X's end, J's step comes before L's, and the 90 Mbit
-    /// stored with J's 50 overflow the 100 Mbit store: J fails there, and
-    /// runs after the cycle at L's end places it again.
+    /// stored with J's 50 overflow the 100 Mbit store: J fails there, and the
+    /// cycle at L's end places it again.
     #[test]
     fn a_kept_producer_is_checked_against_data_produced_in_between() {
         let plan = crate::load::load_plan(
