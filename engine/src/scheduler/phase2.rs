@@ -850,9 +850,11 @@ impl State<'_> {
         by_distance.sort_by_key(|&i| (dist(&cells[i]), cells[i].0));
         // What each run of `SPAN_CELLS` cells in time order is, on first use.
         let mut runs: Vec<Option<Run>> = vec![None; cells.len().div_ceil(SPAN_CELLS)];
+        // The first and last cell of run `k`.
+        let run_cells = |k: usize| (k * SPAN_CELLS, ((k + 1) * SPAN_CELLS).min(cells.len()) - 1);
         let mut run_of = |k: usize| -> Run {
             *runs[k].get_or_insert_with(|| {
-                let (x, y) = (k * SPAN_CELLS, ((k + 1) * SPAN_CELLS).min(cells.len()) - 1);
+                let (x, y) = run_cells(k);
                 let (rlo, rhi) = (cells[x].0, cells[y].1);
                 let Some(bound) = self.span_soc_bound(a, d, rlo, rhi) else {
                     return Run::Cells(None);
@@ -908,7 +910,7 @@ impl State<'_> {
             let Some(Run::Failing(bound)) = *run else {
                 continue;
             };
-            let (x, y) = (k * SPAN_CELLS, ((k + 1) * SPAN_CELLS).min(cells.len()) - 1);
+            let (x, y) = run_cells(k);
             #[cfg(debug_assertions)]
             self.check_whole_run(a, d, &cells[x..=y]);
             if reached[x..=y].iter().all(|&r| r) {
@@ -1656,26 +1658,35 @@ mod tests {
     use super::*;
     use crate::load::load_plan;
 
-    /// A plan whose battery has 1 Wh of room above `min_soc` and no net
-    /// charge asleep: a 600 s activity at 1 W fits that room on its own
-    /// energy, but the 1,200 s awake it needs (with wake-up and shutdown) at
-    /// 100 W above asleep do not.
-    fn starved_problem() -> Problem {
-        let text = r#"{
+    /// A plan of `activities` (a JSON array) whose battery has 1 Wh of room
+    /// above `min_soc` and no net charge asleep, awake drawing 100 W more.
+    fn on_a_starved_battery(activities: &str) -> Problem {
+        let text = format!(
+            r#"{{
           "format": "solscope.plan/1",
-          "horizon": { "start": 0, "end": 20000 },
-          "local_time": { "sol_length": 88775, "offset": 0 },
-          "battery": { "capacity": 2000.0, "initial": 1001.0, "min_soc": 1000.0 },
-          "power": { "rtg": 25.0, "asleep": 25.0, "awake": 125.0 },
-          "sleep": { "wakeup_duration": 300, "shutdown_duration": 300, "min_awake": 0, "min_sleep": 0 },
-          "activities": [
+          "horizon": {{ "start": 0, "end": 20000 }},
+          "local_time": {{ "sol_length": 88775, "offset": 0 }},
+          "battery": {{ "capacity": 2000.0, "initial": 1001.0, "min_soc": 1000.0 }},
+          "power": {{ "rtg": 25.0, "asleep": 25.0, "awake": 125.0 }},
+          "sleep": {{ "wakeup_duration": 300, "shutdown_duration": 300, "min_awake": 0, "min_sleep": 0 }},
+          "activities": {activities}
+        }}"#
+        );
+        let plan = load_plan(&text).expect("the plan loads").plan;
+        Problem::compile(&plan).expect("compiles")
+    }
+
+    /// [`on_a_starved_battery`] with one activity: a 600 s activity at 1 W
+    /// fits the 1 Wh of room on its own energy, but the 1,200 s awake it
+    /// needs (with wake-up and shutdown) at 100 W above asleep do not.
+    fn starved_problem() -> Problem {
+        on_a_starved_battery(
+            r#"[
             { "id": "look", "priority": 1, "duration": 600,
               "windows": [ { "start": 5000, "end": 10000 } ],
               "energy_rate": 1.0, "awake": "required" }
-          ]
-        }"#;
-        let plan = load_plan(text).expect("the plan loads").plan;
-        Problem::compile(&plan).expect("compiles")
+          ]"#,
+        )
     }
 
     /// The generated-load bound proves a span failing that the activity's own
@@ -1734,24 +1745,16 @@ mod tests {
     /// check compares its ranges with every cell's exact tries).
     #[test]
     fn a_failing_run_of_cells_is_one_try() {
-        let text = r#"{
-          "format": "solscope.plan/1",
-          "horizon": { "start": 0, "end": 20000 },
-          "local_time": { "sol_length": 88775, "offset": 0 },
-          "battery": { "capacity": 2000.0, "initial": 1001.0, "min_soc": 1000.0 },
-          "power": { "rtg": 25.0, "asleep": 25.0, "awake": 125.0 },
-          "sleep": { "wakeup_duration": 300, "shutdown_duration": 300, "min_awake": 0, "min_sleep": 0 },
-          "activities": [
+        let problem = on_a_starved_battery(
+            r#"[
             { "id": "look", "priority": 1, "duration": 600,
               "windows": [ { "start": 5000, "end": 6000 } ],
               "energy_rate": 1.0, "awake": "required" },
             { "id": "warm", "priority": 2, "duration": 200,
               "windows": [ { "start": 5200, "end": 5200 } ],
               "energy_rate": 0.5, "awake": "any" }
-          ]
-        }"#;
-        let plan = load_plan(text).expect("the plan loads").plan;
-        let problem = Problem::compile(&plan).expect("compiles");
+          ]"#,
+        );
         let mut state = State::new(&problem);
         let warm = problem.acts.iter().position(|x| x.dur_max == 200);
         let warm = warm.expect("the second activity");
