@@ -40,10 +40,12 @@ pub(super) struct LastRun {
     /// and that activity's step index there.
     index: Vec<usize>,
     pos: Vec<usize>,
-    /// The state of charge, data timeline, peak and awake periods after it.
+    /// The state of charge and data timeline after it (from its time on:
+    /// a run that ended as the run before kept the run before's), whether
+    /// its peak went over the limit, and its awake periods after it.
     soc: RateTimeline,
     data: RateTimeline,
-    peak_max: Option<(i64, i64)>,
+    peak_over: bool,
     awake: Vec<(i64, i64)>,
     /// Its awake periods at its start.
     awake_start: Vec<(i64, i64)>,
@@ -79,7 +81,7 @@ impl LastRun {
             pos,
             soc: run.soc,
             data: run.data,
-            peak_max: run.peak_max,
+            peak_over: run.peak_over,
             awake: run.outcomes.awake.clone(),
             awake_start: cycle.awake0.into_iter().collect(),
             warm: warm(cycle),
@@ -115,21 +117,12 @@ impl LastRun {
         // which never went under the minimum before `t1`; no peak over the
         // limit anywhere (a check of every start).
         let level = self.soc.level_at(t1);
-        let lowest_before = self
-            .soc
-            .profile()
-            .into_iter()
-            .filter(|&(t, _)| t0 <= t && t <= t1)
-            .map(|(_, level)| level)
-            .chain([level])
-            .min()?;
+        let lowest_before = self.soc.lowest_on(t0, t1);
         if cycle.soc0 > level || lowest_before < problem.min_soc {
             return None;
         }
-        if let (Some(max), Some((peak, _))) = (cycle.max_peak, self.peak_max) {
-            if peak > max {
-                return None;
-            }
+        if self.peak_over {
+            return None;
         }
         // Never less data stored than the earlier run had at `t1` (its
         // timeline holds `-D`), or no activity producing data is kept.
@@ -274,6 +267,23 @@ impl LastRun {
             .filter(|h| !self.warm.contains(h))
             .map(|(z, _, _)| z)
             .collect();
+        // From the step after every activity that started in between and
+        // every placement not started that generated something before `t1`
+        // (in the earlier run's step order), this run's state is the earlier
+        // run's at the same step, from `t1` on, once every step before came
+        // out as there: the same loads from the same levels at `t1` (nothing
+        // ran longer than held, the same charge and data stored, and the
+        // same data produced: everything in between ran as placed), the
+        // same awake period and heaters at `t1` (the earlier run's at that
+        // step: no later one generated anything before `t1`; no heater
+        // warmer now), and no manual sleep within reach before `t1`. The
+        // scheduler side checks the awake periods where a start can reach.
+        let same_from = (cycle.soc0 == level
+            && -cycle.data0 == self.data.level_at(t1)
+            && extras.iter().all(|&(_, _, long)| !long)
+            && no_sleep_near
+            && warmer.is_empty())
+        .then(|| same_loads_after.map_or(0, |k| k + 1));
         let mut before = Vec::with_capacity(built.activity_of.len());
         let mut may_keep = Vec::with_capacity(built.activity_of.len());
         let mut pos = Vec::with_capacity(built.activity_of.len());
@@ -313,6 +323,9 @@ impl LastRun {
             awake_start: &self.awake_start,
             placed_before: &self.placed,
             order_before: &self.order,
+            same_from,
+            soc_before: &self.soc,
+            data_before: &self.data,
         })
     }
 }
@@ -362,6 +375,8 @@ mod tests {
         steps: usize,
         /// Kept placements whose data store check the earlier run proved.
         capacity_proved: usize,
+        /// Kept steps that were the earlier run's last steps.
+        kept_rest: usize,
     }
 
     /// Runs `runs` sampled executions of `plan` (seed 1) cycle by cycle and
@@ -379,6 +394,7 @@ mod tests {
             counts.kept += sim.kept;
             counts.steps += sim.steps;
             counts.capacity_proved += sim.capacity_proved;
+            counts.kept_rest += sim.kept_rest;
             let execution = sim.finish(problem.clone(), plan);
             for (k, cycle) in execution.cycles.iter().enumerate() {
                 let cp = execution.cycle_plan(plan, k).expect("a cycle plan");
@@ -394,13 +410,23 @@ mod tests {
     }
 
     /// Sampled executions of the bundled plan keep most of their cycles'
-    /// steps from the cycle before, and come out as full runs would.
+    /// steps from the cycle before, many as the cycle before's last steps,
+    /// and come out as full runs would.
     #[test]
     fn replanning_cycles_of_the_bundled_plan_keep_most_steps() {
-        let Counts { kept, steps, .. } = kept_in(&bundled(), 6);
+        let Counts {
+            kept,
+            steps,
+            kept_rest,
+            ..
+        } = kept_in(&bundled(), 6);
         assert!(
             kept * 2 > steps,
             "only {kept} of {steps} steps were kept from the cycle before"
+        );
+        assert!(
+            kept_rest * 4 > steps,
+            "only {kept_rest} of {steps} steps were the cycle before's last steps"
         );
     }
 
@@ -413,7 +439,7 @@ mod tests {
     /// placements skip their data store check on the earlier run's proof.
     #[test]
     fn replanning_cycles_of_generated_plans_come_out_as_full_runs() {
-        let (mut kept, mut capacity_proved) = (0, 0);
+        let (mut kept, mut capacity_proved, mut kept_rest) = (0, 0, 0);
         for (profile, activities, seed) in [
             (Profile::Standard, 120, 1),
             (Profile::Standard, 120, 2),
@@ -429,10 +455,12 @@ mod tests {
             ] {
                 kept += counts.kept;
                 capacity_proved += counts.capacity_proved;
+                kept_rest += counts.kept_rest;
             }
         }
         assert!(kept > 0, "no step was kept");
         assert!(capacity_proved > 0, "no data store check was proved");
+        assert!(kept_rest > 0, "no cycle kept the cycle before's last steps");
     }
 
     /// Executes the plan `json` (whose first activity is J) with its planned

@@ -96,6 +96,9 @@ pub(super) struct Sim {
     /// Kept placements that store data whose check of the store's capacity
     /// the earlier run proved (what tests read to see that proof at work).
     pub capacity_proved: usize,
+    /// Kept steps that were the cycle before's last steps (what tests read
+    /// to see that proof at work).
+    pub kept_rest: usize,
     /// A fingerprint of every cycle's plan, to check
     /// [`Execution::cycle_plan`]'s rebuilt ones against (not the plans: the
     /// check must not make debug builds keep what release builds rebuild).
@@ -124,6 +127,7 @@ impl Sim {
             kept: 0,
             steps: 0,
             capacity_proved: 0,
+            kept_rest: 0,
             #[cfg(debug_assertions)]
             plans: Vec::new(),
         }

@@ -19,6 +19,13 @@
 //! [`same_periods`]), or when every start it could take stays clear of the
 //! periods near the cycle ([`awake_clear`]).
 //!
+//! Past a point the two runs agree outright: from the step after every
+//! difference the caller knows of (in the run before's step order), once
+//! every step before came out as there, this run's state is the run
+//! before's at the same step from the cycle on ([`Prior::same_from`]), so
+//! the rest of the run is the run before's, taken without a step run or a
+//! timeline touched: its outcomes and final timelines are the run before's.
+//!
 //! Debug builds check every kept step against the full step.
 
 use super::outcomes::{RunOutcomes, recorded_step, span};
@@ -79,6 +86,17 @@ pub(crate) struct Prior<'a> {
     pub awake_start: &'a [(i64, i64)],
     pub placed_before: &'a [Option<Placement>],
     pub order_before: &'a [usize],
+    /// The run before's step position from which on this run is the run
+    /// before's, once every step before it came out as there (`None`: from
+    /// none): from the first such step the two runs have the same state from
+    /// the cycle on, so every later step comes out as there without a check
+    /// (see `execute::resume`).
+    pub same_from: Option<usize>,
+    /// The run before's final state of charge and data timeline (what debug
+    /// builds check this run's against when its last steps were the run
+    /// before's).
+    pub soc_before: &'a RateTimeline,
+    pub data_before: &'a RateTimeline,
 }
 
 /// The run before's awake periods, replayed step by step alongside this run.
@@ -117,17 +135,21 @@ pub(crate) struct Resumed {
     pub outcomes: RunOutcomes,
     /// The placement of each activity, with what it generated.
     pub placed: Vec<Option<Placement>>,
-    /// The state of charge after the run.
+    /// The state of charge and the data timeline (`-D`) after the run, from
+    /// the cycle on (when its last steps were the run before's,
+    /// [`Prior::same_from`], the run before's final ones: the same there).
     pub soc: RateTimeline,
-    /// The data timeline (`-D`) after the run.
     pub data: RateTimeline,
-    /// The highest total peak power after the run, and its first time.
-    pub peak_max: Option<(i64, i64)>,
+    /// Whether the total peak power went over the limit anywhere.
+    pub peak_over: bool,
     /// Steps that kept the run before's outcome without a search.
     pub kept: usize,
     /// Kept placements that store data whose check of the store's capacity
     /// the run before proved.
     pub capacity_proved: usize,
+    /// Of the kept steps, those that were the run before's last steps
+    /// ([`Prior::same_from`]).
+    pub kept_rest: usize,
 }
 
 /// Runs `problem` for its outcomes, keeping what `prior` allows: the same
@@ -155,9 +177,25 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
         .awake0
         .map_or(problem.h0, |(w, _)| w.min(problem.h0))
         .saturating_sub(problem.min_sleep.max(1));
+    // The step from which on the run is the run before's, if it comes (tried
+    // at the first step the run before's position allows, and only there).
+    let mut rest_from = None;
+    let mut rest_tried = false;
     for (k, &a) in problem.order.iter().enumerate() {
         let step_no = k + 1;
         let prior = prior.filter(|_| same && !problem.acts[a].held);
+        if let (Some(p), Some(b)) = (prior.filter(|_| !rest_tried), awake_before.as_mut()) {
+            rest_tried = p
+                .same_from
+                .is_some_and(|f| p.pos[a] >= f && p.pos[a] != usize::MAX);
+            if rest_tried
+                && rest_as_before(problem, p, k)
+                && same_periods(&state.awake, b.before_step(p.pos[a]), awake_cut)
+            {
+                rest_from = Some(k);
+                break;
+            }
+        }
         let before = prior.map(|p| p.before[a]);
         let keep = prior.is_some_and(|p| {
             p.may_keep[a]
@@ -227,6 +265,34 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
             placed[a] = Some(placement);
         }
     }
+    let over = |state: &State<'_>| {
+        matches!(
+            (problem.max_peak, state.peak_max),
+            (Some(max), Some((v, _))) if v > max
+        )
+    };
+    let mut kept_rest = 0;
+    let (soc, data, peak_over) = match (rest_from, prior, awake_before.as_mut()) {
+        (Some(k), Some(p), Some(b)) => {
+            kept_rest = problem.order.len() - k;
+            kept += kept_rest;
+            rest_of_run(problem, p, b, k, &mut state, &mut placed, &mut preheats);
+            for &a in &problem.order[k..] {
+                placements[a] = placed[a].as_ref().map(span);
+            }
+            debug_assert!(
+                agree_from(&state.soc, p.soc_before, problem.h0)
+                    && agree_from(&state.data, p.data_before, problem.h0)
+                    && !over(&state),
+                "the run before's timelines or peak are not this run's from the cycle on"
+            );
+            // From the cycle on, the run before's timelines are this run's,
+            // and so is its peak, which kept the limit (or no step would
+            // have been kept).
+            (p.soc_before.clone(), p.data_before.clone(), false)
+        }
+        _ => (state.soc.clone(), state.data.clone(), over(&state)),
+    };
     Resumed {
         outcomes: RunOutcomes {
             placements,
@@ -235,14 +301,113 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
             step_of: problem.step_of.clone(),
         },
         placed,
-        soc: state.soc.clone(),
-        data: state.data.clone(),
-        peak_max: state.peak_max,
+        soc,
+        data,
+        peak_over,
         kept,
         capacity_proved,
+        kept_rest,
     }
 }
 
+/// Whether the steps of `problem` from its `k`-th (0-based) on are the run
+/// before's steps from the same activity's on, in the same order: none held,
+/// each known to the run before at a later position than the step before
+/// it, and as many placed there as the run before placed from there on
+/// (so this run leaves out only activities the run before did not place).
+fn rest_as_before(problem: &Problem, p: &Prior<'_>, k: usize) -> bool {
+    let rest = &problem.order[k..];
+    let mut last = None;
+    let mut placed = 0;
+    for &a in rest {
+        let pos = p.pos[a];
+        if problem.acts[a].held || pos == usize::MAX || last.is_some_and(|l| l >= pos) {
+            return false;
+        }
+        last = Some(pos);
+        placed += usize::from(matches!(p.before[a], Before::Placed(_)));
+    }
+    let from = rest.first().map_or(usize::MAX, |&a| p.pos[a]);
+    let placed_before = p
+        .order_before
+        .iter()
+        .skip(from)
+        .filter(|&&x| p.placed_before[x].is_some())
+        .count();
+    placed == placed_before
+}
+
+/// Takes the run before's outcomes for the steps of `problem` from its `k`-th
+/// (0-based) on ([`rest_as_before`]) into `placed` and `preheats`, and applies
+/// what the next cycle reads of them to `state`: the awake periods (the
+/// timelines are the run before's; debug builds run each step in full and
+/// apply it all). The two runs' awake periods agree from where a start can
+/// reach on ([`same_periods`]) and those steps change no period before it,
+/// so a placement's retired periods are the same periods here, shifted by
+/// the difference in the two lists' lengths.
+fn rest_of_run<'a>(
+    problem: &Problem,
+    p: &Prior<'a>,
+    before: &mut AwakeBefore<'a>,
+    k: usize,
+    state: &mut State<'_>,
+    placed: &mut [Option<Placement>],
+    preheats: &mut Vec<(usize, i64, i64, usize)>,
+) {
+    let Some(&first) = problem.order.get(k) else {
+        return;
+    };
+    let len = |v: &[(i64, i64)]| i64::try_from(v.len()).unwrap_or(i64::MAX);
+    let shift = len(&state.awake) - len(before.before_step(p.pos[first]));
+    for (k, &a) in problem.order.iter().enumerate().skip(k) {
+        let placement = match p.before[a] {
+            Before::Placed(old) => Some(Placement {
+                act: a,
+                retire: old
+                    .retire
+                    .iter()
+                    .map(|&i| {
+                        i64::try_from(i)
+                            .ok()
+                            .and_then(|i| usize::try_from(i + shift).ok())
+                            .unwrap_or(usize::MAX)
+                    })
+                    .collect(),
+                ..old.clone()
+            }),
+            _ => None,
+        };
+        if cfg!(debug_assertions) {
+            let full = recorded_step(state, a, k + 1, false, true).0;
+            let full = full.map(|ev| ev.placement);
+            assert_eq!(
+                full, placement,
+                "a step of the run before's last steps comes out otherwise"
+            );
+            if let Some(full) = &full {
+                state.apply(k + 1, full);
+            }
+        } else if let Some(placement) = &placement {
+            state.edit_awake(placement);
+        }
+        if let Some(placement) = placement {
+            preheats.extend(placement.preheats.iter().map(|&(z, s, e)| (z, s, e, a)));
+            placed[a] = Some(placement);
+        }
+    }
+}
+
+/// Whether two timelines have the same levels from `t` on (debug checks).
+fn agree_from(x: &RateTimeline, y: &RateTimeline, t: i64) -> bool {
+    let (px, py) = (x.profile(), y.profile());
+    px.iter()
+        .chain(&py)
+        .map(|&(u, _)| u)
+        .filter(|&u| u >= t)
+        .chain([t])
+        .all(|u| x.level_at(u) == y.level_at(u))
+        && x.lowest_from(t) == y.lowest_from(t)
+}
 /// Whether placement `new` of this run generates what `old` (the same
 /// activity's in the run before) did: the same span and awake period, and the
 /// same preheats but those already running at the cycle (for which `new`

@@ -375,16 +375,7 @@ impl<'p> State<'p> {
             for part in uncovered(qa, qb, p.retire.iter().map(|&i| self.awake[i])) {
                 self.add_load(part.0, part.1, extra, extra);
             }
-            let mut keep: Vec<(i64, i64)> = self
-                .awake
-                .iter()
-                .enumerate()
-                .filter(|(i, _)| !p.retire.contains(i))
-                .map(|(_, &x)| x)
-                .collect();
-            let at = keep.partition_point(|x| x.0 < qa);
-            keep.insert(at, (qa, qb));
-            self.awake = keep;
+            self.edit_awake(p);
         }
         for &z in &act.zones {
             let zone = &problem.zones[z];
@@ -406,6 +397,24 @@ impl<'p> State<'p> {
             self.peak.max_on(problem.h0, problem.h1),
             "the running peak maximum"
         );
+    }
+
+    /// Replaces the awake periods placement `p` retires with the one it
+    /// creates (nothing when it creates none); the loads are not touched.
+    pub fn edit_awake(&mut self, p: &Placement) {
+        let Some((qa, qb)) = p.new_awake else {
+            return;
+        };
+        let mut keep: Vec<(i64, i64)> = self
+            .awake
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| !p.retire.contains(i))
+            .map(|(_, &x)| x)
+            .collect();
+        let at = keep.partition_point(|x| x.0 < qa);
+        keep.insert(at, (qa, qb));
+        self.awake = keep;
     }
 
     /// Whether the heater of zone `z` is on over the second `t`.

@@ -209,6 +209,11 @@ impl RateTimeline {
         self.levels().lowest_from(t)
     }
 
+    /// The lowest level over `[lo, hi]` (`lo <= hi`).
+    pub fn lowest_on(&self, lo: i64, hi: i64) -> i128 {
+        self.levels().lowest_on(lo, hi)
+    }
+
     /// [`Self::lowest_from`] for each of `times` (ascending), into `out`: one
     /// pass over the levels instead of a search per time.
     pub fn lowest_from_each(&self, times: &[i64], out: &mut Vec<i128>) {
@@ -532,6 +537,19 @@ impl Levels {
         } else {
             here
         }
+    }
+
+    /// See [`RateTimeline::lowest_on`]: the levels are linear between the
+    /// points, so the lowest is at an end of the span or at a point inside
+    /// it.
+    fn lowest_on(&self, lo: i64, hi: i64) -> i128 {
+        let (a, b) = (
+            self.points.time_pp(|t| t <= lo),
+            self.points.time_pp(|t| t < hi),
+        );
+        (a..b.max(a))
+            .map(|i| self.points.level(i))
+            .fold(self.level_at(lo).min(self.level_at(hi)), i128::min)
     }
 
     /// [`Self::lowest_from`] for each of `times` (ascending), into `out`. The
@@ -945,6 +963,30 @@ mod tests {
                     let from = t.clamp(0, 120) as usize;
                     let want = *b[from..].iter().min().unwrap();
                     assert_eq!(got, want, "t={t} times {times:?}");
+                }
+            }
+        }
+    }
+
+    /// The lowest level over a span is the lowest of the levels per second
+    /// in it, through changes to the rate after the levels were derived.
+    #[test]
+    fn lowest_on_matches_per_second() {
+        let mut next = xorshift(0xbb67_ae85_84ca_a73b);
+        for _ in 0..300 {
+            let (mut rate, initial, cap, mut tl) = random_timeline(&mut next);
+            for round in 0..3 {
+                if round > 0 {
+                    let (a, len, delta) = (next(120), 1 + next(30), next(21) - 10);
+                    rate.add(a, a + len, delta);
+                    tl.add_rate(a, a + len, delta);
+                }
+                let b = brute(&rate, &[], initial, cap);
+                for _ in 0..8 {
+                    let lo = next(121);
+                    let hi = lo + next(121 - lo + 1).min(120 - lo);
+                    let want = *b[lo as usize..=hi as usize].iter().min().unwrap();
+                    assert_eq!(tl.lowest_on(lo, hi), want, "[{lo}, {hi}]");
                 }
             }
         }

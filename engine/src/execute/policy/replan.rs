@@ -58,6 +58,7 @@ impl Executive for Replan {
         let run = run_resuming(&compiled, prior.as_ref());
         sim.kept += run.kept;
         sim.capacity_proved += run.capacity_proved;
+        sim.kept_rest += run.kept_rest;
         sim.steps += compiled.order.len();
         drop(prior);
         let (last, outcomes) = LastRun::of(run, &cp, &compiled, sim.t, plan.activities.len());
