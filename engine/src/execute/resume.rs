@@ -24,7 +24,7 @@
 
 use super::cycle::Built;
 use super::sim::Sim;
-use crate::model::AwakeMode;
+use crate::model::{AwakeMode, EffectAt};
 use crate::scheduler::{Before, Placement, Prior, Problem, Resumed, RunOutcomes, gives_starts};
 use crate::timeline::RateTimeline;
 
@@ -159,6 +159,9 @@ impl LastRun {
                     extras.push((x, 0, true));
                 }
             }
+        }
+        if effect_ties(problem, sim, self, t0, t1) {
+            return None;
         }
         // Everything the earlier run placed before `t1` started (the guard
         // held nothing back).
@@ -330,6 +333,46 @@ impl LastRun {
     }
 }
 
+/// Whether an activity that started before `t1` has a state effect at or
+/// after `t0` at the very time another activity the earlier run placed (at
+/// `t0`) has one on the same state. A run orders effects at one instant by
+/// step, the later step's value winning; the next cycle instead folds those
+/// that took place into its starting values (the executed order) and places
+/// the activities still executing first, so such a tie can come out the
+/// other way there, and a state value no longer follows from the earlier
+/// run's.
+fn effect_ties(problem: &Problem, sim: &Sim, last: &LastRun, t0: i64, t1: i64) -> bool {
+    let effect_times = |a: usize, start: i64, end: i64| {
+        problem.acts[a]
+            .effects
+            .iter()
+            .map(move |e| (e.state, if e.at == EffectAt::Start { start } else { end }))
+    };
+    sim.runs.iter().enumerate().any(|(x, r)| {
+        let Some(r) = r else { return false };
+        if r.end < t0 || problem.acts[x].effects.is_empty() {
+            return false;
+        }
+        // Where its effects fell or fall, in either cycle's plan.
+        let ends = [
+            r.end,
+            r.planned_end,
+            r.planned_end.max(t0 + 1),
+            r.planned_end.max(t1 + 1),
+        ];
+        let mine: Vec<(usize, i64)> = ends
+            .iter()
+            .flat_map(|&end| effect_times(x, r.start, end))
+            .filter(|&(_, t)| t >= t0)
+            .collect();
+        (0..last.index.len()).any(|y| {
+            y != x
+                && matches!(last.before(y), Before::Placed(p)
+                    if effect_times(y, p.start, p.start + p.duration).any(|e| mine.contains(&e)))
+        })
+    })
+}
+
 /// The heaters `cycle`'s plan found on that keep their zone warm for every
 /// activity: `(zone, end, power)`.
 fn warm(cycle: &Problem) -> Vec<(usize, i64, i64)> {
@@ -478,6 +521,52 @@ mod tests {
         );
         kept_in(&plan, 1);
         ex
+    }
+
+    /// State effects at one instant: Y (first in step order) sets `s` to `b`
+    /// at its start at 1,000 s, X (second) sets it to `c` at its end at
+    /// 1,000 s, and the earlier run's later step, X's, wins the tie; Z
+    /// (last) needs `need` at 2,000 s, W (third) runs `w` seconds from 0.
+    /// At the cycle at X's end (`w` 50) X's effect is among the starting
+    /// values and Y's, placed, wins; at the cycle at W's end (`w` 500) X
+    /// still executes, is placed first, and Y's wins again. Either way Z's
+    /// outcome is not the earlier run's, and every cycle must come out as a
+    /// full run would.
+    #[test]
+    fn effects_tied_at_one_instant_are_not_kept_across_cycles() {
+        for (w, need) in [(50, "c"), (500, "c"), (500, "b")] {
+            let json = format!(
+                r#"{{
+                  "format": "solscope.plan/1",
+                  "horizon": {{ "start": 0, "end": 10000 }},
+                  "battery": {{ "capacity": 1000.0, "initial": 500.0, "min_soc": 100.0 }},
+                  "power": {{ "rtg": 10.0, "asleep": 10.0, "awake": 10.0 }},
+                  "states": {{ "s": {{ "values": ["a", "b", "c"], "initial": "a" }} }},
+                  "activities": [
+                    {{ "id": "Y", "priority": 1, "duration": 100, "awake": "any",
+                      "windows": [ {{ "start": 1000, "end": 1000 }} ],
+                      "effects": [ {{ "state": "s", "value": "b", "at": "start" }} ] }},
+                    {{ "id": "X", "priority": 2, "duration": 1000, "awake": "any",
+                      "windows": [ {{ "start": 0, "end": 0 }} ],
+                      "effects": [ {{ "state": "s", "value": "c", "at": "end" }} ] }},
+                    {{ "id": "W", "priority": 3, "duration": {w}, "awake": "any",
+                      "windows": [ {{ "start": 0, "end": 0 }} ] }},
+                    {{ "id": "Z", "priority": 4, "duration": 100, "awake": "any",
+                      "windows": [ {{ "start": 2000, "end": 2000 }} ],
+                      "requires": [ {{ "state": "s", "value": "{need}" }} ] }}
+                  ]
+                }}"#
+            );
+            let plan = crate::load::load_plan(&json).expect("the plan loads").plan;
+            let ex = execute(&plan, &Actuals::nominal()).expect("executes");
+            assert!(ex.cycles.len() > 1, "w {w}: a single cycle");
+            assert_eq!(
+                ex.cycles[0].did_not_place(3),
+                need == "b",
+                "w {w}, need {need}: the first cycle's outcome for Z"
+            );
+            kept_in(&plan, 1);
+        }
     }
 
     /// A producer's placement is checked against the data store again when

@@ -287,8 +287,8 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
                 "the run before's timelines or peak are not this run's from the cycle on"
             );
             // From the cycle on, the run before's timelines are this run's,
-            // and so is its peak, which kept the limit (or no step would
-            // have been kept).
+            // and so is its peak, which kept the limit (a run resumes from
+            // no run whose peak broke it).
             (p.soc_before.clone(), p.data_before.clone(), false)
         }
         _ => (state.soc.clone(), state.data.clone(), over(&state)),
