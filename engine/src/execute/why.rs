@@ -7,9 +7,8 @@ use std::collections::BTreeMap;
 
 use super::{CyclePlan, Dropped, Execution, RunOutcome};
 use crate::error::Error;
-use crate::explain::{ExplainOptions, Phase, explain, involved};
+use crate::explain::{Explanation, Phase, explain_targets, involved};
 use crate::model::Plan;
-use crate::scheduler::Schedule;
 
 /// Why one activity did not complete.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -148,19 +147,38 @@ fn losses_of(plan: &Plan, ex: &Execution, lost: &[usize]) -> Result<Vec<Loss>, E
         decided.push((a, cycle, cause));
     }
     for (k, indices) in by_cycle {
-        let trace = match ex.cycle_plan(plan, k) {
-            Some(cp) => {
-                let sched = cp.schedule()?;
-                Some((cp, sched))
+        let Some(cp) = ex.cycle_plan(plan, k) else {
+            for i in indices {
+                decided[i].2 = Some(Cause::Held);
             }
-            None => None,
+            continue;
         };
+        let sched = cp.schedule()?;
+        // The cycle's failures among these, explained together (one replay
+        // of the cycle's run serves them all), by cycle plan index.
+        let mut targets: Vec<usize> = indices
+            .iter()
+            .filter_map(|&i| cp.index_of(decided[i].0))
+            .collect();
+        targets.sort_unstable_by_key(|&i| sched.problem.step_of[i]);
+        targets.dedup();
+        let mut explained: BTreeMap<usize, Explanation> = BTreeMap::new();
+        explain_targets(
+            &cp.plan,
+            &sched,
+            &targets,
+            true,
+            |e| e,
+            &mut |_, _| {},
+            &mut |e: Explanation| {
+                explained.insert(e.activity, e);
+            },
+        )?;
         for i in indices {
-            let a = decided[i].0;
-            let cause = match &trace {
-                Some((cp, sched)) => failed(plan, cp, sched, a)?,
-                None => Cause::Held,
-            };
+            let cause = cp
+                .index_of(decided[i].0)
+                .and_then(|x| explained.get(&x))
+                .map_or(Cause::Held, |e| failed(&cp, e));
             decided[i].2 = Some(cause);
         }
     }
@@ -191,23 +209,11 @@ fn losses_of(plan: &Plan, ex: &Execution, lost: &[usize]) -> Result<Vec<Loss>, E
         .collect())
 }
 
-/// The explainer's answer for plan activity `a` in the cycle whose plan is
-/// `cp`, scheduled as `sched`.
-fn failed(plan: &Plan, cp: &CyclePlan, sched: &Schedule, a: usize) -> Result<Cause, Error> {
-    let Some(i) = cp.index_of(a) else {
-        return Ok(Cause::Held);
-    };
-    let cycle_plan = &cp.plan;
-    let opts = ExplainOptions {
-        activity: Some(plan.activities[a].id.clone()),
-        no_suggestions: true,
-    };
-    let explanations = explain(cycle_plan, sched, &opts)?;
-    let Some(ex1) = explanations.iter().find(|e| e.activity == i) else {
-        return Ok(Cause::Held);
-    };
+/// The explainer's answer `ex1` for an activity of the cycle whose plan is
+/// `cp`, as a loss's cause.
+fn failed(cp: &CyclePlan, ex1: &Explanation) -> Cause {
     let Some(phase) = ex1.phase else {
-        return Ok(Cause::Held);
+        return Cause::Held;
     };
     let detail = match phase {
         Phase::ValidIntervals => ex1
@@ -226,9 +232,9 @@ fn failed(plan: &Plan, cp: &CyclePlan, sched: &Schedule, a: usize) -> Result<Cau
         .iter()
         .filter_map(|cu| cp.activity_of.get(cu.activity).copied())
         .collect();
-    Ok(Cause::Failed {
+    Cause::Failed {
         phase,
         detail,
         culprits,
-    })
+    }
 }

@@ -209,12 +209,39 @@ pub fn explain_rendered<R: Send>(
             .map(|s| s.activity)
             .collect(),
     };
+    explain_targets(
+        plan,
+        sched,
+        &targets,
+        opts.no_suggestions,
+        render,
+        progress,
+        each,
+    )
+}
+
+/// [`explain_rendered`] for the activities `targets` (in step order), with
+/// suggestions unless `no_suggestions`: one replay of the run serves them
+/// all, up to the last one's step.
+pub(crate) fn explain_targets<R: Send>(
+    plan: &Plan,
+    sched: &Schedule,
+    targets: &[usize],
+    no_suggestions: bool,
+    render: impl Fn(Explanation) -> R + Sync,
+    progress: &mut dyn FnMut(usize, usize),
+    each: &mut dyn FnMut(R),
+) -> Result<(), Error> {
     let step_of = &sched.problem.step_of;
+    debug_assert!(
+        targets.is_sorted_by_key(|&a| step_of[a]),
+        "targets not in step order"
+    );
     let total = sched.steps.len();
     // Without suggestions each explanation goes out once it and those before it
     // are done (the ready ones rendered in parallel); with them they are kept
     // for the verification at the end.
-    let stream = opts.no_suggestions;
+    let stream = no_suggestions;
     let mut kept: Vec<Explanation> = Vec::new();
     // The explanation of targets[i] once complete (taken when handed on).
     let found: std::cell::RefCell<Vec<Option<Explanation>>> =
@@ -241,7 +268,7 @@ pub fn explain_rendered<R: Send>(
     let rank = culprits::EnergyRank::new(sched);
     replay::failure_probes(
         sched,
-        &targets,
+        targets,
         |i, k, record, trace, state| {
             let a = targets[i];
             let step = &sched.steps[step_of[a] - 1];

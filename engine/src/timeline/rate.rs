@@ -940,12 +940,14 @@ mod tests {
         }
     }
 
-    /// The lowest level from each of many times, in one pass, is the lowest
-    /// of the levels per second from that time on, through changes to the
-    /// rate after the levels were first derived.
-    #[test]
-    fn lowest_from_each_matches_per_second() {
-        let mut next = xorshift(0x6a09_e667_f3bc_c908);
+    /// Runs `check` on 300 random timelines, each as made and then after
+    /// each of two random changes to its rate (after its levels were
+    /// derived), with its levels per second and the random source.
+    fn on_changing_timelines(
+        seed: u64,
+        mut check: impl FnMut(&RateTimeline, &[i128], &mut dyn FnMut(i64) -> i64),
+    ) {
+        let mut next = xorshift(seed);
         for _ in 0..300 {
             let (mut rate, initial, cap, mut tl) = random_timeline(&mut next);
             for round in 0..3 {
@@ -955,41 +957,41 @@ mod tests {
                     tl.add_rate(a, a + len, delta);
                 }
                 let b = brute(&rate, &[], initial, cap);
-                let mut times: Vec<i64> = (0..next(12)).map(|_| next(140) - 10).collect();
-                times.sort_unstable();
-                let mut out = Vec::new();
-                tl.lowest_from_each(&times, &mut out);
-                for (&t, &got) in times.iter().zip(&out) {
-                    let from = t.clamp(0, 120) as usize;
-                    let want = *b[from..].iter().min().unwrap();
-                    assert_eq!(got, want, "t={t} times {times:?}");
-                }
+                check(&tl, &b, &mut next);
             }
         }
+    }
+
+    /// The lowest level from each of many times, in one pass, is the lowest
+    /// of the levels per second from that time on, through changes to the
+    /// rate after the levels were first derived.
+    #[test]
+    fn lowest_from_each_matches_per_second() {
+        on_changing_timelines(0x6a09_e667_f3bc_c908, |tl, b, next| {
+            let mut times: Vec<i64> = (0..next(12)).map(|_| next(140) - 10).collect();
+            times.sort_unstable();
+            let mut out = Vec::new();
+            tl.lowest_from_each(&times, &mut out);
+            for (&t, &got) in times.iter().zip(&out) {
+                let from = t.clamp(0, 120) as usize;
+                let want = *b[from..].iter().min().unwrap();
+                assert_eq!(got, want, "t={t} times {times:?}");
+            }
+        });
     }
 
     /// The lowest level over a span is the lowest of the levels per second
     /// in it, through changes to the rate after the levels were derived.
     #[test]
     fn lowest_on_matches_per_second() {
-        let mut next = xorshift(0xbb67_ae85_84ca_a73b);
-        for _ in 0..300 {
-            let (mut rate, initial, cap, mut tl) = random_timeline(&mut next);
-            for round in 0..3 {
-                if round > 0 {
-                    let (a, len, delta) = (next(120), 1 + next(30), next(21) - 10);
-                    rate.add(a, a + len, delta);
-                    tl.add_rate(a, a + len, delta);
-                }
-                let b = brute(&rate, &[], initial, cap);
-                for _ in 0..8 {
-                    let lo = next(121);
-                    let hi = lo + next(121 - lo + 1).min(120 - lo);
-                    let want = *b[lo as usize..=hi as usize].iter().min().unwrap();
-                    assert_eq!(tl.lowest_on(lo, hi), want, "[{lo}, {hi}]");
-                }
+        on_changing_timelines(0xbb67_ae85_84ca_a73b, |tl, b, next| {
+            for _ in 0..8 {
+                let lo = next(121);
+                let hi = lo + next(121 - lo + 1).min(120 - lo);
+                let want = *b[lo as usize..=hi as usize].iter().min().unwrap();
+                assert_eq!(tl.lowest_on(lo, hi), want, "[{lo}, {hi}]");
             }
-        }
+        });
     }
 
     #[test]
