@@ -348,27 +348,42 @@ fn effect_ties(problem: &Problem, sim: &Sim, last: &LastRun, t0: i64, t1: i64) -
             .iter()
             .map(move |e| (e.state, if e.at == EffectAt::Start { start } else { end }))
     };
-    sim.runs.iter().enumerate().any(|(x, r)| {
-        let Some(r) = r else { return false };
+    // Where the started activities' effects fell or fall, in either cycle's
+    // plan: `(state, time, activity)`, sorted.
+    let mut started: Vec<(usize, i64, usize)> = Vec::new();
+    for (x, r) in sim.runs.iter().enumerate() {
+        let Some(r) = r else { continue };
         if r.end < t0 || problem.acts[x].effects.is_empty() {
-            return false;
+            continue;
         }
-        // Where its effects fell or fall, in either cycle's plan.
         let ends = [
             r.end,
             r.planned_end,
             r.planned_end.max(t0 + 1),
             r.planned_end.max(t1 + 1),
         ];
-        let mine: Vec<(usize, i64)> = ends
-            .iter()
-            .flat_map(|&end| effect_times(x, r.start, end))
-            .filter(|&(_, t)| t >= t0)
-            .collect();
-        (0..last.index.len()).any(|y| {
-            y != x
-                && matches!(last.before(y), Before::Placed(p)
-                    if effect_times(y, p.start, p.start + p.duration).any(|e| mine.contains(&e)))
+        started.extend(
+            ends.iter()
+                .flat_map(|&end| effect_times(x, r.start, end))
+                .filter(|&(_, t)| t >= t0)
+                .map(|(state, t)| (state, t, x)),
+        );
+    }
+    if started.is_empty() {
+        return false;
+    }
+    started.sort_unstable();
+    started.dedup();
+    (0..last.index.len()).any(|y| {
+        let Before::Placed(p) = last.before(y) else {
+            return false;
+        };
+        effect_times(y, p.start, p.start + p.duration).any(|(state, t)| {
+            let from = started.partition_point(|&(s, u, _)| (s, u) < (state, t));
+            started[from..]
+                .iter()
+                .take_while(|&&(s, u, _)| (s, u) == (state, t))
+                .any(|&(_, _, x)| x != y)
         })
     })
 }

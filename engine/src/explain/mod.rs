@@ -498,3 +498,86 @@ fn from_probe(
         together: None,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::{Profile, generate_plan_with};
+    use crate::scheduler::schedule;
+
+    /// Any subset of a run's failures, explained together on one replay (as
+    /// an execution's losses of one cycle are), is explained as each is
+    /// among every failure; an activity the run placed, among them, as it
+    /// is alone.
+    #[test]
+    fn subsets_of_failures_are_explained_as_among_all() {
+        let json = |e: &Explanation| serde_json::to_value(e).expect("json");
+        let mut bits: u64 = 0x9e37_79b9_7f4a_7c15;
+        for (profile, seed) in [
+            (Profile::Standard, 1),
+            (Profile::Realistic, 2),
+            (Profile::Starved, 3),
+        ] {
+            let plan = generate_plan_with(profile, 150, 1, seed);
+            let sched = schedule(&plan).expect("schedules");
+            let opts = ExplainOptions {
+                activity: None,
+                no_suggestions: true,
+            };
+            let all = explain(&plan, &sched, &opts).expect("explains");
+            assert!(all.len() >= 4, "{profile:?}: only {} failures", all.len());
+            let placed = sched
+                .steps
+                .iter()
+                .find(|s| s.outcome.placement().is_some())
+                .map(|s| s.activity)
+                .expect("a placed activity");
+            let alone = explain(
+                &plan,
+                &sched,
+                &ExplainOptions {
+                    activity: Some(plan.activities[placed].id.clone()),
+                    no_suggestions: true,
+                },
+            )
+            .expect("explains");
+            for round in 0..8 {
+                let mut subset: Vec<usize> = all
+                    .iter()
+                    .map(|e| e.activity)
+                    .filter(|_| {
+                        bits ^= bits << 13;
+                        bits ^= bits >> 7;
+                        bits ^= bits << 17;
+                        bits % 3 == 0
+                    })
+                    .collect();
+                if round % 2 == 0 {
+                    subset.push(placed);
+                }
+                let step_of = &sched.problem.step_of;
+                subset.sort_unstable_by_key(|&a| step_of[a]);
+                let mut got = Vec::new();
+                explain_targets(
+                    &plan,
+                    &sched,
+                    &subset,
+                    true,
+                    |e| e,
+                    &mut |_, _| {},
+                    &mut |e| got.push(e),
+                )
+                .expect("explains");
+                assert_eq!(got.len(), subset.len(), "{profile:?} round {round}");
+                for e in &got {
+                    let want = all
+                        .iter()
+                        .chain(&alone)
+                        .find(|x| x.activity == e.activity)
+                        .expect("explained");
+                    assert_eq!(json(e), json(want), "{profile:?} round {round}");
+                }
+            }
+        }
+    }
+}
