@@ -126,7 +126,8 @@ impl LastRun {
         }
         // Never less data stored than the earlier run had at `t1` (its
         // timeline holds `-D`), or no activity producing data is kept.
-        let data_ok = -cycle.data0 <= self.data.level_at(t1);
+        let stored = self.data.level_at(t1);
+        let data_ok = -cycle.data0 <= stored;
         // What ran in between, against the earlier run: `(activity, its step
         // there, ran longer than held)`.
         let mut extras: Vec<(usize, usize, bool)> = Vec::new();
@@ -163,6 +164,7 @@ impl LastRun {
         if effect_ties(problem, sim, self, t0, t1) {
             return None;
         }
+        let none_longer = extras.iter().all(|&(_, _, long)| !long);
         // Everything the earlier run placed before `t1` started (the guard
         // held nothing back).
         let started = |x: usize| sim.runs[x].is_some();
@@ -177,9 +179,8 @@ impl LastRun {
         // at `t1`, its levels are at least that run's final levels, which
         // keep the minimum; the handover minimum binds optional activities
         // only, and is proved apart.
-        let energy_proved = cycle.soc0 == level
-            && extras.iter().all(|&(_, _, long)| !long)
-            && self.soc.lowest_from(t1) >= cycle.min_soc;
+        let energy_proved =
+            cycle.soc0 == level && none_longer && self.soc.lowest_from(t1) >= cycle.min_soc;
         let final_handover = match (cycle.handover_time, cycle.handover_soc) {
             (Some(at), Some(min)) => self.soc.level_at(at) >= min,
             _ => true,
@@ -233,8 +234,7 @@ impl LastRun {
         //   it that have not started; so when none of those is a downlink.
         // Either way nothing may run longer than held. (The handover data
         // limit, a sum of what was produced, is checked as ever.)
-        let data_at_most =
-            -cycle.data0 >= self.data.level_at(t1) && extras.iter().all(|&(_, _, long)| !long);
+        let data_at_most = -cycle.data0 >= stored && none_longer;
         // The step of the latest downlink the earlier run placed that has not
         // started.
         let last_downlink = (0..self.index.len())
@@ -282,8 +282,8 @@ impl LastRun {
         // warmer now), and no manual sleep within reach before `t1`. The
         // scheduler side checks the awake periods where a start can reach.
         let same_from = (cycle.soc0 == level
-            && -cycle.data0 == self.data.level_at(t1)
-            && extras.iter().all(|&(_, _, long)| !long)
+            && -cycle.data0 == stored
+            && none_longer
             && no_sleep_near
             && warmer.is_empty())
         .then(|| same_loads_after.map_or(0, |k| k + 1));

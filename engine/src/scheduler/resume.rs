@@ -29,7 +29,7 @@
 //! Debug builds check every kept step against the full step.
 
 use super::outcomes::{RunOutcomes, recorded_step, span};
-use super::state::{Placement, State};
+use super::state::{Placement, State, edit_periods};
 use super::{Evaluated, Problem, Scope};
 use crate::model::AwakeMode;
 use crate::timeline::RateTimeline;
@@ -112,15 +112,8 @@ impl AwakeBefore<'_> {
     /// decreases from one call to the next).
     fn before_step(&mut self, k: usize) -> &[(i64, i64)] {
         while self.done < k.min(self.order.len()) {
-            let placed = self.placed[self.order[self.done]].as_ref();
-            if let Some((retire, (qa, qb))) = placed.and_then(|p| Some((&p.retire, p.new_awake?))) {
-                let mut i = 0;
-                self.periods.retain(|_| {
-                    i += 1;
-                    !retire.contains(&(i - 1))
-                });
-                let at = self.periods.partition_point(|x| x.0 < qa);
-                self.periods.insert(at, (qa, qb));
+            if let Some(p) = &self.placed[self.order[self.done]] {
+                edit_periods(&mut self.periods, p);
             }
             self.done += 1;
         }
@@ -357,7 +350,7 @@ fn rest_of_run<'a>(
     let Some(&first) = problem.order.get(k) else {
         return;
     };
-    let len = |v: &[(i64, i64)]| i64::try_from(v.len()).unwrap_or(i64::MAX);
+    let len = |v: &[(i64, i64)]| isize::try_from(v.len()).unwrap_or(isize::MAX);
     let shift = len(&state.awake) - len(before.before_step(p.pos[first]));
     for (k, &a) in problem.order.iter().enumerate().skip(k) {
         let placement = match p.before[a] {
@@ -366,12 +359,7 @@ fn rest_of_run<'a>(
                 retire: old
                     .retire
                     .iter()
-                    .map(|&i| {
-                        i64::try_from(i)
-                            .ok()
-                            .and_then(|i| usize::try_from(i + shift).ok())
-                            .unwrap_or(usize::MAX)
-                    })
+                    .map(|&i| i.checked_add_signed(shift).unwrap_or(usize::MAX))
                     .collect(),
                 ..old.clone()
             }),

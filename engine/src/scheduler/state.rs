@@ -402,19 +402,7 @@ impl<'p> State<'p> {
     /// Replaces the awake periods placement `p` retires with the one it
     /// creates (nothing when it creates none); the loads are not touched.
     pub fn edit_awake(&mut self, p: &Placement) {
-        let Some((qa, qb)) = p.new_awake else {
-            return;
-        };
-        let mut keep: Vec<(i64, i64)> = self
-            .awake
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| !p.retire.contains(i))
-            .map(|(_, &x)| x)
-            .collect();
-        let at = keep.partition_point(|x| x.0 < qa);
-        keep.insert(at, (qa, qb));
-        self.awake = keep;
+        edit_periods(&mut self.awake, p);
     }
 
     /// Whether the heater of zone `z` is on over the second `t`.
@@ -423,6 +411,21 @@ impl<'p> State<'p> {
         let i = on.partition_point(|x| x.1 <= t);
         on.get(i).is_some_and(|x| x.0 <= t)
     }
+}
+
+/// Replaces the periods of `periods` (sorted, disjoint) that placement `p`
+/// retires (by index) with the one it creates (nothing when it creates none).
+pub fn edit_periods(periods: &mut Vec<(i64, i64)>, p: &Placement) {
+    let Some((qa, qb)) = p.new_awake else {
+        return;
+    };
+    let mut i = 0;
+    periods.retain(|_| {
+        i += 1;
+        !p.retire.contains(&(i - 1))
+    });
+    let at = periods.partition_point(|x| x.0 < qa);
+    periods.insert(at, (qa, qb));
 }
 
 /// Parts of `[a, b)` not covered by `covered` (sorted, disjoint).
