@@ -4,8 +4,10 @@
 
 use super::sim::Started;
 use crate::error::Error;
+use std::sync::Arc;
+
 use crate::model::{CycleStart, Duration, EffectAt, Plan, Window};
-use crate::scheduler::{Schedule, schedule};
+use crate::scheduler::{Act, Dep, HeatHold, Problem, Schedule, Win, schedule};
 use crate::units::{BIT_PER_MBIT, MJ_PER_WH};
 
 /// The plan a scheduling cycle scheduled ([`Execution::cycle_plan`]).
@@ -82,7 +84,6 @@ impl Status {
 pub(super) struct Built {
     pub plan: Plan,
     pub activity_of: Vec<usize>,
-    pub dropped: Vec<(usize, Dropped)>,
 }
 
 /// The plan activity index of each dependency's target (`None`: an unknown
@@ -111,6 +112,139 @@ impl Links {
     }
 }
 
+/// Which activities the cycle at `t` schedules, and their windows: what its
+/// plan and its compiled form are both built from.
+pub(super) struct Layout {
+    /// The plan activity index of each of the cycle plan's activities.
+    pub activity_of: Vec<usize>,
+    /// Per plan activity: why it is left out, if it is.
+    dropped: Vec<Option<Dropped>>,
+    /// Per plan activity not started: its windows from `t` on, cut by its
+    /// dependencies on activities that ended (`None`: the plan gives none
+    /// and nothing cut them, the whole cycle horizon).
+    windows: Vec<Option<Vec<Window>>>,
+}
+
+impl Layout {
+    /// The layout of the cycle at `t` (`links`: those of `plan`).
+    pub(super) fn new(plan: &Plan, links: &Links, t: i64, status: &[Status]) -> Self {
+        let n = plan.activities.len();
+        let started = |i: usize| !matches!(status[i], Status::Waiting);
+        let mut dropped: Vec<Option<Dropped>> = vec![None; n];
+        // Groups with a member that started keep no other member (the first
+        // such member, in file order, is named).
+        let mut ran_in_group: std::collections::BTreeMap<&str, usize> =
+            std::collections::BTreeMap::new();
+        for (j, a) in plan.activities.iter().enumerate() {
+            if let Some(g) = a.group.as_deref().filter(|_| started(j)) {
+                ran_in_group.entry(g).or_insert(j);
+            }
+        }
+        if !ran_in_group.is_empty() {
+            for (i, a) in plan.activities.iter().enumerate() {
+                if started(i) {
+                    continue;
+                }
+                if let Some(&by) = a.group.as_deref().and_then(|g| ran_in_group.get(g)) {
+                    dropped[i] = Some(Dropped::GroupMemberRan(by));
+                }
+            }
+        }
+        // Windows from `t` on, cut by dependencies on activities that ended.
+        let mut windows: Vec<Option<Vec<Window>>> = vec![None; n];
+        for (i, a) in plan.activities.iter().enumerate() {
+            if started(i) || dropped[i].is_some() {
+                continue;
+            }
+            let horizon_last = plan.horizon.end - 1;
+            let mut cut = a.windows.is_some();
+            let mut ranges: Vec<Window> = match &a.windows {
+                Some(ws) => ws.clone(),
+                None => vec![Window {
+                    start: plan.horizon.start,
+                    end: horizon_last,
+                    preferred: None,
+                    cutoff: None,
+                }],
+            };
+            for (d, &j) in a.after.iter().zip(&links.after[i]) {
+                let Some(j) = j else {
+                    continue;
+                };
+                if let Status::Ended { end } = status[j] {
+                    cut = true;
+                    let (min, max) = if d.meets {
+                        (0, Some(0))
+                    } else {
+                        (d.min_delay.unwrap_or(0), d.max_delay)
+                    };
+                    let lo = end.saturating_add(min);
+                    let hi = max.map_or(i64::MAX, |m| end.saturating_add(m));
+                    ranges = ranges.into_iter().filter_map(|w| clip(w, lo, hi)).collect();
+                    if ranges.is_empty() {
+                        dropped[i] = Some(Dropped::DependencyPassed { on: j, end });
+                        break;
+                    }
+                }
+            }
+            if dropped[i].is_some() || !cut {
+                continue;
+            }
+            // No start before the cycle: windows are clipped to `t` (a
+            // preferred time before `t` becomes `t`, which ranks the
+            // remaining starts the same way).
+            ranges = ranges
+                .into_iter()
+                .filter_map(|w| clip(w, t, i64::MAX))
+                .collect();
+            windows[i] = Some(ranges);
+        }
+        // Dependents of dropped activities can no longer run either.
+        loop {
+            let mut changed = false;
+            for i in 0..n {
+                if started(i) || dropped[i].is_some() {
+                    continue;
+                }
+                if let Some(j) = links.after[i]
+                    .iter()
+                    .flatten()
+                    .copied()
+                    .find(|&j| dropped[j].is_some())
+                {
+                    dropped[i] = Some(Dropped::DependsOnDropped(j));
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        // Ended and dropped activities are left out.
+        let activity_of = (0..n)
+            .filter(|&i| match status[i] {
+                Status::Ended { .. } => false,
+                Status::Executing { .. } => true,
+                Status::Waiting => dropped[i].is_none(),
+            })
+            .collect();
+        Self {
+            activity_of,
+            dropped,
+            windows,
+        }
+    }
+
+    /// The activities not yet started that the cycle leaves out, with why.
+    pub(super) fn dropped(&self) -> Vec<(usize, Dropped)> {
+        self.dropped
+            .iter()
+            .enumerate()
+            .filter_map(|(i, d)| Some((i, d.clone()?)))
+            .collect()
+    }
+}
+
 /// Builds the plan of the cycle at `t` (`links`: those of `plan`).
 pub(super) fn cycle_plan(
     plan: &Plan,
@@ -120,105 +254,23 @@ pub(super) fn cycle_plan(
     state_values: &[(String, String)],
     start: CycleStart,
 ) -> Built {
-    let n = plan.activities.len();
-    let started = |i: usize| !matches!(status[i], Status::Waiting);
-    let mut dropped: Vec<Option<Dropped>> = vec![None; n];
-    // Groups with a member that started keep no other member (the first such
-    // member, in file order, is named).
-    let mut ran_in_group: std::collections::BTreeMap<&str, usize> =
-        std::collections::BTreeMap::new();
-    for (j, a) in plan.activities.iter().enumerate() {
-        if let Some(g) = a.group.as_deref().filter(|_| started(j)) {
-            ran_in_group.entry(g).or_insert(j);
-        }
-    }
-    for (i, a) in plan.activities.iter().enumerate() {
-        if started(i) {
-            continue;
-        }
-        if let Some(&by) = a.group.as_deref().and_then(|g| ran_in_group.get(g)) {
-            dropped[i] = Some(Dropped::GroupMemberRan(by));
-        }
-    }
-    // Windows from `t` on, cut by dependencies on activities that ended.
-    let mut windows: Vec<Option<Vec<Window>>> = vec![None; n];
-    for (i, a) in plan.activities.iter().enumerate() {
-        if started(i) || dropped[i].is_some() {
-            continue;
-        }
-        let horizon_last = plan.horizon.end - 1;
-        let mut cut = a.windows.is_some();
-        let mut ranges: Vec<Window> = match &a.windows {
-            Some(ws) => ws.clone(),
-            None => vec![Window {
-                start: plan.horizon.start,
-                end: horizon_last,
-                preferred: None,
-                cutoff: None,
-            }],
-        };
-        for (d, &j) in a.after.iter().zip(&links.after[i]) {
-            let Some(j) = j else {
-                continue;
-            };
-            if let Status::Ended { end } = status[j] {
-                cut = true;
-                let (min, max) = if d.meets {
-                    (0, Some(0))
-                } else {
-                    (d.min_delay.unwrap_or(0), d.max_delay)
-                };
-                let lo = end.saturating_add(min);
-                let hi = max.map_or(i64::MAX, |m| end.saturating_add(m));
-                ranges = ranges.into_iter().filter_map(|w| clip(w, lo, hi)).collect();
-                if ranges.is_empty() {
-                    dropped[i] = Some(Dropped::DependencyPassed { on: j, end });
-                    break;
-                }
-            }
-        }
-        if dropped[i].is_some() {
-            continue;
-        }
-        // No start before the cycle: windows are clipped to `t` (a preferred time
-        // before `t` becomes `t`, which ranks the remaining starts the same way).
-        ranges = ranges
-            .into_iter()
-            .filter_map(|w| clip(w, t, i64::MAX))
-            .collect();
-        windows[i] = cut.then_some(ranges);
-    }
-    // Dependents of dropped activities can no longer run either.
-    loop {
-        let mut changed = false;
-        for i in 0..n {
-            if started(i) || dropped[i].is_some() {
-                continue;
-            }
-            if let Some(j) = links.after[i]
-                .iter()
-                .flatten()
-                .copied()
-                .find(|&j| dropped[j].is_some())
-            {
-                dropped[i] = Some(Dropped::DependsOnDropped(j));
-                changed = true;
-            }
-        }
-        if !changed {
-            break;
-        }
-    }
-    let mut activities = Vec::new();
-    let mut activity_of = Vec::new();
-    for (i, a) in plan.activities.iter().enumerate() {
-        // Ended and dropped activities are left out before any copy is made.
-        if matches!(status[i], Status::Ended { .. })
-            || (matches!(status[i], Status::Waiting) && dropped[i].is_some())
-        {
-            continue;
-        }
-        let mut a = a.clone();
+    let layout = Layout::new(plan, links, t, status);
+    plan_of(plan, links, t, status, state_values, start, layout)
+}
+
+/// The plan of the cycle at `t` laid out as `layout`.
+fn plan_of(
+    plan: &Plan,
+    links: &Links,
+    t: i64,
+    status: &[Status],
+    state_values: &[(String, String)],
+    start: CycleStart,
+    mut layout: Layout,
+) -> Built {
+    let mut activities = Vec::with_capacity(layout.activity_of.len());
+    for &i in &layout.activity_of {
+        let mut a = plan.activities[i].clone();
         match status[i] {
             Status::Ended { .. } => continue,
             Status::Executing { hold, .. } => {
@@ -234,10 +286,7 @@ pub(super) fn cycle_plan(
                 a.duration_model = None;
             }
             Status::Waiting => {
-                if dropped[i].is_some() {
-                    continue;
-                }
-                a.windows = windows[i].take();
+                a.windows = layout.windows[i].take();
                 // Dependencies on ended activities became windows.
                 let mut targets = links.after[i].iter();
                 a.after.retain(|_| {
@@ -250,7 +299,6 @@ pub(super) fn cycle_plan(
             }
         }
         activities.push(a);
-        activity_of.push(i);
     }
     // Every plan-wide field as it is (cloning the activities would be wasted).
     let mut out = plan.without_activities();
@@ -273,12 +321,224 @@ pub(super) fn cycle_plan(
     out.cycle = Some(start);
     Built {
         plan: out,
-        activity_of,
-        dropped: dropped
-            .into_iter()
+        activity_of: layout.activity_of,
+    }
+}
+
+/// The compiled plan of the cycle at `t` laid out as `layout`, derived from
+/// `problem` (the whole plan's, compiled from `plan`) without building the
+/// cycle's plan: what [`Problem::compile`] gives for [`cycle_plan`]'s plan,
+/// which debug builds compare. An activity the cycle leaves as the whole plan
+/// has it (its windows not cut, its dependencies all kept, its names
+/// interned at the same indices) is shared, not copied.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn cycle_problem(
+    problem: &Problem,
+    plan: &Plan,
+    links: &Links,
+    t: i64,
+    status: &[Status],
+    state_values: &[(String, String)],
+    start: &CycleStart,
+    layout: &Layout,
+) -> Result<Problem, Error> {
+    let mut index = vec![usize::MAX; plan.activities.len()];
+    for (c, &i) in layout.activity_of.iter().enumerate() {
+        index[i] = c;
+    }
+    // Names are interned by first appearance in the cycle's plan: the whole
+    // plan's indices renumbered in that order (each stands for one name).
+    let (mut resources, mut kinds, mut groups) = (
+        Renumber::default(),
+        Renumber::default(),
+        Renumber::default(),
+    );
+    let mut acts = Vec::with_capacity(layout.activity_of.len());
+    for &i in &layout.activity_of {
+        let base = &problem.acts[i];
+        let res: Vec<usize> = base.resources.iter().map(|&r| resources.of(r)).collect();
+        let uhf: Option<Vec<usize>> = base
+            .uhf
+            .as_ref()
+            .map(|ks| ks.iter().map(|&k| kinds.of(k)).collect());
+        let comm = base.comm.map(|k| kinds.of(k));
+        let group = base.group.map(|g| groups.of(g));
+        let act = match status[i] {
+            Status::Ended { .. } => continue,
+            Status::Executing { hold, .. } => Act {
+                dur_min: hold - t,
+                dur_max: hold - t,
+                windows: vec![Win {
+                    start: t,
+                    end: t,
+                    preferred: t,
+                    cutoff: None,
+                }],
+                after: Vec::new(),
+                effects: base
+                    .effects
+                    .iter()
+                    .filter(|e| e.at == EffectAt::End)
+                    .copied()
+                    .collect(),
+                held: true,
+                resources: res,
+                uhf,
+                comm,
+                group,
+                ..Act::clone(base)
+            },
+            Status::Waiting => {
+                let windows: Vec<Win> = match &layout.windows[i] {
+                    Some(ws) => ws
+                        .iter()
+                        .map(|w| Win {
+                            start: w.start,
+                            end: w.end,
+                            preferred: w.preferred_start(),
+                            cutoff: w.cutoff,
+                        })
+                        .collect(),
+                    None => vec![Win {
+                        start: t,
+                        end: problem.h1,
+                        preferred: t,
+                        cutoff: None,
+                    }],
+                };
+                // Dependencies on ended activities became windows.
+                let after: Vec<Dep> = base
+                    .after
+                    .iter()
+                    .zip(&links.after[i])
+                    .filter_map(|(d, &j)| {
+                        let j = j?;
+                        if matches!(status[j], Status::Ended { .. }) {
+                            return None;
+                        }
+                        debug_assert_ne!(index[j], usize::MAX, "a dependency left out");
+                        Some(Dep {
+                            target: index[j],
+                            ..*d
+                        })
+                    })
+                    .collect();
+                if !base.held
+                    && windows == base.windows
+                    && after == base.after
+                    && res == base.resources
+                    && uhf == base.uhf
+                    && comm == base.comm
+                    && group == base.group
+                {
+                    acts.push(Arc::clone(base));
+                    continue;
+                }
+                Act {
+                    windows,
+                    after,
+                    held: false,
+                    resources: res,
+                    uhf,
+                    comm,
+                    group,
+                    ..Act::clone(base)
+                }
+            }
+        };
+        acts.push(Arc::new(act));
+    }
+    // Activities still executing come first (they are not decided again).
+    let mut order: Vec<usize> = (0..acts.len()).collect();
+    order.sort_by_key(|&c| {
+        (
+            !acts[c].held,
+            plan.activities[layout.activity_of[c]].priority,
+            c,
+        )
+    });
+    let mut step_of = vec![0; order.len()];
+    for (k, &c) in order.iter().enumerate() {
+        step_of[c] = k + 1;
+    }
+    let mut state_initial = problem.state_initial.clone();
+    for (name, value) in state_values {
+        let Some((k, (_, def))) = plan
+            .states
+            .iter()
             .enumerate()
-            .filter_map(|(i, d)| Some((i, d?)))
-            .collect(),
+            .find(|(_, (n, _))| *n == name)
+        else {
+            continue;
+        };
+        state_initial[k] = def.values.iter().position(|v| v == value).ok_or_else(|| {
+            Error::invalid(
+                format!("states.{name}.initial"),
+                format!("unknown value \"{value}\" for state \"{name}\""),
+            )
+        })?;
+    }
+    let mut heaters = Vec::with_capacity(start.heaters.len());
+    for h in &start.heaters {
+        let zone = problem
+            .zone_names
+            .iter()
+            .position(|n| *n == h.zone)
+            .ok_or_else(|| {
+                Error::invalid("cycle.heaters", format!("unknown zone \"{}\"", h.zone))
+            })?;
+        let owner = h.owner.as_deref().and_then(|id| {
+            let a = plan.activities.iter().position(|a| a.id == id)?;
+            Some(index[a]).filter(|&c| c != usize::MAX)
+        });
+        heaters.push(HeatHold {
+            zone,
+            end: h.end,
+            power: h.power_mw,
+            owner,
+        });
+    }
+    // A handover already past binds nothing any more.
+    let handover = plan.handover.is_some_and(|h| h.time >= t);
+    Ok(Problem {
+        h0: t,
+        soc0: start.soc_mj,
+        data0: start.data_bit,
+        handover_time: problem.handover_time.filter(|_| handover),
+        handover_soc: problem.handover_soc.filter(|_| handover),
+        handover_data: problem.handover_data.filter(|_| handover),
+        state_initial,
+        zones: problem.zones.clone(),
+        zone_names: problem.zone_names.clone(),
+        resource_count: resources.next,
+        acts,
+        order,
+        step_of,
+        produced0: start.produced_bit,
+        awake0: start.awake,
+        heaters,
+        ..*problem
+    })
+}
+
+/// Indices of one space of interned names, renumbered by first appearance.
+#[derive(Default)]
+struct Renumber {
+    map: Vec<usize>,
+    next: usize,
+}
+
+impl Renumber {
+    /// The new index of old index `k`, the next one when `k` is new.
+    fn of(&mut self, k: usize) -> usize {
+        if k >= self.map.len() {
+            self.map.resize(k + 1, usize::MAX);
+        }
+        if self.map[k] == usize::MAX {
+            self.map[k] = self.next;
+            self.next += 1;
+        }
+        self.map[k]
     }
 }
 
@@ -292,4 +552,67 @@ fn clip(w: Window, lo: i64, hi: i64) -> Option<Window> {
         preferred: Some(w.preferred_start().clamp(start, end)),
         cutoff: w.cutoff,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::execute::{execute, sample_run};
+    use crate::generate::{Profile, add_duration_models, generate_plan_with};
+
+    /// Every cycle of sampled executions of generated plans of every profile
+    /// (states, thermal zones with heaters left on, groups, resources and
+    /// communication kinds first named by an activity that started,
+    /// dependencies on ended activities): the problem derived from the whole
+    /// plan's is the cycle's plan compiled in full. Some cycles renumber
+    /// names and some share activities, so both paths are taken.
+    #[test]
+    fn cycle_problems_are_their_plans_compiled() {
+        let (mut cycles, mut renumbered, mut shared, mut executing) = (0, 0, 0, 0);
+        for (profile, activities, seed) in [
+            (Profile::Standard, 150, 1),
+            (Profile::Realistic, 150, 2),
+            (Profile::Starved, 150, 3),
+        ] {
+            let plan =
+                add_duration_models(generate_plan_with(profile, activities, 2, seed), 0.4, seed);
+            let problem = Problem::compile(&plan).expect("compiles");
+            let links = Links::new(&plan);
+            for run in 0..2 {
+                let ex = execute(&plan, &sample_run(&plan, seed, run)).expect("executes");
+                for (k, c) in ex.cycles.iter().enumerate() {
+                    let Some(start) = &c.start else { continue };
+                    let (status, values) = ex.cycle_state(&plan, k);
+                    let layout = Layout::new(&plan, &links, c.time, &status);
+                    let derived = cycle_problem(
+                        &problem, &plan, &links, c.time, &status, &values, start, &layout,
+                    )
+                    .expect("derives");
+                    let built = cycle_plan(&plan, &links, c.time, &status, &values, start.clone());
+                    assert_eq!(built.activity_of, layout.activity_of);
+                    let full = Problem::compile(&built.plan).expect("compiles");
+                    assert_eq!(derived, full, "{profile:?} seed {seed} run {run} cycle {k}");
+                    cycles += 1;
+                    renumbered += usize::from(
+                        derived
+                            .acts
+                            .iter()
+                            .zip(&layout.activity_of)
+                            .any(|(x, &i)| x.resources != problem.acts[i].resources),
+                    );
+                    shared += derived
+                        .acts
+                        .iter()
+                        .zip(&layout.activity_of)
+                        .filter(|&(x, &i)| Arc::ptr_eq(x, &problem.acts[i]))
+                        .count();
+                    executing += derived.acts.iter().filter(|x| x.held).count();
+                }
+            }
+        }
+        assert!(cycles > 100, "only {cycles} cycles");
+        assert!(renumbered > 0, "no cycle renumbered a resource");
+        assert!(shared > 0, "no activity was shared");
+        assert!(executing > 0, "no activity was executing at a cycle");
+    }
 }

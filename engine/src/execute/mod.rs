@@ -87,24 +87,29 @@ impl Execution {
                 activity_of: (0..plan.activities.len()).collect(),
             });
         };
-        // What had started before the cycle (the activities it dispatches
-        // start at or after its time).
-        let runs: Vec<Option<Started>> = self
-            .runs
-            .iter()
-            .map(|r| r.filter(|r| r.cycle < k))
-            .collect();
-        let status: Vec<Status> = runs
-            .iter()
-            .map(|r| Status::at(r.as_ref(), c.time))
-            .collect();
-        let values = state_values(&self.problem, plan, &runs, c.time);
+        let (status, values) = self.cycle_state(plan, k);
         let links = cycle::Links::new(plan);
         let built = cycle::cycle_plan(plan, &links, c.time, &status, &values, start.clone());
         Some(CyclePlan {
             plan: built.plan,
             activity_of: built.activity_of,
         })
+    }
+
+    /// What cycle `k` knew of each activity (not started, executing or
+    /// ended) and the executed value of every state at its time, rebuilt
+    /// from what had started before it (the activities it dispatches start
+    /// at or after its time).
+    fn cycle_state(&self, plan: &Plan, k: usize) -> (Vec<Status>, Vec<(String, String)>) {
+        let time = self.cycles[k].time;
+        let runs: Vec<Option<Started>> = self
+            .runs
+            .iter()
+            .map(|r| r.filter(|r| r.cycle < k))
+            .collect();
+        let status: Vec<Status> = runs.iter().map(|r| Status::at(r.as_ref(), time)).collect();
+        let values = state_values(&self.problem, plan, &runs, time);
+        (status, values)
     }
 }
 

@@ -22,7 +22,6 @@
 //! A cycle whose interval saw an end earlier than planned keeps nothing: the
 //! charge given back can give any activity a start.
 
-use super::cycle::Built;
 use super::sim::Sim;
 use crate::model::{AwakeMode, EffectAt};
 use crate::scheduler::{Before, Placement, Prior, Problem, Resumed, RunOutcomes, gives_starts};
@@ -57,11 +56,12 @@ pub(super) struct LastRun {
 }
 
 impl LastRun {
-    /// What the run `run` of the cycle at `t` (plan `built`, compiled as
+    /// What the run `run` of the cycle at `t` (its activities the plan's
+    /// `activity_of`, compiled as
     /// `cycle`) leaves for the next cycle, and the run's outcomes.
     pub(super) fn of(
         run: Resumed,
-        built: &Built,
+        activity_of: &[usize],
         cycle: &Problem,
         t: i64,
         n: usize,
@@ -69,7 +69,7 @@ impl LastRun {
         let mut index = vec![usize::MAX; n];
         let mut pos = vec![usize::MAX; n];
         for (k, &i) in cycle.order.iter().enumerate() {
-            let a = built.activity_of[i];
+            let a = activity_of[i];
             index[a] = i;
             pos[a] = k;
         }
@@ -99,14 +99,15 @@ impl LastRun {
         }
     }
 
-    /// What the run of the cycle at `sim.t` (plan `built`, compiled as
+    /// What the run of the cycle at `sim.t` (its activities the plan's
+    /// `activity_of`, compiled as
     /// `cycle`) may keep of this one; `None` when nothing can be kept.
     /// `problem` is the whole plan's.
     pub(super) fn prior(
         &self,
         problem: &Problem,
         sim: &Sim,
-        built: &Built,
+        activity_of: &[usize],
         cycle: &Problem,
     ) -> Option<Prior<'_>> {
         let (t0, t1) = (self.t, sim.t);
@@ -287,12 +288,12 @@ impl LastRun {
             && no_sleep_near
             && warmer.is_empty())
         .then(|| same_loads_after.map_or(0, |k| k + 1));
-        let mut before = Vec::with_capacity(built.activity_of.len());
-        let mut may_keep = Vec::with_capacity(built.activity_of.len());
-        let mut pos = Vec::with_capacity(built.activity_of.len());
-        let mut data_proved = Vec::with_capacity(built.activity_of.len());
-        let mut handover_proved = Vec::with_capacity(built.activity_of.len());
-        for (i, &j) in built.activity_of.iter().enumerate() {
+        let mut before = Vec::with_capacity(activity_of.len());
+        let mut may_keep = Vec::with_capacity(activity_of.len());
+        let mut pos = Vec::with_capacity(activity_of.len());
+        let mut data_proved = Vec::with_capacity(activity_of.len());
+        let mut handover_proved = Vec::with_capacity(activity_of.len());
+        for (i, &j) in activity_of.iter().enumerate() {
             let act = &problem.acts[j];
             before.push(self.before(j));
             pos.push(self.pos[j]);

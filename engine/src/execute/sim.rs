@@ -45,17 +45,19 @@ pub(super) trait Executive {
 /// What a cycle dispatches from: the plan it scheduled and the outcomes of its
 /// run (borrowed when the policy scheduled once for the whole execution).
 pub(super) struct CycleSchedule<'p> {
-    /// The cycle's plan (its `cycle` has the heaters already on).
-    pub plan: Cow<'p, Plan>,
     /// The plan activity index of each of the cycle plan's activities.
     pub activity_of: Vec<usize>,
     /// Activities not yet started that the cycle left out, with why.
     pub dropped: Vec<(usize, Dropped)>,
     /// Where the cycle's run placed each activity, and what it generated.
     pub outcomes: Cow<'p, RunOutcomes>,
-    /// The state the cycle's plan starts from, when the plan was built for
-    /// the cycle (`None`: the plan as it is, scheduled once).
+    /// The state the cycle's plan starts from (with the heaters already on),
+    /// when the plan was built for the cycle (`None`: the plan as it is,
+    /// scheduled once).
     pub start: Option<CycleStart>,
+    /// Debug builds: the fingerprint of the cycle's plan.
+    #[cfg(debug_assertions)]
+    pub fingerprint: u64,
 }
 
 /// The next cycle: when, and why.
@@ -180,7 +182,7 @@ impl Sim {
             }
         }
         #[cfg(debug_assertions)]
-        self.plans.push(fingerprint(&schedule.plan));
+        self.plans.push(schedule.fingerprint);
         let CycleSchedule { dropped, start, .. } = schedule;
         self.cycles.push(Cycle {
             time: t,
@@ -253,7 +255,7 @@ impl Sim {
         let keep = next < problem.h1;
         self.prev_awake.clear();
         self.prev_heat.clear();
-        for h in schedule.plan.cycle.iter().flat_map(|c| &c.heaters) {
+        for h in schedule.start.iter().flat_map(|c| &c.heaters) {
             if let Some(z) = problem.zone_names.iter().position(|n| *n == h.zone) {
                 if keep {
                     let owner = h
@@ -362,7 +364,7 @@ impl Sim {
 /// Debug builds: a hash of everything `plan` holds (its `Debug` form, which
 /// prints every field), to tell a rebuilt cycle plan from the one scheduled.
 #[cfg(debug_assertions)]
-fn fingerprint(plan: &Plan) -> u64 {
+pub(super) fn fingerprint(plan: &Plan) -> u64 {
     use std::hash::{Hash, Hasher};
     let mut h = std::collections::hash_map::DefaultHasher::new();
     format!("{plan:?}").hash(&mut h);

@@ -27,6 +27,7 @@ pub(crate) use outcomes::{
 pub use outcomes::{RunOutcomes, run_outcomes};
 pub(crate) use phase2::Evaluated;
 pub use problem::{Act, Problem};
+pub(crate) use problem::{Dep, HeatHold, Win};
 pub use profiles::Profiles;
 pub(crate) use resume::{Before, Prior, Resumed, run_resuming};
 pub use state::{Placement, State};

@@ -116,11 +116,12 @@ impl Prepared {
 /// scheduled at `horizon.start`.
 fn scheduled_once<'p>(plan: &'p Plan, outcomes: &'p RunOutcomes) -> CycleSchedule<'p> {
     CycleSchedule {
-        plan: Cow::Borrowed(plan),
         activity_of: (0..plan.activities.len()).collect(),
         dropped: Vec::new(),
         outcomes: Cow::Borrowed(outcomes),
         start: None,
+        #[cfg(debug_assertions)]
+        fingerprint: crate::execute::sim::fingerprint(plan),
     }
 }
 

@@ -6,7 +6,9 @@
 use std::borrow::Cow;
 
 use crate::error::Error;
-use crate::execute::cycle::{Links, Status, cycle_plan};
+#[cfg(debug_assertions)]
+use crate::execute::cycle::cycle_plan;
+use crate::execute::cycle::{Layout, Links, Status, cycle_problem};
 use crate::execute::resume::LastRun;
 use crate::execute::sim::{CycleSchedule, Executive, Next, Sim, cycle_start, guard, state_values};
 use crate::execute::{Event, Trigger};
@@ -42,39 +44,68 @@ impl Executive for Replan {
     ) -> Result<CycleSchedule<'p>, Error> {
         let start = cycle_start(problem, plan, sim);
         let values = state_values(problem, plan, &sim.runs, sim.t);
-        let cp = cycle_plan(
+        let layout = Layout::new(plan, &self.links, sim.t, &sim.status);
+        let compiled = cycle_problem(
+            problem,
             plan,
             &self.links,
             sim.t,
             &sim.status,
             &values,
-            start.clone(),
-        );
-        let compiled = Problem::compile(&cp.plan)?;
+            &start,
+            &layout,
+        )?;
+        // Debug builds: the cycle's plan, built and compiled in full, is the
+        // one compiled here, and the one the execution rebuilds later.
+        #[cfg(debug_assertions)]
+        let fingerprint = {
+            let cp = cycle_plan(
+                plan,
+                &self.links,
+                sim.t,
+                &sim.status,
+                &values,
+                start.clone(),
+            );
+            debug_assert_eq!(cp.activity_of, layout.activity_of);
+            debug_assert_eq!(
+                Problem::compile(&cp.plan).as_ref().ok(),
+                Some(&compiled),
+                "the cycle's problem differs from its plan's compiled in full"
+            );
+            crate::execute::sim::fingerprint(&cp.plan)
+        };
         let last = sim.last_run.take();
         let prior = last
             .as_ref()
-            .and_then(|last| last.prior(problem, sim, &cp, &compiled));
+            .and_then(|last| last.prior(problem, sim, &layout.activity_of, &compiled));
         let run = run_resuming(&compiled, prior.as_ref());
         sim.kept += run.kept;
         sim.capacity_proved += run.capacity_proved;
         sim.kept_rest += run.kept_rest;
         sim.steps += compiled.order.len();
         drop(prior);
-        let (last, outcomes) = LastRun::of(run, &cp, &compiled, sim.t, plan.activities.len());
+        let (last, outcomes) = LastRun::of(
+            run,
+            &layout.activity_of,
+            &compiled,
+            sim.t,
+            plan.activities.len(),
+        );
         sim.last_run = Some(last);
         let k = sim.cycles.len();
-        for &a in &cp.activity_of {
+        for &a in &layout.activity_of {
             if matches!(sim.status[a], Status::Waiting) {
                 sim.last_cycle[a] = Some(k);
             }
         }
         Ok(CycleSchedule {
-            plan: Cow::Owned(cp.plan),
-            activity_of: cp.activity_of,
-            dropped: cp.dropped,
+            dropped: layout.dropped(),
+            activity_of: layout.activity_of,
             outcomes: Cow::Owned(outcomes),
             start: Some(start),
+            #[cfg(debug_assertions)]
+            fingerprint,
         })
     }
 
