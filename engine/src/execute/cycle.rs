@@ -156,6 +156,12 @@ impl Layout {
             if started(i) || dropped[i].is_some() {
                 continue;
             }
+            // Nothing to cut: the whole cycle horizon (no copy made).
+            let ended =
+                |j: &Option<usize>| j.is_some_and(|j| matches!(status[j], Status::Ended { .. }));
+            if a.windows.is_none() && !links.after[i].iter().any(ended) {
+                continue;
+            }
             let horizon_last = plan.horizon.end - 1;
             let mut cut = a.windows.is_some();
             let mut ranges: Vec<Window> = match &a.windows {
@@ -448,15 +454,19 @@ pub(super) fn cycle_problem(
         };
         acts.push(Arc::new(act));
     }
-    // Activities still executing come first (they are not decided again).
-    let mut order: Vec<usize> = (0..acts.len()).collect();
-    order.sort_by_key(|&c| {
-        (
-            !acts[c].held,
-            plan.activities[layout.activity_of[c]].priority,
-            c,
-        )
-    });
+    // Activities still executing come first (they are not decided again),
+    // then the whole plan's step order: both by (priority, index), the cycle
+    // keeping the plan's order of indices.
+    let mut order: Vec<usize> = Vec::with_capacity(acts.len());
+    for held in [true, false] {
+        order.extend(
+            problem
+                .order
+                .iter()
+                .map(|&i| index[i])
+                .filter(|&c| c != usize::MAX && acts[c].held == held),
+        );
+    }
     let mut step_of = vec![0; order.len()];
     for (k, &c) in order.iter().enumerate() {
         step_of[c] = k + 1;
