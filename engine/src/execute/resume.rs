@@ -19,8 +19,15 @@
 //!   non-negative), and for the awake period, a difference the scheduler
 //!   side judges per step (`scheduler::resume`).
 //!
-//! A cycle whose interval saw an end earlier than planned keeps nothing: the
-//! charge given back can give any activity a start.
+//! An activity that started in between as placed and ended at `t1`, earlier
+//! than planned, gives back what it would have drawn, held and produced
+//! after `t1`, which can give a start to any step after its own in the
+//! earlier run's order: those steps are searched. The steps before its own
+//! never saw it there, so to them it is one more activity that started in
+//! between (its effects now in the executed state), and the run's loads are
+//! still among the earlier run's final loads (it ran for less). Any other
+//! end earlier than planned, and an activity the guard held back (its load
+//! before `t1` not drawn: more charge at `t1`), keep nothing.
 
 use super::sim::Sim;
 use crate::model::{AwakeMode, EffectAt};
@@ -130,8 +137,8 @@ impl LastRun {
         let stored = self.data.level_at(t1);
         let data_ok = -cycle.data0 <= stored;
         // What ran in between, against the earlier run: `(activity, its step
-        // there, ran longer than held)`.
-        let mut extras: Vec<(usize, usize, bool)> = Vec::new();
+        // there, how it ran against the earlier run)`.
+        let mut extras: Vec<(usize, usize, Ran)> = Vec::new();
         for (x, r) in sim.runs.iter().enumerate() {
             let Some(r) = r else { continue };
             if r.start >= t0 {
@@ -142,10 +149,20 @@ impl LastRun {
                 if p.start != r.start || p.start + p.duration != r.planned_end {
                     return None;
                 }
-                if r.end <= t1 && r.end != r.planned_end {
-                    return None;
-                }
-                extras.push((x, self.pos[x], r.end > t1 && r.planned_end <= t1));
+                let ran = if r.end <= t1 && r.end != r.planned_end {
+                    // Ended earlier than planned: only at `t1` (the cycle
+                    // its end triggered), as a producer or a load, not a
+                    // downlink (one that stops early leaves more data).
+                    if r.end != t1 || r.end > r.planned_end || problem.acts[x].data < 0 {
+                        return None;
+                    }
+                    Ran::Shorter
+                } else if r.end > t1 && r.planned_end <= t1 {
+                    Ran::Longer
+                } else {
+                    Ran::AsHeld
+                };
+                extras.push((x, self.pos[x], ran));
             } else if r.end > t0 {
                 // Executing at `t0`: the earlier run held it until `held`.
                 let held = r.planned_end.max(t0 + 1);
@@ -158,14 +175,15 @@ impl LastRun {
                     return None;
                 }
                 if now != held {
-                    extras.push((x, 0, true));
+                    extras.push((x, 0, Ran::Longer));
                 }
             }
         }
         if effect_ties(problem, sim, self, t0, t1) {
             return None;
         }
-        let none_longer = extras.iter().all(|&(_, _, long)| !long);
+        let none_longer = extras.iter().all(|&(_, _, ran)| ran != Ran::Longer);
+        let none_shorter = extras.iter().all(|&(_, _, ran)| ran != Ran::Shorter);
         // Everything the earlier run placed before `t1` started (the guard
         // held nothing back).
         let started = |x: usize| sim.runs[x].is_some();
@@ -285,6 +303,7 @@ impl LastRun {
         let same_from = (cycle.soc0 == level
             && -cycle.data0 == stored
             && none_longer
+            && none_shorter
             && no_sleep_near
             && warmer.is_empty())
         .then(|| same_loads_after.map_or(0, |k| k + 1));
@@ -310,8 +329,10 @@ impl LastRun {
                 !cycle.acts[i].held
                     && (data_ok || act.data <= 0)
                     && !act.zones.iter().any(|z| warmer.contains(z))
-                    && extras.iter().all(|&(x, pos, long)| {
-                        !(long || pos > self.pos[j]) || !gives_starts(problem, x, j)
+                    && extras.iter().all(|&(x, pos, ran)| match ran {
+                        Ran::AsHeld => pos <= self.pos[j] || !gives_starts(problem, x, j),
+                        Ran::Longer => !gives_starts(problem, x, j),
+                        Ran::Shorter => pos > self.pos[j] && !gives_starts(problem, x, j),
                     }),
             );
         }
@@ -332,6 +353,18 @@ impl LastRun {
             data_before: &self.data,
         })
     }
+}
+
+/// How an activity that ran between two cycles ran, against the earlier
+/// cycle's run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Ran {
+    /// As the earlier run placed or held it, as far as `t1` tells.
+    AsHeld,
+    /// Longer than the earlier run held it: more load, busy time and data.
+    Longer,
+    /// Ended at `t1`, earlier than the earlier run placed it to.
+    Shorter,
 }
 
 /// Whether an activity that started before `t1` has a state effect at or
@@ -436,6 +469,8 @@ mod tests {
         capacity_proved: usize,
         /// Kept steps that were the earlier run's last steps.
         kept_rest: usize,
+        /// Steps kept in cycles an end earlier than planned triggered.
+        kept_after_early_end: usize,
     }
 
     /// Runs `runs` sampled executions of `plan` (seed 1) cycle by cycle and
@@ -449,7 +484,22 @@ mod tests {
             let actuals = sample_run(plan, 1, run);
             let mut sim = Sim::new(&problem, plan, &actuals);
             let replan = Replan::new(plan);
-            while sim.cycle(&problem, plan, &replan).expect("a cycle runs") {}
+            loop {
+                let early = match sim.trigger {
+                    super::super::Trigger::End(x) => {
+                        sim.runs[x].is_some_and(|r| r.end < r.planned_end)
+                    }
+                    _ => false,
+                };
+                let kept = sim.kept;
+                let more = sim.cycle(&problem, plan, &replan).expect("a cycle runs");
+                if early {
+                    counts.kept_after_early_end += sim.kept - kept;
+                }
+                if !more {
+                    break;
+                }
+            }
             counts.kept += sim.kept;
             counts.steps += sim.steps;
             counts.capacity_proved += sim.capacity_proved;
@@ -477,8 +527,13 @@ mod tests {
             kept,
             steps,
             kept_rest,
+            kept_after_early_end,
             ..
         } = kept_in(&bundled(), 6);
+        assert!(
+            kept_after_early_end > 0,
+            "no step was kept in a cycle an early end triggered"
+        );
         assert!(
             kept * 2 > steps,
             "only {kept} of {steps} steps were kept from the cycle before"
@@ -498,7 +553,7 @@ mod tests {
     /// placements skip their data store check on the earlier run's proof.
     #[test]
     fn replanning_cycles_of_generated_plans_come_out_as_full_runs() {
-        let (mut kept, mut capacity_proved, mut kept_rest) = (0, 0, 0);
+        let (mut kept, mut capacity_proved, mut kept_rest, mut early) = (0, 0, 0, 0);
         for (profile, activities, seed) in [
             (Profile::Standard, 120, 1),
             (Profile::Standard, 120, 2),
@@ -515,11 +570,16 @@ mod tests {
                 kept += counts.kept;
                 capacity_proved += counts.capacity_proved;
                 kept_rest += counts.kept_rest;
+                early += counts.kept_after_early_end;
             }
         }
         assert!(kept > 0, "no step was kept");
         assert!(capacity_proved > 0, "no data store check was proved");
         assert!(kept_rest > 0, "no cycle kept the cycle before's last steps");
+        assert!(
+            early > 0,
+            "no step was kept in a cycle an early end triggered"
+        );
     }
 
     /// Executes the plan `json` (whose first activity is J) with its planned
