@@ -7,7 +7,7 @@ use crate::error::Error;
 use std::sync::Arc;
 
 use crate::model::{CycleStart, Duration, EffectAt, Plan, Window};
-use crate::scheduler::{Act, Dep, HeatHold, Problem, Schedule, Win, schedule};
+use crate::scheduler::{Act, Dep, HeatHold, Problem, Schedule, Win, compile_windows, schedule};
 use crate::units::{BIT_PER_MBIT, MJ_PER_WH};
 
 /// The plan a scheduling cycle scheduled ([`Execution::cycle_plan`]).
@@ -260,20 +260,7 @@ pub(super) fn cycle_plan(
     state_values: &[(String, String)],
     start: CycleStart,
 ) -> Built {
-    let layout = Layout::new(plan, links, t, status);
-    plan_of(plan, links, t, status, state_values, start, layout)
-}
-
-/// The plan of the cycle at `t` laid out as `layout`.
-fn plan_of(
-    plan: &Plan,
-    links: &Links,
-    t: i64,
-    status: &[Status],
-    state_values: &[(String, String)],
-    start: CycleStart,
-    mut layout: Layout,
-) -> Built {
+    let mut layout = Layout::new(plan, links, t, status);
     let mut activities = Vec::with_capacity(layout.activity_of.len());
     for &i in &layout.activity_of {
         let mut a = plan.activities[i].clone();
@@ -395,23 +382,7 @@ pub(super) fn cycle_problem(
                 ..Act::clone(base)
             },
             Status::Waiting => {
-                let windows: Vec<Win> = match &layout.windows[i] {
-                    Some(ws) => ws
-                        .iter()
-                        .map(|w| Win {
-                            start: w.start,
-                            end: w.end,
-                            preferred: w.preferred_start(),
-                            cutoff: w.cutoff,
-                        })
-                        .collect(),
-                    None => vec![Win {
-                        start: t,
-                        end: problem.h1,
-                        preferred: t,
-                        cutoff: None,
-                    }],
-                };
+                let windows = compile_windows(layout.windows[i].as_deref(), t, problem.h1);
                 // Dependencies on ended activities became windows.
                 let after: Vec<Dep> = base
                     .after

@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use crate::error::Error;
-use crate::model::{Activity, AwakeMode, Duration, EffectAt, LocalTime, Plan};
+use crate::model::{Activity, AwakeMode, Duration, EffectAt, LocalTime, Plan, Window};
 use crate::units::{Fixed, Toward, to_fixed};
 
 /// A window in compiled form.
@@ -634,6 +634,28 @@ struct Names {
     group: Option<usize>,
 }
 
+/// An activity's windows compiled, on a horizon `[h0, h1]`: the whole
+/// horizon, preferring its start, when it gives none.
+pub(crate) fn compile_windows(windows: Option<&[Window]>, h0: i64, h1: i64) -> Vec<Win> {
+    match windows {
+        Some(ws) => ws
+            .iter()
+            .map(|w| Win {
+                start: w.start,
+                end: w.end,
+                preferred: w.preferred_start(),
+                cutoff: w.cutoff,
+            })
+            .collect(),
+        None => vec![Win {
+            start: h0,
+            end: h1,
+            preferred: h0,
+            cutoff: None,
+        }],
+    }
+}
+
 /// Activity `i` of `plan` (`a`, which may be an edit of it) compiled, with the
 /// indices of its interned names and `ids`, the index of each activity id.
 fn compile_act(
@@ -650,23 +672,7 @@ fn compile_act(
         Duration::Fixed(d) => (d, d),
         Duration::Expanding { min, max } => (min, max),
     };
-    let windows = match &a.windows {
-        Some(ws) => ws
-            .iter()
-            .map(|w| Win {
-                start: w.start,
-                end: w.end,
-                preferred: w.preferred_start(),
-                cutoff: w.cutoff,
-            })
-            .collect(),
-        None => vec![Win {
-            start: horizon.start,
-            end: horizon.end,
-            preferred: horizon.start,
-            cutoff: None,
-        }],
-    };
+    let windows = compile_windows(a.windows.as_deref(), horizon.start, horizon.end);
     let mut zones = Vec::new();
     for (k, z) in a.thermal_zones.iter().enumerate() {
         let zi = zone_names.iter().position(|n| n == z).ok_or_else(|| {
