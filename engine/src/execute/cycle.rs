@@ -7,7 +7,10 @@ use crate::error::Error;
 use std::sync::Arc;
 
 use crate::model::{CycleStart, Duration, EffectAt, Plan, Window};
-use crate::scheduler::{Act, Dep, HeatHold, Problem, Schedule, Win, compile_windows, schedule};
+use crate::scheduler::{
+    Act, Dep, HeatHold, Problem, Schedule, Win, compile_windows, schedule, step_numbers,
+    value_index,
+};
 use crate::units::{BIT_PER_MBIT, MJ_PER_WH};
 
 /// The plan a scheduling cycle scheduled ([`Execution::cycle_plan`]).
@@ -438,26 +441,13 @@ pub(super) fn cycle_problem(
                 .filter(|&c| c != usize::MAX && acts[c].held == held),
         );
     }
-    let mut step_of = vec![0; order.len()];
-    for (k, &c) in order.iter().enumerate() {
-        step_of[c] = k + 1;
-    }
+    let step_of = step_numbers(&order);
     let mut state_initial = problem.state_initial.clone();
     for (name, value) in state_values {
-        let Some((k, (_, def))) = plan
-            .states
-            .iter()
-            .enumerate()
-            .find(|(_, (n, _))| *n == name)
-        else {
+        let Some(k) = plan.states.keys().position(|n| n == name) else {
             continue;
         };
-        state_initial[k] = def.values.iter().position(|v| v == value).ok_or_else(|| {
-            Error::invalid(
-                format!("states.{name}.initial"),
-                format!("unknown value \"{value}\" for state \"{name}\""),
-            )
-        })?;
+        state_initial[k] = value_index(plan, &format!("states.{name}.initial"), name, value)?;
     }
     let mut heaters = Vec::with_capacity(start.heaters.len());
     for h in &start.heaters {

@@ -27,7 +27,7 @@ pub(crate) use outcomes::{
 pub use outcomes::{RunOutcomes, run_outcomes};
 pub(crate) use phase2::Evaluated;
 pub use problem::{Act, Problem};
-pub(crate) use problem::{Dep, HeatHold, Win, compile_windows};
+pub(crate) use problem::{Dep, HeatHold, Win, compile_windows, step_numbers, value_index};
 pub use profiles::Profiles;
 pub(crate) use resume::{Before, Prior, Resumed, run_resuming};
 pub use state::{Placement, State};

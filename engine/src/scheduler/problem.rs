@@ -750,7 +750,12 @@ fn state_index(plan: &Plan, path: &str, name: &str) -> Result<usize, Error> {
 }
 
 /// The index of `value` among the values of state `state`.
-fn value_index(plan: &Plan, path: &str, state: &str, value: &str) -> Result<usize, Error> {
+pub(crate) fn value_index(
+    plan: &Plan,
+    path: &str,
+    state: &str,
+    value: &str,
+) -> Result<usize, Error> {
     plan.states
         .get(state)
         .and_then(|s| s.values.iter().position(|v| v == value))
@@ -770,7 +775,7 @@ fn intern<'a>(map: &mut BTreeMap<&'a str, usize>, name: &'a str) -> usize {
 }
 
 /// The step (1-based) of each activity, from the step order.
-fn step_numbers(order: &[usize]) -> Vec<usize> {
+pub(crate) fn step_numbers(order: &[usize]) -> Vec<usize> {
     let mut step_of = vec![0; order.len()];
     for (k, &a) in order.iter().enumerate() {
         step_of[a] = k + 1;
