@@ -64,8 +64,8 @@ pub(super) struct LastRun {
 
 impl LastRun {
     /// What the run `run` of the cycle at `t` (its activities the plan's
-    /// `activity_of`, compiled as
-    /// `cycle`) leaves for the next cycle, and the run's outcomes.
+    /// `activity_of`, compiled as `cycle`) leaves for the next cycle, and the
+    /// run's outcomes.
     pub(super) fn of(
         run: Resumed,
         activity_of: &[usize],
@@ -107,8 +107,8 @@ impl LastRun {
     }
 
     /// What the run of the cycle at `sim.t` (its activities the plan's
-    /// `activity_of`, compiled as
-    /// `cycle`) may keep of this one; `None` when nothing can be kept.
+    /// `activity_of`, compiled as `cycle`) may keep of this one; `None` when
+    /// nothing can be kept.
     /// `problem` is the whole plan's.
     pub(super) fn prior(
         &self,
