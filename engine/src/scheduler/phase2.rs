@@ -398,6 +398,40 @@ impl State<'_> {
         (margin, soc_reason)
     }
 
+    /// Whether placement `p` of activity `a` keeps the handover minimum
+    /// (`true` when none binds it): the one energy check of a kept placement
+    /// whose levels against `min_soc` are proved otherwise. Read first from
+    /// a lower bound on the level at the handover that needs no levels
+    /// brought up to date (`RateTimeline::level_at_least`, less the charge
+    /// the placement drains before the handover); only where that bound
+    /// falls short are the levels derived and the placement checked in full.
+    pub(super) fn keeps_handover(&self, a: usize, p: &Placement) -> bool {
+        let Some((at, min)) = self.problem.handover_soc_of(a) else {
+            return true;
+        };
+        let pieces = self.load_pieces(a, p.start, p.duration, &p.retire, p.new_awake, &p.preheats);
+        let drain = drain_of_pieces(&pieces);
+        let exact = || {
+            self.soc
+                .check(&drain, Some(at))
+                .at_probe
+                .is_none_or(|level| level >= min)
+        };
+        let drained: i128 = drain
+            .iter()
+            .filter(|&&(_, _, r)| r > 0)
+            .map(|&(x, y, r)| i128::from(r) * i128::from((y.min(at) - x).max(0)))
+            .sum();
+        if self.soc.level_at_least(at) - drained >= min {
+            debug_assert!(
+                exact(),
+                "the handover bound passed a placement that breaks it"
+            );
+            return true;
+        }
+        exact()
+    }
+
     /// The load pieces (as [`Self::load_pieces`]) of placing activity `a` at
     /// `s` for `d` whatever its peak and energy checks say, or the structural
     /// reason it cannot be placed there at all.

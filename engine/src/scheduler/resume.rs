@@ -208,10 +208,10 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
                 continue;
             }
             Some(Before::Placed(old)) => {
-                let soc = prior.is_none_or(|p| {
-                    !p.energy_proved
-                        || !p.handover_proved[a] && problem.handover_soc_of(a).is_some()
-                });
+                // Against `min_soc` unless proved; against the handover
+                // minimum apart, where it binds and is not proved.
+                let soc = prior.is_none_or(|p| !p.energy_proved);
+                let handover = !soc && prior.is_some_and(|p| !p.handover_proved[a]);
                 let scope = Scope {
                     skip_data_capacity: prior.is_some_and(|p| p.data_proved[a]),
                     ..Scope::default()
@@ -222,6 +222,7 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
                 state
                     .fitting_inner(a, old.start, old.duration, &scope, soc)
                     .filter(|ev| equivalent(problem, &ev.placement, old))
+                    .filter(|ev| !handover || state.keeps_handover(a, &ev.placement))
             }
             _ => None,
         };
