@@ -64,7 +64,9 @@ impl StepFn {
         let lo = self.index(a);
         let hi = pts.partition_point(|p| p.0 < b);
         let from = lo.saturating_sub(1);
-        let mut new: Vec<(i64, i64)> = Vec::with_capacity(hi - from + 3);
+        // The new points, on the stack when few (most changes span a few
+        // segments): no allocation per change.
+        let mut new = Rewritten::with_capacity(hi - from + 3);
         let mut push = |p: (i64, i64)| {
             if new.last().is_none_or(|q| q.1 != p.1) {
                 new.push(p);
@@ -91,7 +93,7 @@ impl StepFn {
             }
             hi
         };
-        self.points.splice(from..to, new);
+        self.points.splice(from..to, new.as_slice().iter().copied());
     }
 
     /// The segments overlapping `[a, b)`, clipped: `(lo, hi, value)`.
@@ -119,6 +121,46 @@ impl StepFn {
             }
         }
         best
+    }
+}
+
+/// The points a change to a [`StepFn`] rewrites: on the stack up to
+/// [`Rewritten::INLINE`] of them, on the heap beyond.
+enum Rewritten {
+    Inline([(i64, i64); Rewritten::INLINE], usize),
+    Heap(Vec<(i64, i64)>),
+}
+
+impl Rewritten {
+    const INLINE: usize = 16;
+
+    fn with_capacity(n: usize) -> Self {
+        if n <= Self::INLINE {
+            Self::Inline([(0, 0); Self::INLINE], 0)
+        } else {
+            Self::Heap(Vec::with_capacity(n))
+        }
+    }
+
+    fn push(&mut self, p: (i64, i64)) {
+        match self {
+            Self::Inline(items, len) => {
+                items[*len] = p;
+                *len += 1;
+            }
+            Self::Heap(items) => items.push(p),
+        }
+    }
+
+    fn as_slice(&self) -> &[(i64, i64)] {
+        match self {
+            Self::Inline(items, len) => &items[..*len],
+            Self::Heap(items) => items,
+        }
+    }
+
+    fn last(&self) -> Option<&(i64, i64)> {
+        self.as_slice().last()
     }
 }
 
