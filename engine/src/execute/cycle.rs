@@ -254,6 +254,33 @@ impl Layout {
     }
 }
 
+/// The fields of a cycle's activity that are always the whole plan's, with
+/// the others empty (what a cycle sets anew): the struct update syntax
+/// would clone the whole activity, windows and dependencies included, only
+/// to drop what the cycle replaces.
+fn unchanged(base: &Act) -> Act {
+    Act {
+        dur_min: base.dur_min,
+        dur_max: base.dur_max,
+        mandatory: base.mandatory,
+        windows: Vec::new(),
+        resources: Vec::new(),
+        engines: base.engines,
+        energy: base.energy,
+        peak: base.peak,
+        data: base.data,
+        awake: base.awake,
+        zones: base.zones.clone(),
+        after: Vec::new(),
+        requires: base.requires.clone(),
+        effects: Vec::new(),
+        uhf: None,
+        comm: None,
+        group: None,
+        held: false,
+    }
+}
+
 /// Builds the plan of the cycle at `t` (`links`: those of `plan`).
 pub(super) fn cycle_plan(
     plan: &Plan,
@@ -382,7 +409,7 @@ pub(super) fn cycle_problem(
                 uhf,
                 comm,
                 group,
-                ..Act::clone(base)
+                ..unchanged(base)
             },
             Status::Waiting => {
                 let windows = compile_windows(layout.windows[i].as_deref(), t, problem.h1);
@@ -422,7 +449,8 @@ pub(super) fn cycle_problem(
                     uhf,
                     comm,
                     group,
-                    ..Act::clone(base)
+                    effects: base.effects.clone(),
+                    ..unchanged(base)
                 }
             }
         };
