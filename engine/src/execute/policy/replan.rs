@@ -152,6 +152,8 @@ impl Executive for Replan {
         next: &mut Next,
     ) -> Vec<Event> {
         let run = &schedule.outcomes;
+        // Only starts before the next cycle as it stands can be due (an end
+        // below only brings it earlier).
         let mut due: Vec<(i64, usize, usize, i64)> = run
             .placements
             .iter()
@@ -159,7 +161,12 @@ impl Executive for Replan {
             .filter_map(|(i, p)| {
                 let (s, e) = (*p)?;
                 let a = schedule.activity_of[i];
-                matches!(sim.status[a], Status::Waiting).then_some((s, run.step_of[i], a, e - s))
+                (s < next.time && matches!(sim.status[a], Status::Waiting)).then_some((
+                    s,
+                    run.step_of[i],
+                    a,
+                    e - s,
+                ))
             })
             .collect();
         due.sort_unstable();
