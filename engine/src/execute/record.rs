@@ -74,6 +74,24 @@ impl Record {
         if !self.awake_at(t) {
             return None;
         }
+        // One pass in decreasing start: an interval passed over never joins
+        // later (the start only moves down, to starts no later than its).
+        let mut by_start: Vec<(i64, i64)> =
+            self.awake.iter().filter(|w| w.0 < t).copied().collect();
+        by_start.sort_unstable_by(|x, y| y.cmp(x));
+        let mut start = t;
+        for (a, b) in by_start {
+            if a < start && start <= b {
+                start = a;
+            }
+        }
+        debug_assert_eq!(Some(start), self.awake_since_by_hops(t));
+        Some(start)
+    }
+
+    /// [`Record::awake_since`] hop by hop, to the earliest start of an
+    /// interval holding the current one (debug builds check the one pass).
+    fn awake_since_by_hops(&self, t: i64) -> Option<i64> {
         let mut start = t;
         loop {
             let earlier = self
