@@ -126,36 +126,43 @@ impl StepFn {
 
 /// The points a change to a [`StepFn`] rewrites: on the stack up to
 /// [`Rewritten::INLINE`] of them, on the heap beyond.
-enum Rewritten {
-    Inline([(i64, i64); Rewritten::INLINE], usize),
-    Heap(Vec<(i64, i64)>),
+struct Rewritten {
+    inline: [(i64, i64); Rewritten::INLINE],
+    len: usize,
+    /// Used instead when more may come (empty otherwise: no allocation).
+    heap: Vec<(i64, i64)>,
 }
 
 impl Rewritten {
     const INLINE: usize = 16;
 
+    /// Room for at most `n` points.
     fn with_capacity(n: usize) -> Self {
-        if n <= Self::INLINE {
-            Self::Inline([(0, 0); Self::INLINE], 0)
-        } else {
-            Self::Heap(Vec::with_capacity(n))
+        Self {
+            inline: [(0, 0); Self::INLINE],
+            len: 0,
+            heap: if n > Self::INLINE {
+                Vec::with_capacity(n)
+            } else {
+                Vec::new()
+            },
         }
     }
 
     fn push(&mut self, p: (i64, i64)) {
-        match self {
-            Self::Inline(items, len) => {
-                items[*len] = p;
-                *len += 1;
-            }
-            Self::Heap(items) => items.push(p),
+        if self.heap.capacity() > 0 {
+            self.heap.push(p);
+        } else {
+            self.inline[self.len] = p;
+            self.len += 1;
         }
     }
 
     fn as_slice(&self) -> &[(i64, i64)] {
-        match self {
-            Self::Inline(items, len) => &items[..*len],
-            Self::Heap(items) => items,
+        if self.heap.capacity() > 0 {
+            &self.heap
+        } else {
+            &self.inline[..self.len]
         }
     }
 
