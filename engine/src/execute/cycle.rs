@@ -123,9 +123,20 @@ pub(super) struct Layout {
     /// Per plan activity: why it is left out, if it is.
     dropped: Vec<Option<Dropped>>,
     /// Per plan activity not started: its windows from `t` on, cut by its
-    /// dependencies on activities that ended (`None`: the plan gives none
-    /// and nothing cut them, the whole cycle horizon).
-    windows: Vec<Option<Vec<Window>>>,
+    /// dependencies on activities that ended.
+    windows: Vec<CycleWindows>,
+}
+
+/// An activity's windows in a cycle.
+#[derive(Clone, Debug)]
+enum CycleWindows {
+    /// The plan gives none and nothing cut them: the whole cycle horizon.
+    Horizon,
+    /// The plan's, none starting before the cycle and nothing cutting them
+    /// (no copy made).
+    Plan,
+    /// The plan's cut to the cycle and by dependencies on ended activities.
+    Cut(Vec<Window>),
 }
 
 impl Layout {
@@ -154,16 +165,24 @@ impl Layout {
             }
         }
         // Windows from `t` on, cut by dependencies on activities that ended.
-        let mut windows: Vec<Option<Vec<Window>>> = vec![None; n];
+        let mut windows: Vec<CycleWindows> = vec![CycleWindows::Horizon; n];
         for (i, a) in plan.activities.iter().enumerate() {
             if started(i) || dropped[i].is_some() {
                 continue;
             }
-            // Nothing to cut: the whole cycle horizon (no copy made).
+            // Nothing to cut: the whole cycle horizon, or the plan's windows
+            // (no copy made).
             let ended =
                 |j: &Option<usize>| j.is_some_and(|j| matches!(status[j], Status::Ended { .. }));
-            if a.windows.is_none() && !links.after[i].iter().any(ended) {
-                continue;
+            if !links.after[i].iter().any(ended) {
+                match &a.windows {
+                    None => continue,
+                    Some(ws) if ws.iter().all(|w| w.start >= t) => {
+                        windows[i] = CycleWindows::Plan;
+                        continue;
+                    }
+                    Some(_) => {}
+                }
             }
             let horizon_last = plan.horizon.end - 1;
             let mut cut = a.windows.is_some();
@@ -206,7 +225,7 @@ impl Layout {
                 .into_iter()
                 .filter_map(|w| clip(w, t, i64::MAX))
                 .collect();
-            windows[i] = Some(ranges);
+            windows[i] = CycleWindows::Cut(ranges);
         }
         // Dependents of dropped activities can no longer run either.
         loop {
@@ -309,7 +328,16 @@ pub(super) fn cycle_plan(
                 a.duration_model = None;
             }
             Status::Waiting => {
-                a.windows = layout.windows[i].take();
+                a.windows = match std::mem::replace(&mut layout.windows[i], CycleWindows::Horizon) {
+                    CycleWindows::Horizon => None,
+                    // Clipped as a cut would be (a preferred start given).
+                    CycleWindows::Plan => a.windows.map(|ws| {
+                        ws.into_iter()
+                            .filter_map(|w| clip(w, t, i64::MAX))
+                            .collect()
+                    }),
+                    CycleWindows::Cut(ws) => Some(ws),
+                };
                 // Dependencies on ended activities became windows.
                 let mut targets = links.after[i].iter();
                 a.after.retain(|_| {
@@ -412,7 +440,12 @@ pub(super) fn cycle_problem(
                 ..unchanged(base)
             },
             Status::Waiting => {
-                let windows = compile_windows(layout.windows[i].as_deref(), t, problem.h1);
+                // `None`: the whole plan's (compiled the same).
+                let windows = match &layout.windows[i] {
+                    CycleWindows::Horizon => Some(compile_windows(None, t, problem.h1)),
+                    CycleWindows::Plan => None,
+                    CycleWindows::Cut(ws) => Some(compile_windows(Some(ws), t, problem.h1)),
+                };
                 // Dependencies on ended activities became windows.
                 let after: Vec<Dep> = base
                     .after
@@ -431,7 +464,7 @@ pub(super) fn cycle_problem(
                     })
                     .collect();
                 if !base.held
-                    && windows == base.windows
+                    && windows.as_ref().is_none_or(|w| *w == base.windows)
                     && after == base.after
                     && res == base.resources
                     && uhf == base.uhf
@@ -442,7 +475,7 @@ pub(super) fn cycle_problem(
                     continue;
                 }
                 Act {
-                    windows,
+                    windows: windows.unwrap_or_else(|| base.windows.clone()),
                     after,
                     held: false,
                     resources: res,
