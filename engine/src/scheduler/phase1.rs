@@ -64,14 +64,17 @@ impl State<'_> {
         if self.uhf_busy(a, s, e).next().is_some() {
             return false;
         }
-        // state_requirement, state_effect, data_volume: as phase 1 does them.
-        [
-            Category::StateRequirement,
-            Category::StateEffect,
-            Category::DataVolume,
-        ]
-        .into_iter()
-        .all(|c| self.category_valid(c, a, d, scope, s, s).contains(s))
+        // state_requirement
+        if !scope
+            .reqs(act)
+            .all(|r| self.states[r.state].requirement_holds(r.value, d, s))
+        {
+            return false;
+        }
+        // state_effect, data_volume: as phase 1 does them.
+        [Category::StateEffect, Category::DataVolume]
+            .into_iter()
+            .all(|c| self.category_valid(c, a, d, scope, s, s).contains(s))
     }
 
     /// Phase 1 restricted to starts in `[lo, hi]`.

@@ -327,6 +327,39 @@ impl StateTimeline {
             .clip(lo, hi)
     }
 
+    /// Whether start `s` is one of [`Self::requirement_valid`]'s: the value
+    /// held at `s` is `value` and no effect changes it before `s + d`. The
+    /// point version, without building the state's segments.
+    pub fn requirement_holds(&self, value: usize, d: i64, s: i64) -> bool {
+        let holds = if d <= 0 {
+            // A segment ending at `s` holds it too: the full version.
+            self.requirement_valid(value, d, s, s).contains(s)
+        } else {
+            let from = self.effects.partition_point(|e| e.time <= s);
+            let held = from
+                .checked_sub(1)
+                .map_or(self.initial, |k| self.effects[k].value);
+            let end = s.saturating_add(d);
+            // Effects at one time: the last (in step order) holds from then.
+            let mut changes = self.effects[from..]
+                .iter()
+                .take_while(|e| e.time < end)
+                .enumerate()
+                .filter(|&(k, e)| {
+                    self.effects
+                        .get(from + k + 1)
+                        .is_none_or(|next| next.time != e.time)
+                });
+            held == value && changes.all(|(_, e)| e.value == value)
+        };
+        debug_assert_eq!(
+            holds,
+            self.requirement_valid(value, d, s, s).contains(s),
+            "a requirement's point check disagrees with its valid starts at {s}"
+        );
+        holds
+    }
+
     /// Starts in `[lo, hi]` where this activity's effects on the state (`own`:
     /// `(offset, value)` sorted by offset, offsets 0 or `d`) change no value seen by
     /// a placed requirement. A requirement sees the state without its own
