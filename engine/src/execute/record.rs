@@ -76,8 +76,8 @@ impl Record {
         }
         // One pass in decreasing start: an interval passed over never joins
         // later (the start only moves down, to starts no later than its).
-        let mut by_start: Vec<(i64, i64)> =
-            self.awake.iter().filter(|w| w.0 < t).copied().collect();
+        let mut by_start: Vec<(i64, i64)> = Vec::with_capacity(self.awake.len());
+        by_start.extend(self.awake.iter().filter(|w| w.0 < t));
         by_start.sort_unstable_by(|x, y| y.cmp(x));
         let mut start = t;
         for (a, b) in by_start {
