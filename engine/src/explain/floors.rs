@@ -19,6 +19,9 @@ use crate::scheduler::State;
 /// many placing steps): bounded memory whatever the plan.
 const MAX_ENTRIES: usize = 1 << 20;
 
+/// About the spacing of the grid times (seconds): see [`Floors::grid`].
+const GRID_SECONDS: i64 = 3 * 3600;
+
 /// See the module docs.
 pub(super) struct Floors {
     h0: i64,
@@ -58,8 +61,12 @@ impl Floors {
     pub(super) fn grid(state: &State<'_>, placing: usize) -> Self {
         let problem = state.problem;
         let cap = placing.max(1).next_power_of_two();
-        let times = (MAX_ENTRIES / (2 * cap)).clamp(16, 256);
+        // A grid time every three hours or so: each step's record is a pass
+        // over the levels and the grid, so a finer grid than the plan's
+        // placements are apart costs more in records than it saves witnesses.
         let span = (problem.h1 - problem.h0).max(1);
+        let every = usize::try_from((span + GRID_SECONDS - 1) / GRID_SECONDS).unwrap_or(usize::MAX);
+        let times = (MAX_ENTRIES / (2 * cap)).min(every).clamp(16, 256);
         let width = (span + times as i64 - 1) / times as i64;
         Self {
             h0: problem.h0,
