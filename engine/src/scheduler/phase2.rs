@@ -402,8 +402,8 @@ impl State<'_> {
     /// (`true` when none binds it): the one energy check of a kept placement
     /// whose levels against `min_soc` are proved otherwise. Read first from
     /// a lower bound on the level at the handover that needs no levels
-    /// brought up to date (`RateTimeline::level_at_least`, less the charge
-    /// the placement drains before the handover); only where that bound
+    /// brought up to date (`RateTimeline::level_at_least` with the
+    /// placement's drain); only where that bound
     /// falls short are the levels derived and the placement checked in full.
     pub(super) fn keeps_handover(&self, a: usize, p: &Placement) -> bool {
         let Some((at, min)) = self.problem.handover_soc_of(a) else {
@@ -417,12 +417,7 @@ impl State<'_> {
                 .at_probe
                 .is_none_or(|level| level >= min)
         };
-        let drained: i128 = drain
-            .iter()
-            .filter(|&&(_, _, r)| r > 0)
-            .map(|&(x, y, r)| i128::from(r) * i128::from((y.min(at) - x).max(0)))
-            .sum();
-        if self.soc.level_at_least(at) - drained >= min {
+        if self.soc.level_at_least(at, &drain) >= min {
             debug_assert!(
                 exact(),
                 "the handover bound passed a placement that breaks it"

@@ -86,17 +86,22 @@ impl Since {
 
     /// At least the charge the drains take before `t`.
     fn charge_before(&self, t: i64) -> i128 {
-        let pieces: i128 = self
-            .pieces
-            .iter()
-            .map(|&(a, b, r)| i128::from(r) * i128::from((b.min(t) - a).max(0)))
-            .sum();
         let lump = self
             .lump
             .filter(|&(from, _)| from < t)
             .map_or(0, |(_, c)| c);
-        pieces + lump
+        drained_before(&self.pieces, t) + lump
     }
+}
+
+/// The charge pieces `[a, b)` of a rate taken away (`(a, b, rate)`; a
+/// negative rate, charge given back, counts nothing) take before `t`.
+fn drained_before(pieces: &[(i64, i64, i64)], t: i64) -> i128 {
+    pieces
+        .iter()
+        .filter(|&&(_, _, r)| r > 0)
+        .map(|&(a, b, r)| i128::from(r) * i128::from((b.min(t) - a).max(0)))
+        .sum()
 }
 
 impl Clone for RateTimeline {
@@ -184,28 +189,26 @@ impl RateTimeline {
         }
     }
 
-    /// A lower bound on the level at `t` (clamped to the domain), read
-    /// without deriving the levels when changes made them stale: the stale
-    /// level there less the charge the drains added since take before `t`
-    /// (a capped integrator is monotone in its rate, and falls by at most
-    /// the charge drained; the cap only holds it down when it rises). The
-    /// level itself when the levels are current or there are none to start
-    /// from.
-    pub fn level_at_least(&self, t: i64) -> i128 {
-        if let Some(levels) = self.levels.get() {
-            return levels.level_at(t);
-        }
-        let stale = self
-            .stale_levels()
-            .as_ref()
-            .map(|(old, _, _)| old.level_at(t));
-        match stale {
-            Some(level) => {
-                let t = t.clamp(self.rate.start(), self.rate.end());
-                level - self.since.charge_before(t)
+    /// A lower bound on the level at `t` (clamped to the domain) if `drain`
+    /// (as for [`Self::check`]) were added, read without deriving the levels
+    /// when changes made them stale: the stale level there less the charge
+    /// the drains added since and `drain` take before `t` (a capped
+    /// integrator is monotone in its rate, and falls by at most the charge
+    /// drained; the cap only holds it down when it rises). From the level
+    /// itself when the levels are current or there are none to start from.
+    pub fn level_at_least(&self, t: i64, drain: &[(i64, i64, i64)]) -> i128 {
+        let t = t.clamp(self.rate.start(), self.rate.end());
+        let level = match self.levels.get() {
+            Some(levels) => levels.level_at(t),
+            None => {
+                let stale = self
+                    .stale_levels()
+                    .as_ref()
+                    .map(|(old, _, _)| old.level_at(t) - self.since.charge_before(t));
+                stale.unwrap_or_else(|| self.level_at(t))
             }
-            None => self.level_at(t),
-        }
+        };
+        level - drained_before(drain, t)
     }
 
     /// A lower bound on every level, in O(1) and without deriving the levels:
@@ -1195,7 +1198,8 @@ mod tests {
 
     /// The level read from stale levels less the drains since is never
     /// above the level, through many changes between queries (past the
-    /// pieces kept one by one), and it is the level when nothing drained.
+    /// pieces kept one by one), and it is the level when nothing drained;
+    /// with a drain of its own, never above the drained level.
     #[test]
     fn level_at_least_bounds_the_level() {
         let mut next = xorshift(0x1f83_d9ab_fb41_bd6b);
@@ -1209,10 +1213,14 @@ mod tests {
                 tl.add_rate(a, a + len, delta);
                 let t = next(140) - 10;
                 let stale = tl.levels.get().is_none();
-                let bound = tl.level_at_least(t);
+                let bound = tl.level_at_least(t, &[]);
                 let level = brute(&rate, &[], initial, cap)[t.clamp(0, 120) as usize];
                 assert!(bound <= level, "t={t}: {bound} > {level}");
                 assert!(stale || bound == level);
+                // With a drain of its own: never above the drained level.
+                let drain = [(next(120), 120 + next(10), next(9) - 2)];
+                let drained = brute(&rate, &drain, initial, cap)[t.clamp(0, 120) as usize];
+                assert!(tl.level_at_least(t, &drain) <= drained, "t={t} {drain:?}");
                 stale_reads += usize::from(stale);
                 below += usize::from(bound < level);
                 lumped += usize::from(tl.since.lump.is_some());
