@@ -208,7 +208,7 @@ impl Layout {
                     };
                     let lo = end.saturating_add(min);
                     let hi = max.map_or(i64::MAX, |m| end.saturating_add(m));
-                    ranges = ranges.into_iter().filter_map(|w| clip(w, lo, hi)).collect();
+                    ranges = clip(ranges, lo, hi);
                     if ranges.is_empty() {
                         dropped[i] = Some(Dropped::DependencyPassed { on: j, end });
                         break;
@@ -221,10 +221,7 @@ impl Layout {
             // No start before the cycle: windows are clipped to `t` (a
             // preferred time before `t` becomes `t`, which ranks the
             // remaining starts the same way).
-            ranges = ranges
-                .into_iter()
-                .filter_map(|w| clip(w, t, i64::MAX))
-                .collect();
+            ranges = clip(ranges, t, i64::MAX);
             windows[i] = CycleWindows::Cut(ranges);
         }
         // Dependents of dropped activities can no longer run either.
@@ -331,11 +328,7 @@ pub(super) fn cycle_plan(
                 a.windows = match std::mem::replace(&mut layout.windows[i], CycleWindows::Horizon) {
                     CycleWindows::Horizon => None,
                     // Clipped as a cut would be (a preferred start given).
-                    CycleWindows::Plan => a.windows.map(|ws| {
-                        ws.into_iter()
-                            .filter_map(|w| clip(w, t, i64::MAX))
-                            .collect()
-                    }),
+                    CycleWindows::Plan => a.windows.map(|ws| clip(ws, t, i64::MAX)),
                     CycleWindows::Cut(ws) => Some(ws),
                 };
                 // Dependencies on ended activities became windows.
@@ -574,16 +567,21 @@ impl Renumber {
     }
 }
 
-/// Window `w` with its start range cut to `[lo, hi]`, if anything is left.
-fn clip(w: Window, lo: i64, hi: i64) -> Option<Window> {
-    let start = w.start.max(lo);
-    let end = w.end.min(hi);
-    (start <= end).then(|| Window {
-        start,
-        end,
-        preferred: Some(w.preferred_start().clamp(start, end)),
-        cutoff: w.cutoff,
-    })
+/// Windows `ws` with their start ranges cut to `[lo, hi]`, those with
+/// nothing left dropped.
+fn clip(ws: Vec<Window>, lo: i64, hi: i64) -> Vec<Window> {
+    ws.into_iter()
+        .filter_map(|w| {
+            let start = w.start.max(lo);
+            let end = w.end.min(hi);
+            (start <= end).then(|| Window {
+                start,
+                end,
+                preferred: Some(w.preferred_start().clamp(start, end)),
+                cutoff: w.cutoff,
+            })
+        })
+        .collect()
 }
 
 #[cfg(test)]
