@@ -93,7 +93,7 @@ impl StepFn {
             }
             hi
         };
-        self.points.splice(from..to, new.as_slice().iter().copied());
+        replace(&mut self.points, from..to, new.as_slice());
     }
 
     /// The segments overlapping `[a, b)`, clipped: `(lo, hi, value)`.
@@ -122,6 +122,22 @@ impl StepFn {
         }
         best
     }
+}
+
+/// `points[range]` replaced by `new`: the points after the range moved once,
+/// by the difference in length (`Vec::splice` does the same through a
+/// general iterator protocol that costs more than the move on short lists).
+fn replace(points: &mut Vec<(i64, i64)>, range: std::ops::Range<usize>, new: &[(i64, i64)]) {
+    let (from, to) = (range.start, range.end);
+    let len = points.len();
+    if new.len() >= to - from {
+        let grow = new.len() - (to - from);
+        points.resize(len + grow, (0, 0));
+        points.copy_within(to..len, to + grow);
+    } else {
+        points.drain(from + new.len()..to);
+    }
+    points[from..from + new.len()].copy_from_slice(new);
 }
 
 /// The points a change to a [`StepFn`] rewrites: on the stack up to
@@ -219,6 +235,25 @@ mod tests {
                     proptest::prop_assert_eq!(f.value_at(t), model[(t - start) as usize]);
                 }
             }
+        }
+    }
+
+    #[test]
+    fn replace_grows_shrinks_and_keeps_the_rest() {
+        let pts = |n: i64| (0..n).map(|i| (i, i)).collect::<Vec<_>>();
+        for (range, new) in [
+            (1..2, vec![(9, 9), (8, 8), (7, 7)]),
+            (1..4, vec![(9, 9)]),
+            (0..5, vec![]),
+            (2..2, vec![(9, 9)]),
+            (5..5, vec![(9, 9)]),
+            (1..3, vec![(9, 9), (8, 8)]),
+        ] {
+            let mut got = pts(5);
+            replace(&mut got, range.clone(), &new);
+            let mut want = pts(5);
+            want.splice(range, new);
+            assert_eq!(got, want);
         }
     }
 
