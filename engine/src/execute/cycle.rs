@@ -270,7 +270,8 @@ impl Layout {
     }
 }
 
-/// The fields of a cycle's activity that are always the whole plan's, with
+/// The fields of a cycle's activity that are always the whole plan's
+/// (resources, comm kinds and groups with the whole plan's indices), with
 /// the others empty (what a cycle sets anew): the struct update syntax
 /// would clone the whole activity, windows and dependencies included, only
 /// to drop what the cycle replaces.
@@ -280,7 +281,7 @@ fn unchanged(base: &Act) -> Act {
         dur_max: base.dur_max,
         mandatory: base.mandatory,
         windows: Vec::new(),
-        resources: Vec::new(),
+        resources: base.resources.clone(),
         engines: base.engines,
         energy: base.energy,
         peak: base.peak,
@@ -290,9 +291,9 @@ fn unchanged(base: &Act) -> Act {
         after: Vec::new(),
         requires: base.requires.clone(),
         effects: Vec::new(),
-        uhf: None,
-        comm: None,
-        group: None,
+        uhf: base.uhf.clone(),
+        comm: base.comm,
+        group: base.group,
         held: false,
     }
 }
@@ -390,23 +391,14 @@ pub(super) fn cycle_problem(
     for (c, &i) in layout.activity_of.iter().enumerate() {
         index[i] = c;
     }
-    // Names are interned by first appearance in the cycle's plan: the whole
-    // plan's indices renumbered in that order (each stands for one name).
-    let (mut resources, mut kinds, mut groups) = (
-        Renumber::default(),
-        Renumber::default(),
-        Renumber::default(),
-    );
+    // Resources, comm kinds and groups keep the whole plan's indices (a
+    // scheduler run reads them as names only: which activities share one);
+    // compiling the cycle's plan numbers them by first appearance in it
+    // instead, which would copy every activity after one that no longer
+    // comes first.
     let mut acts = Vec::with_capacity(layout.activity_of.len());
     for &i in &layout.activity_of {
         let base = &problem.acts[i];
-        let res: Vec<usize> = base.resources.iter().map(|&r| resources.of(r)).collect();
-        let uhf: Option<Vec<usize>> = base
-            .uhf
-            .as_ref()
-            .map(|ks| ks.iter().map(|&k| kinds.of(k)).collect());
-        let comm = base.comm.map(|k| kinds.of(k));
-        let group = base.group.map(|g| groups.of(g));
         let act = match status[i] {
             Status::Ended { .. } => continue,
             Status::Executing { hold, .. } => Act {
@@ -426,10 +418,6 @@ pub(super) fn cycle_problem(
                     .copied()
                     .collect(),
                 held: true,
-                resources: res,
-                uhf,
-                comm,
-                group,
                 ..unchanged(base)
             },
             Status::Waiting => {
@@ -440,41 +428,18 @@ pub(super) fn cycle_problem(
                     CycleWindows::Cut(ws) => Some(compile_windows(Some(ws), t, problem.h1)),
                 };
                 // Dependencies on ended activities became windows.
-                let after: Vec<Dep> = base
-                    .after
-                    .iter()
-                    .zip(&links.after[i])
-                    .filter_map(|(d, &j)| {
-                        let j = j?;
-                        if matches!(status[j], Status::Ended { .. }) {
-                            return None;
-                        }
-                        debug_assert_ne!(index[j], usize::MAX, "a dependency left out");
-                        Some(Dep {
-                            target: index[j],
-                            ..*d
-                        })
-                    })
-                    .collect();
+                let after = cycle_deps(&base.after, &links.after[i], status, &index);
                 if !base.held
                     && windows.as_ref().is_none_or(|w| *w == base.windows)
-                    && after == base.after
-                    && res == base.resources
-                    && uhf == base.uhf
-                    && comm == base.comm
-                    && group == base.group
+                    && after.is_none()
                 {
                     acts.push(Arc::clone(base));
                     continue;
                 }
                 Act {
                     windows: windows.unwrap_or_else(|| base.windows.clone()),
-                    after,
+                    after: after.unwrap_or_else(|| base.after.clone()),
                     held: false,
-                    resources: res,
-                    uhf,
-                    comm,
-                    group,
                     effects: base.effects.clone(),
                     ..unchanged(base)
                 }
@@ -535,7 +500,6 @@ pub(super) fn cycle_problem(
         state_initial,
         zones: problem.zones.clone(),
         zone_names: problem.zone_names.clone(),
-        resource_count: resources.next,
         acts,
         order,
         step_of,
@@ -546,13 +510,85 @@ pub(super) fn cycle_problem(
     })
 }
 
+/// A waiting activity's dependencies in the cycle (`targets`: each one's
+/// activity in the plan, if any): those on ended activities dropped (they
+/// became windows), the others' targets renumbered; `None` when that
+/// leaves them as they were.
+fn cycle_deps(
+    deps: &[Dep],
+    targets: &[Option<usize>],
+    status: &[Status],
+    index: &[usize],
+) -> Option<Vec<Dep>> {
+    debug_assert_eq!(deps.len(), targets.len(), "a dependency without its link");
+    let mut out: Option<Vec<Dep>> = None;
+    for (k, (d, &j)) in deps.iter().zip(targets).enumerate() {
+        let new = j
+            .filter(|&j| !matches!(status[j], Status::Ended { .. }))
+            .map(|j| {
+                debug_assert_ne!(index[j], usize::MAX, "a dependency left out");
+                Dep {
+                    target: index[j],
+                    ..*d
+                }
+            });
+        match &mut out {
+            Some(v) => v.extend(new),
+            None if new != Some(*d) => {
+                let mut v = Vec::with_capacity(deps.len());
+                v.extend_from_slice(&deps[..k]);
+                v.extend(new);
+                out = Some(v);
+            }
+            None => {}
+        }
+    }
+    out
+}
+
+/// `problem` with its resources, comm kinds and groups numbered by first
+/// appearance among its activities, as compiling its plan numbers them
+/// (debug builds and tests compare a cycle's problem with its plan's
+/// compiled in full).
+#[cfg(any(test, debug_assertions))]
+pub(super) fn first_appearance(problem: &Problem) -> Problem {
+    let (mut resources, mut kinds, mut groups) = (
+        Renumber::default(),
+        Renumber::default(),
+        Renumber::default(),
+    );
+    let acts = problem
+        .acts
+        .iter()
+        .map(|act| {
+            let mut act = Act::clone(act);
+            for r in &mut act.resources {
+                *r = resources.of(*r);
+            }
+            for k in act.uhf.iter_mut().flatten() {
+                *k = kinds.of(*k);
+            }
+            act.comm = act.comm.map(|k| kinds.of(k));
+            act.group = act.group.map(|g| groups.of(g));
+            Arc::new(act)
+        })
+        .collect();
+    Problem {
+        acts,
+        resource_count: resources.next,
+        ..problem.clone()
+    }
+}
+
 /// Indices of one space of interned names, renumbered by first appearance.
+#[cfg(any(test, debug_assertions))]
 #[derive(Default)]
 struct Renumber {
     map: Vec<usize>,
     next: usize,
 }
 
+#[cfg(any(test, debug_assertions))]
 impl Renumber {
     /// The new index of old index `k`, the next one when `k` is new.
     fn of(&mut self, k: usize) -> usize {
@@ -621,14 +657,25 @@ mod tests {
                     let built = cycle_plan(&plan, &links, c.time, &status, &values, start.clone());
                     assert_eq!(built.activity_of, layout.activity_of);
                     let full = Problem::compile(&built.plan).expect("compiles");
-                    assert_eq!(derived, full, "{profile:?} seed {seed} run {run} cycle {k}");
+                    assert_eq!(
+                        first_appearance(&derived),
+                        full,
+                        "{profile:?} seed {seed} run {run} cycle {k}"
+                    );
+                    // The whole plan's numbering schedules as the cycle's
+                    // plan's own.
+                    assert_eq!(
+                        crate::scheduler::run_resuming(&derived, None).outcomes,
+                        crate::scheduler::run_resuming(&full, None).outcomes,
+                        "{profile:?} seed {seed} run {run} cycle {k}"
+                    );
                     cycles += 1;
                     renumbered += usize::from(
                         derived
                             .acts
                             .iter()
-                            .zip(&layout.activity_of)
-                            .any(|(x, &i)| x.resources != problem.acts[i].resources),
+                            .zip(&full.acts)
+                            .any(|(x, y)| x.resources != y.resources || x.group != y.group),
                     );
                     shared += derived
                         .acts
@@ -641,7 +688,10 @@ mod tests {
             }
         }
         assert!(cycles > 100, "only {cycles} cycles");
-        assert!(renumbered > 0, "no cycle renumbered a resource");
+        assert!(
+            renumbered > 0,
+            "no cycle's plan numbered a resource or group anew"
+        );
         assert!(shared > 0, "no activity was shared");
         assert!(executing > 0, "no activity was executing at a cycle");
     }

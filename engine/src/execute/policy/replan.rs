@@ -8,6 +8,8 @@ use std::borrow::Cow;
 use crate::error::Error;
 #[cfg(debug_assertions)]
 use crate::execute::cycle::cycle_plan;
+#[cfg(debug_assertions)]
+use crate::execute::cycle::first_appearance;
 use crate::execute::cycle::{Layout, Links, Status, cycle_problem};
 use crate::execute::resume::LastRun;
 use crate::execute::sim::{CycleSchedule, Executive, Next, Sim, cycle_start, guard, state_values};
@@ -56,9 +58,10 @@ impl Executive for Replan {
             &layout,
         )?;
         // Debug builds: the cycle's plan, built and compiled in full, is the
-        // one compiled here, and the one the execution rebuilds later.
+        // one compiled here (but for the numbering of resources, comm kinds
+        // and groups), and the one the execution rebuilds later.
         #[cfg(debug_assertions)]
-        let fingerprint = {
+        let (fingerprint, full) = {
             let cp = cycle_plan(
                 plan,
                 &self.links,
@@ -68,12 +71,13 @@ impl Executive for Replan {
                 start.clone(),
             );
             debug_assert_eq!(cp.activity_of, layout.activity_of);
+            let full = Problem::compile(&cp.plan).ok();
             debug_assert_eq!(
-                Problem::compile(&cp.plan).as_ref().ok(),
-                Some(&compiled),
+                full.as_ref(),
+                Some(&first_appearance(&compiled)),
                 "the cycle's problem differs from its plan's compiled in full"
             );
-            crate::execute::sim::fingerprint(&cp.plan)
+            (crate::execute::sim::fingerprint(&cp.plan), full)
         };
         let last = sim.last_run.take();
         let prior = last
@@ -85,6 +89,18 @@ impl Executive for Replan {
         sim.kept_rest += run.kept_rest;
         sim.steps += compiled.order.len();
         drop(prior);
+        // Debug builds, one cycle in eight: the numbering of names does not
+        // change the run (a cycle keeps the whole plan's).
+        #[cfg(debug_assertions)]
+        if sim.cycles.len() % 8 == 0
+            && let Some(full) = &full
+        {
+            debug_assert_eq!(
+                run_resuming(full, None).outcomes,
+                run.outcomes,
+                "the cycle's run depends on how its names are numbered"
+            );
+        }
         let (last, outcomes) = LastRun::of(
             run,
             &layout.activity_of,
