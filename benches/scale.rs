@@ -10,9 +10,11 @@
 //! `--sweep N` schedules seeds 1..=N of each size and profile once, explains
 //! every failure without suggestions, and reports for each the median and the worst (the plan of a sweep that costs most, not only the seed-1
 //! plan the table measures). `--execution` measures executions instead: the bundled
-//! plan (nominal and sampled), 1,000 activities of both profiles, and a Monte Carlo
+//! plan (nominal and sampled), 1,000 activities of each profile, and a Monte Carlo
 //! campaign of 1,000 runs of the bundled plan, then `tune` of the bundled plan with the
-//! defaults (the whole and its first improvement). `--flex` measures flexible schedules:
+//! defaults (the whole and its first improvement); with `--sweep N`, instead, the
+//! nominal execution of the 1,000-activity plans of seeds 1..=N of each profile,
+//! median and worst. `--flex` measures flexible schedules:
 //! the network, bounds, minimum dispatchable network and controllability, and the
 //! free slack apart, on 1,000 and 10,000 activities of both profiles (worst of
 //! `--sweep N` seeds too when given). `--huge` measures 200,000 activities over 30
@@ -125,7 +127,10 @@ fn main() {
     };
     let profiles = chosen_profiles();
     if std::env::args().any(|a| a == "--execution") {
-        execution();
+        match arg("--sweep").and_then(|v| v.parse::<u64>().ok()) {
+            Some(seeds) => execution_sweep(&profiles, seeds),
+            None => execution(),
+        }
         return;
     }
     if std::env::args().any(|a| a == "--tuning") {
@@ -647,10 +652,7 @@ fn execution() {
         &sample_run(&bundled, 1, 0),
         5,
     );
-    for (name, profile) in [
-        ("standard", Profile::Standard),
-        ("realistic", Profile::Realistic),
-    ] {
+    for (name, profile) in chosen_profiles() {
         let plan = generate_plan_with(profile, 1000, 3, 1);
         row(name, &plan, "nominal", &Actuals::nominal(), 1);
     }
@@ -670,6 +672,36 @@ fn execution() {
         ms(t.elapsed())
     );
     tune_defaults(&bundled);
+}
+
+/// One nominal execution (with its losses explained, as `solscope execute`
+/// reports them) of the 1,000-activity plan of seeds 1 to `seeds` of each
+/// profile, once each: the median and the worst, with the worst plan's cycles.
+fn execution_sweep(profiles: &[(&str, Profile)], seeds: u64) {
+    use solscope_engine::{Actuals, execute, losses};
+    println!(
+        "| profile | activities | sols | seeds | median execution | worst execution (seed, cycles) |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|");
+    for &(name, profile) in profiles {
+        let mut times: Vec<(Duration, u64)> = Vec::new();
+        let mut cycles = std::collections::HashMap::new();
+        for seed in 1..=seeds {
+            let plan = generate_plan_with(profile, 1000, 3, seed);
+            let t = Instant::now();
+            let ex = execute(&plan, &Actuals::nominal()).expect("execute");
+            std::hint::black_box(losses(&plan, &ex).expect("losses"));
+            times.push((t.elapsed(), seed));
+            cycles.insert(seed, ex.cycles.len());
+        }
+        let (median, worst, seed) = median_worst(&mut times);
+        println!(
+            "| {name} | 1000 | 3 | {seeds} | {} | {} ({seed}, {}) |",
+            ms(median),
+            ms(worst),
+            cycles[&seed]
+        );
+    }
 }
 
 /// `tune` of the bundled plan with the defaults, as `solscope tune` runs it:
