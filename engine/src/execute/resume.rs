@@ -10,7 +10,11 @@
 //! - the activities that started in between and came after `j` in the earlier
 //!   run's step order (now held first, or ended and in the executed state),
 //!   and those that ran longer than the earlier run held them: each only adds
-//!   load, busy time and data unless it gives `j` starts (`gives_starts`);
+//!   load, busy time and data unless it gives `j` starts (`gives_starts`).
+//!   Through a shared heating zone alone it gives starts only up to its end
+//!   and the longest preheat of `j`'s zones after it: the step keeps its
+//!   outcome when no start up to there passes that it would choose over it
+//!   (`Prior::heat_until`);
 //! - the executed state of charge and data at `t1` (checked against the
 //!   earlier run's levels there: never more charge, never less data), and a
 //!   handover passed (then nothing is kept);
@@ -31,7 +35,10 @@
 
 use super::sim::Sim;
 use crate::model::{AwakeMode, EffectAt};
-use crate::scheduler::{Before, Placement, Prior, Problem, Resumed, RunOutcomes, gives_starts};
+use crate::scheduler::{
+    Before, Placement, Prior, Problem, Resumed, RunOutcomes, gives_starts, gives_starts_unheated,
+    shares_zone,
+};
 use crate::timeline::RateTimeline;
 
 /// The latest cycle's run, as the next cycle's run reads it.
@@ -307,8 +314,24 @@ impl LastRun {
             && no_sleep_near
             && warmer.is_empty())
         .then(|| same_loads_after.map_or(0, |k| k + 1));
+        // When each activity that started in between ends in this run (no
+        // earlier than the cycle): a held one, its held span's end. Its
+        // heaters demand nothing after it.
+        let ends: Vec<i64> = extras
+            .iter()
+            .map(|&(x, _, _)| {
+                let held = activity_of.iter().position(|&a| a == x);
+                held.filter(|&i| cycle.acts[i].held)
+                    .and_then(|i| {
+                        let act = &cycle.acts[i];
+                        act.windows.first().map(|w| w.start + act.dur_max)
+                    })
+                    .map_or(t1, |end| end.max(t1))
+            })
+            .collect();
         let mut before = Vec::with_capacity(activity_of.len());
         let mut may_keep = Vec::with_capacity(activity_of.len());
+        let mut heat_until = Vec::with_capacity(activity_of.len());
         let mut pos = Vec::with_capacity(activity_of.len());
         let mut data_proved = Vec::with_capacity(activity_of.len());
         let mut handover_proved = Vec::with_capacity(activity_of.len());
@@ -325,20 +348,44 @@ impl LastRun {
                             .iter()
                             .all(|&(x, pos, _)| pos < self.pos[j] || problem.acts[x].data <= 0)),
             );
+            // An activity that started in between and now comes before `j`
+            // (or runs longer) gives it nothing but through a shared heating
+            // zone: its heater, on to its end, can spare `j` a preheat at a
+            // start up to that end, or share `j`'s heating demand at a start
+            // whose preheat begins before it (the longest preheat of `j`'s
+            // zones earlier); at no later start can it give `j` anything.
+            let mut heat: Option<i64> = None;
+            let preheat = longest_preheat(problem, j);
+            let mut unheated = |x: usize, end: i64| {
+                if gives_starts_unheated(problem, x, j) {
+                    return false;
+                }
+                if shares_zone(problem, x, j) {
+                    let until = end.saturating_add(preheat);
+                    heat = Some(heat.map_or(until, |h| h.max(until)));
+                }
+                true
+            };
+            let kept_through = extras
+                .iter()
+                .zip(&ends)
+                .all(|(&(x, pos, ran), &end)| match ran {
+                    Ran::AsHeld => pos <= self.pos[j] || unheated(x, end),
+                    Ran::Longer => unheated(x, end),
+                    Ran::Shorter => pos > self.pos[j] && !gives_starts(problem, x, j),
+                });
             may_keep.push(
                 !cycle.acts[i].held
                     && (data_ok || act.data <= 0)
                     && !act.zones.iter().any(|z| warmer.contains(z))
-                    && extras.iter().all(|&(x, pos, ran)| match ran {
-                        Ran::AsHeld => pos <= self.pos[j] || !gives_starts(problem, x, j),
-                        Ran::Longer => !gives_starts(problem, x, j),
-                        Ran::Shorter => pos > self.pos[j] && !gives_starts(problem, x, j),
-                    }),
+                    && kept_through,
             );
+            heat_until.push(heat);
         }
         Some(Prior {
             before,
             may_keep,
+            heat_until,
             pos,
             energy_proved,
             handover_proved,
@@ -353,6 +400,16 @@ impl LastRun {
             data_before: &self.data,
         })
     }
+}
+
+/// The longest preheat any of activity `j`'s zones' tables gives.
+fn longest_preheat(problem: &Problem, j: usize) -> i64 {
+    problem.acts[j]
+        .zones
+        .iter()
+        .flat_map(|&z| problem.zones[z].table.iter().map(|&(_, d)| d))
+        .max()
+        .unwrap_or(0)
 }
 
 /// How an activity that ran between two cycles ran, against the earlier

@@ -22,7 +22,8 @@ use duration::longest_by_scan;
 use duration::{duration_monotone, head_tail_split, longest_scanned, longest_split};
 pub use inspect::{PartialSchedule, partial_schedule, valid_intervals_at};
 pub(crate) use outcomes::{
-    Checkpoints, gives_starts, placement_after_edit, placements_if_placed, probe_after_edit,
+    Checkpoints, gives_starts, gives_starts_unheated, placement_after_edit, placements_if_placed,
+    probe_after_edit, shares_zone,
 };
 pub use outcomes::{RunOutcomes, run_outcomes};
 pub(crate) use phase2::Evaluated;
@@ -482,6 +483,32 @@ pub(crate) fn run_step(
     scope: &Scope,
     detail: Detail,
 ) -> StepRun {
+    run_step_in(state, a, step_no, scope, detail, None)
+}
+
+/// Where step `step_no` (activity `a`, in `state`) would place its activity
+/// if its starts were only those in `[lo, hi]`: the scheduler's choice among
+/// them (the longest duration with such a start, then the first window,
+/// the start nearest its preferred time), `None` when none passes.
+pub(crate) fn step_within(
+    state: &State<'_>,
+    a: usize,
+    step_no: usize,
+    (lo, hi): (i64, i64),
+) -> Option<Evaluated> {
+    let scope = Scope::default();
+    run_step_in(state, a, step_no, &scope, Detail::Placement, Some((lo, hi))).found
+}
+
+/// [`run_step`], its starts only those in `within` when given.
+fn run_step_in(
+    state: &State<'_>,
+    a: usize,
+    step_no: usize,
+    scope: &Scope,
+    detail: Detail,
+    within: Option<(i64, i64)>,
+) -> StepRun {
     let problem = state.problem;
     let act = &problem.acts[a];
     let mut step = Step {
@@ -526,6 +553,12 @@ pub(crate) fn run_step(
         (problem.h0, problem.h1)
     } else {
         window_span(problem, a)
+    };
+    let span = match within {
+        // Nothing within: no start passes.
+        Some((lo, hi)) if span.0.max(lo) > span.1.min(hi) => return no_search(step),
+        Some((lo, hi)) => (span.0.max(lo), span.1.min(hi)),
+        None => span,
     };
     let mut pending: Vec<(Try, Closeness)> = Vec::new();
     let traced = matches!(detail, Detail::Trace | Detail::Horizon);

@@ -748,6 +748,11 @@ fn interacts(problem: &super::Problem, pa: &Placement, j: usize) -> bool {
 /// `a` downlinks data `j` would produce; or they share a heating zone (`j`
 /// could find its zone already heated).
 pub(crate) fn gives_starts(problem: &super::Problem, a: usize, j: usize) -> bool {
+    gives_starts_unheated(problem, a, j) || shares_zone(problem, a, j)
+}
+
+/// [`gives_starts`] but for a shared heating zone.
+pub(crate) fn gives_starts_unheated(problem: &super::Problem, a: usize, j: usize) -> bool {
     let (x, y) = (&problem.acts[a], &problem.acts[j]);
     y.after.iter().any(|d| d.target == a)
         || (x.group.is_some() && x.group == y.group)
@@ -756,7 +761,12 @@ pub(crate) fn gives_starts(problem: &super::Problem, a: usize, j: usize) -> bool
                 || y.effects.iter().any(|f| f.state == e.state)
         })
         || (x.data < 0 && y.data > 0)
-        || x.zones.iter().any(|z| y.zones.contains(z))
+}
+
+/// Whether activities `a` and `j` share a heating zone.
+pub(crate) fn shares_zone(problem: &super::Problem, a: usize, j: usize) -> bool {
+    let (x, y) = (&problem.acts[a], &problem.acts[j]);
+    x.zones.iter().any(|z| y.zones.contains(z))
 }
 
 /// Whether two placements of one activity generate the same awake period and

@@ -30,7 +30,7 @@
 
 use super::outcomes::{RunOutcomes, recorded_step, span};
 use super::state::{Placement, State, edit_periods};
-use super::{Evaluated, Problem, Scope};
+use super::{Evaluated, Problem, Scope, step_within};
 use crate::model::AwakeMode;
 use crate::timeline::RateTimeline;
 
@@ -54,6 +54,13 @@ pub(crate) struct Prior<'a> {
     /// state and the run before's state at that activity's step, apart from
     /// the awake periods, can only take starts away from it.
     pub may_keep: Vec<bool>,
+    /// By activity: the latest start a heater of an activity that started
+    /// between the two runs may have given it (`None`: none). Such a heater
+    /// can spare the activity a preheat or share its heating demand, so the
+    /// starts from the cycle up to this one may pass now where they did not:
+    /// the kept outcome also needs none of them preferred to it
+    /// ([`step_within`]); every later start can only have been taken away.
+    pub heat_until: Vec<Option<i64>>,
     /// By activity: its step index in the run before (`usize::MAX`: none).
     pub pos: Vec<usize>,
     /// Whether a kept placement's energy needs no check against `min_soc`:
@@ -198,8 +205,12 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
                             same_periods(&state.awake, b.before_step(p.pos[a]), awake_cut)
                         }))
         });
+        // Where heaters of activities that started in between reach, the
+        // starts the step would choose among them (see `Prior::heat_until`).
+        let heat = prior.and_then(|p| p.heat_until[a]);
+        let within = |hi: i64| step_within(&state, a, step_no, (problem.h0, hi));
         let ev = match before.filter(|_| keep) {
-            Some(Before::Failed) => {
+            Some(Before::Failed) if heat.is_none_or(|hi| within(hi).is_none()) => {
                 debug_assert!(
                     recorded_step(&state, a, step_no, false, false).0.is_none(),
                     "a failure kept from the cycle before places its activity now"
@@ -223,6 +234,11 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
                     .fitting_inner(a, old.start, old.duration, &scope, soc)
                     .filter(|ev| equivalent(problem, &ev.placement, old))
                     .filter(|ev| !handover || state.keeps_handover(a, &ev.placement))
+                    .filter(|ev| {
+                        heat.is_none_or(|hi| {
+                            within(hi).is_none_or(|x| !prefers(&state, &x.placement, &ev.placement))
+                        })
+                    })
             }
             _ => None,
         };
@@ -410,6 +426,31 @@ fn equivalent(problem: &Problem, new: &Placement, old: &Placement) -> bool {
             .iter()
             .filter(|&&(z, _, end)| !problem.preheat_running(new.act, z, end))
             .eq(new.preheats.iter())
+}
+
+/// Whether the scheduler, choosing among starts where both pass in
+/// `state`, chooses placement `x` over `y` of the same activity: the
+/// longer duration; at the same duration, the start in the earlier window
+/// (the first whose range for the duration holds it), nearer that window's
+/// preferred time, or as near and earlier. A start in no window's range
+/// cannot be ranked, and is taken as chosen.
+fn prefers(state: &State<'_>, x: &Placement, y: &Placement) -> bool {
+    if x.duration != y.duration {
+        return x.duration > y.duration;
+    }
+    let (a, d) = (x.act, x.duration);
+    let rank = |s: i64| {
+        state.problem.acts[a]
+            .windows
+            .iter()
+            .enumerate()
+            .find(|(_, w)| state.window_range(a, w, d).contains(s))
+            .map(|(k, w)| (k, (s - w.preferred).abs(), s))
+    };
+    match (rank(x.start), rank(y.start)) {
+        (Some(rx), Some(ry)) => rx < ry,
+        _ => true,
+    }
 }
 
 /// Whether two lists of awake periods (sorted, disjoint) hold the same
