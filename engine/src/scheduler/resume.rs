@@ -232,7 +232,7 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
                 }
                 state
                     .fitting_inner(a, old.start, old.duration, &scope, soc)
-                    .filter(|ev| equivalent(problem, &ev.placement, old))
+                    .filter(|ev| equivalent(&state, &ev.placement, old))
                     .filter(|ev| !handover || state.keeps_handover(a, &ev.placement))
                     .filter(|ev| {
                         heat.is_none_or(|hi| {
@@ -261,7 +261,7 @@ pub(crate) fn run_resuming(problem: &Problem, prior: Option<&Prior>) -> Resumed 
                 if let Some(before) = before {
                     same = match (before, &ev) {
                         (Before::Failed, None) => true,
-                        (Before::Placed(old), Some(ev)) => equivalent(problem, &ev.placement, old),
+                        (Before::Placed(old), Some(ev)) => equivalent(&state, &ev.placement, old),
                         _ => false,
                     };
                 }
@@ -413,14 +413,21 @@ fn agree_from(x: &RateTimeline, y: &RateTimeline, t: i64) -> bool {
         .all(|u| x.level_at(u) == y.level_at(u))
         && x.lowest_from(t) == y.lowest_from(t)
 }
-/// Whether placement `new` of this run generates what `old` (the same
-/// activity's in the run before) did: the same span and awake period, and the
-/// same preheats but those already running at the cycle (for which `new`
-/// needs none: the heater the cycle found on is the same demand).
-fn equivalent(problem: &Problem, new: &Placement, old: &Placement) -> bool {
+/// Whether placement `new` of this run, made in `state`, generates what
+/// `old` (the same activity's in the run before) did: the same span; the
+/// same awake period, or none where one period of `state` already holds the
+/// one `old` generated (the period the rover is in at the cycle, or one an
+/// activity held first generated: awake over at least the same time, which
+/// later steps judge as any other difference in the periods); and the same
+/// preheats but those already running at the cycle (for which `new` needs
+/// none: the heater the cycle found on is the same demand).
+fn equivalent(state: &State<'_>, new: &Placement, old: &Placement) -> bool {
+    let problem = state.problem;
+    let awake_held = |(qa, qb): (i64, i64)| state.awake.iter().any(|&(a, b)| a <= qa && qb <= b);
     new.start == old.start
         && new.duration == old.duration
-        && new.new_awake == old.new_awake
+        && (new.new_awake == old.new_awake
+            || new.new_awake.is_none() && old.new_awake.is_some_and(awake_held))
         && old
             .preheats
             .iter()
