@@ -71,10 +71,21 @@ impl State<'_> {
         {
             return false;
         }
-        // state_effect, data_volume: as phase 1 does them.
-        [Category::StateEffect, Category::DataVolume]
-            .into_iter()
-            .all(|c| self.category_valid(c, a, d, scope, s, s).contains(s))
+        // state_effect, data_volume: as phase 1 does them, where they can
+        // take a start away (an activity without effects, or one that
+        // neither fills the store nor meets the handover data limit, passes).
+        let effects = !act.effects.is_empty();
+        let data = (act.data > 0 && problem.data_cap.is_some() && !scope.skip_data_capacity)
+            || (!act.mandatory
+                && problem.handover_time.is_some()
+                && problem.handover_data.is_some());
+        [
+            (Category::StateEffect, effects),
+            (Category::DataVolume, data),
+        ]
+        .into_iter()
+        .filter(|&(_, binds)| binds)
+        .all(|(c, _)| self.category_valid(c, a, d, scope, s, s).contains(s))
     }
 
     /// Phase 1 restricted to starts in `[lo, hi]`.
