@@ -8,8 +8,8 @@ use std::sync::Arc;
 
 use crate::model::{CycleStart, Duration, EffectAt, Plan, Window};
 use crate::scheduler::{
-    Act, Dep, HeatHold, Problem, Schedule, Win, compile_windows, schedule, step_numbers,
-    value_index,
+    Act, Dep, HeatHold, Problem, Schedule, Win, compile_windows, schedule, schedule_compiled_until,
+    step_numbers, value_index,
 };
 use crate::units::{BIT_PER_MBIT, MJ_PER_WH};
 
@@ -35,6 +35,19 @@ impl CyclePlan {
     /// keeps only the outcomes).
     pub fn schedule(&self) -> Result<Schedule, Error> {
         schedule(&self.plan)
+    }
+
+    /// [`CyclePlan::schedule`] up to the step of the last of `acts` (cycle
+    /// plan indices): the records of those steps and of every step before,
+    /// which are all an explanation of them reads.
+    pub(crate) fn schedule_through(&self, acts: &[usize]) -> Result<Schedule, Error> {
+        let problem = Problem::compile(&self.plan)?;
+        let until = acts
+            .iter()
+            .filter_map(|&a| problem.step_of.get(a).copied())
+            .max()
+            .unwrap_or(0);
+        Ok(schedule_compiled_until(problem, until))
     }
 }
 

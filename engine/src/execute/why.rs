@@ -153,13 +153,14 @@ fn losses_of(plan: &Plan, ex: &Execution, lost: &[usize]) -> Result<Vec<Loss>, E
             }
             continue;
         };
-        let sched = cp.schedule()?;
         // The cycle's failures among these, explained together (one replay
-        // of the cycle's run serves them all), by cycle plan index.
+        // of the cycle's run serves them all, up to the last of their steps),
+        // by cycle plan index.
         let mut targets: Vec<usize> = indices
             .iter()
             .filter_map(|&i| cp.index_of(decided[i].0))
             .collect();
+        let sched = cp.schedule_through(&targets)?;
         targets.sort_unstable_by_key(|&i| sched.problem.step_of[i]);
         targets.dedup();
         let mut explained: BTreeMap<usize, Explanation> = BTreeMap::new();

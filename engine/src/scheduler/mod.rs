@@ -288,6 +288,12 @@ pub fn schedule(plan: &Plan) -> Result<Schedule, Error> {
 /// Schedules a compiled plan.
 pub(crate) fn schedule_compiled(problem: Problem) -> Schedule {
     let until = problem.order.len();
+    schedule_compiled_until(problem, until)
+}
+
+/// The first `until` steps of [`schedule_compiled`]'s run: what its records
+/// up to there are (each step reads only the steps before it).
+pub(crate) fn schedule_compiled_until(problem: Problem, until: usize) -> Schedule {
     // A cycle of an execution starts in the awake period the rover is in.
     let generated = problem
         .awake0
