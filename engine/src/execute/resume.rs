@@ -320,7 +320,7 @@ impl LastRun {
         let ends: Vec<i64> = extras
             .iter()
             .map(|&(x, _, _)| {
-                let held = activity_of.iter().position(|&a| a == x);
+                let held = activity_of.binary_search(&x).ok();
                 held.filter(|&i| cycle.acts[i].held)
                     .and_then(|i| {
                         let act = &cycle.acts[i];
