@@ -639,6 +639,62 @@ mod tests {
         );
     }
 
+    /// A heater shared with an activity that started since the cycle before
+    /// gives a start only up to its end and a preheat after it. X (second in
+    /// step order, in the arm zone) runs from 0 to 2,500 s needing no preheat
+    /// (the table's first row); J (first) needs a 1,000 s preheat from 2,000 s
+    /// of local time on, which may start only from 5,000 to 6,000 s: the first
+    /// cycle places J at 6,000 s. At the cycle at 1,000 s (W's end) X's heater
+    /// is on. With J's window from 2,000 s, J there needs no preheat and moves
+    /// to it; from 2,600 s no start near the cycle passes, and the cycle keeps
+    /// J at 6,000 s without searching it.
+    #[test]
+    fn a_heater_started_since_gives_starts_only_near_its_end() {
+        for (from, start, kept) in [(2000, 2000, false), (2600, 6000, true)] {
+            let json = format!(
+                r#"{{
+                  "format": "solscope.plan/1",
+                  "horizon": {{ "start": 0, "end": 20000 }},
+                  "local_time": {{ "sol_length": 88775, "offset": 0 }},
+                  "battery": {{ "capacity": 2000.0, "initial": 1500.0, "min_soc": 100.0 }},
+                  "power": {{ "rtg": 200.0, "asleep": 20.0, "awake": 20.0 }},
+                  "thermal_zones": {{
+                    "arm": {{
+                      "preheat": [ {{ "from": 0, "duration": 0 }}, {{ "from": 2000, "duration": 1000 }} ],
+                      "preheat_power": 40.0, "maintenance_power": 10.0,
+                      "operable": [ {{ "from": 5000, "to": 6000 }} ]
+                    }}
+                  }},
+                  "activities": [
+                    {{ "id": "J", "priority": 1, "duration": 500, "awake": "any",
+                      "thermal_zones": ["arm"], "windows": [ {{ "start": {from}, "end": 7000 }} ] }},
+                    {{ "id": "X", "priority": 2, "duration": 2500, "awake": "any",
+                      "thermal_zones": ["arm"], "windows": [ {{ "start": 0, "end": 0 }} ] }},
+                    {{ "id": "W", "priority": 3, "duration": 1000, "awake": "any",
+                      "windows": [ {{ "start": 0, "end": 0 }} ] }}
+                  ]
+                }}"#
+            );
+            let plan = crate::load::load_plan(&json).expect("the plan loads").plan;
+            let problem = Problem::compile(&plan).expect("compiles");
+            let actuals = Actuals::nominal();
+            let mut sim = Sim::new(&problem, &plan, &actuals);
+            let replan = Replan::new(&plan);
+            assert!(sim.cycle(&problem, &plan, &replan).expect("a cycle runs"));
+            let before = sim.kept;
+            assert!(sim.cycle(&problem, &plan, &replan).expect("a cycle runs"));
+            assert_eq!(
+                sim.kept > before,
+                kept,
+                "J kept at the cycle (window from {from})"
+            );
+            let ex = execute(&plan, &actuals).expect("executes");
+            assert_eq!(ex.cycles[1].time, 1000);
+            assert_eq!(ex.activities[0].actual.map(|(s, _)| s), Some(start));
+            kept_in(&plan, 1);
+        }
+    }
+
     /// Executes the plan `json` (whose first activity is J) with its planned
     /// durations; checks that the first cycle places J and the cycle at
     /// 1,000 s does not (the earlier run's proof does not hold there), and
