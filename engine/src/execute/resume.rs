@@ -695,6 +695,44 @@ mod tests {
         }
     }
 
+    /// A step placed as before inside the awake period the rover is in at the
+    /// cycle comes out as before, though it generates no period now. J (first
+    /// in step order, awake) runs at 1,000 s, its period from its wakeup at
+    /// 700 s; at the cycle at W's end (800 s) the rover is in that period, and
+    /// J, searched (its awake need reaches the cycle), lands where it was: K,
+    /// after it, is kept.
+    #[test]
+    fn a_step_inside_the_awake_period_at_the_cycle_comes_out_as_before() {
+        let json = r#"{
+          "format": "solscope.plan/1",
+          "horizon": { "start": 0, "end": 20000 },
+          "battery": { "capacity": 2000.0, "initial": 1500.0, "min_soc": 100.0 },
+          "power": { "rtg": 200.0, "asleep": 20.0, "awake": 50.0 },
+          "sleep": { "wakeup_duration": 300, "shutdown_duration": 300, "min_awake": 0, "min_sleep": 0 },
+          "activities": [
+            { "id": "J", "priority": 1, "duration": 500, "awake": "required",
+              "windows": [ { "start": 1000, "end": 1000 } ] },
+            { "id": "W", "priority": 2, "duration": 800, "awake": "any",
+              "windows": [ { "start": 0, "end": 0 } ] },
+            { "id": "K", "priority": 3, "duration": 100, "awake": "any",
+              "windows": [ { "start": 5000, "end": 5000 } ] }
+          ]
+        }"#;
+        let plan = crate::load::load_plan(json).expect("the plan loads").plan;
+        let problem = Problem::compile(&plan).expect("compiles");
+        let actuals = Actuals::nominal();
+        let mut sim = Sim::new(&problem, &plan, &actuals);
+        let replan = Replan::new(&plan);
+        assert!(sim.cycle(&problem, &plan, &replan).expect("a cycle runs"));
+        let before = sim.kept;
+        assert!(sim.cycle(&problem, &plan, &replan).expect("a cycle runs"));
+        assert!(sim.kept > before, "K is not kept at the cycle at 800 s");
+        let ex = execute(&plan, &actuals).expect("executes");
+        assert_eq!(ex.cycles[1].time, 800);
+        assert_eq!(ex.activities[0].actual, Some((1000, 1500)));
+        kept_in(&plan, 1);
+    }
+
     /// Executes the plan `json` (whose first activity is J) with its planned
     /// durations; checks that the first cycle places J and the cycle at
     /// 1,000 s does not (the earlier run's proof does not hold there), and
