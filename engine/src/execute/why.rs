@@ -9,6 +9,7 @@ use super::{CyclePlan, Dropped, Execution, RunOutcome};
 use crate::error::Error;
 use crate::explain::{Explanation, Phase, explain_targets, involved};
 use crate::model::Plan;
+use crate::scheduler::Schedule;
 
 /// Why one activity did not complete.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -163,23 +164,35 @@ fn losses_of(plan: &Plan, ex: &Execution, lost: &[usize]) -> Result<Vec<Loss>, E
         let sched = cp.schedule_through(&targets)?;
         targets.sort_unstable_by_key(|&i| sched.problem.step_of[i]);
         targets.dedup();
-        let mut explained: BTreeMap<usize, Explanation> = BTreeMap::new();
-        explain_targets(
-            &cp.plan,
-            &sched,
-            &targets,
-            true,
-            |e| e,
-            &mut |_, _| {},
-            &mut |e: Explanation| {
-                explained.insert(e.activity, e);
-            },
-        )?;
+        // Each target's cause, by cycle plan index.
+        let causes = |sched: &Schedule| -> Result<BTreeMap<usize, Cause>, Error> {
+            let mut causes = BTreeMap::new();
+            explain_targets(
+                &cp.plan,
+                sched,
+                &targets,
+                true,
+                |e| e,
+                &mut |_, _| {},
+                &mut |e: Explanation| {
+                    causes.insert(e.activity, failed(&cp, &e));
+                },
+            )?;
+            Ok(causes)
+        };
+        let explained = causes(&sched)?;
+        // Debug builds: the whole run gives the same causes.
+        debug_assert_eq!(
+            cp.schedule().and_then(|full| causes(&full)).ok().as_ref(),
+            Some(&explained),
+            "a loss explained from its cycle's run up to its step differs"
+        );
         for i in indices {
             let cause = cp
                 .index_of(decided[i].0)
                 .and_then(|x| explained.get(&x))
-                .map_or(Cause::Held, |e| failed(&cp, e));
+                .cloned()
+                .unwrap_or(Cause::Held);
             decided[i].2 = Some(cause);
         }
     }
