@@ -322,11 +322,7 @@ impl LastRun {
             .map(|&(x, _, _)| {
                 let held = activity_of.binary_search(&x).ok();
                 held.filter(|&i| cycle.acts[i].held)
-                    .and_then(|i| {
-                        let act = &cycle.acts[i];
-                        act.windows.first().map(|w| w.start + act.dur_max)
-                    })
-                    .map_or(t1, |end| end.max(t1))
+                    .map_or(t1, |i| cycle.held_span(i).1.max(t1))
             })
             .collect();
         let mut before = Vec::with_capacity(activity_of.len());
@@ -407,7 +403,7 @@ fn longest_preheat(problem: &Problem, j: usize) -> i64 {
     problem.acts[j]
         .zones
         .iter()
-        .flat_map(|&z| problem.zones[z].table.iter().map(|&(_, d)| d))
+        .map(|&z| problem.zones[z].longest_preheat())
         .max()
         .unwrap_or(0)
 }

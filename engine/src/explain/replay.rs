@@ -161,7 +161,7 @@ impl RunEffects {
                 let preheat = problem
                     .zones
                     .iter()
-                    .flat_map(|z| z.table.iter().map(|t| t.1))
+                    .map(|z| z.longest_preheat())
                     .max()
                     .unwrap_or(0);
                 problem.min_sleep.max(1)

@@ -1118,7 +1118,7 @@ impl State<'_> {
             } else {
                 zone.table.iter().map(|row| row.1).min().unwrap_or(0)
             };
-            let longest = zone.table.iter().map(|row| row.1).max().unwrap_or(0);
+            let longest = zone.longest_preheat();
             if shortest <= 0 {
                 continue;
             }

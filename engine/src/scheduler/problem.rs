@@ -115,6 +115,13 @@ pub struct Zone {
     pub operable: Option<Vec<(i64, i64)>>,
 }
 
+impl Zone {
+    /// The longest preheat its table gives.
+    pub fn longest_preheat(&self) -> i64 {
+        self.table.iter().map(|row| row.1).max().unwrap_or(0)
+    }
+}
+
 /// A heater on before step 1 (a cycle of an execution; `HeaterHold`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct HeatHold {
@@ -256,6 +263,15 @@ impl Problem {
                 .zip(&other.acts)
                 .enumerate()
                 .all(|(j, (x, y))| j == a || x == y)
+    }
+
+    /// The span `[start, end)` a cycle holds activity `a` over while it still
+    /// executes: from its first window's start (the horizon's start without
+    /// one) for its longest duration.
+    pub fn held_span(&self, a: usize) -> (i64, i64) {
+        let act = &self.acts[a];
+        let start = act.windows.first().map_or(self.h0, |w| w.start);
+        (start, start + act.dur_max)
     }
 
     /// Preheat duration of zone `z` for an activity starting at `s`.

@@ -270,9 +270,8 @@ impl<'p> State<'p> {
     /// `energy` is the charge those change, as for any evaluation: the
     /// explainer bounds what a step can do to a witness's energy margin by it.
     pub fn held_placement(&self, a: usize) -> super::Evaluated {
-        let act = &self.problem.acts[a];
-        let start = act.windows.first().map_or(self.problem.h0, |w| w.start);
-        let duration = act.dur_max;
+        let (start, end) = self.problem.held_span(a);
+        let duration = end - start;
         let energy =
             super::phase2::drain_of_pieces(&self.load_pieces(a, start, duration, &[], None, &[]))
                 .iter()
