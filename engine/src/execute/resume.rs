@@ -635,6 +635,19 @@ mod tests {
         );
     }
 
+    /// Whether the second cycle of `plan`'s execution with its planned
+    /// durations keeps any step from the first.
+    fn keeps_at_second_cycle(plan: &Plan) -> bool {
+        let problem = Problem::compile(plan).expect("compiles");
+        let actuals = Actuals::nominal();
+        let mut sim = Sim::new(&problem, plan, &actuals);
+        let replan = Replan::new(plan);
+        assert!(sim.cycle(&problem, plan, &replan).expect("a cycle runs"));
+        let before = sim.kept;
+        assert!(sim.cycle(&problem, plan, &replan).expect("a cycle runs"));
+        sim.kept > before
+    }
+
     /// A heater shared with an activity that started since the cycle before
     /// gives a start only up to its end and a preheat after it. X (second in
     /// step order, in the arm zone) runs from 0 to 2,500 s needing no preheat
@@ -672,19 +685,12 @@ mod tests {
                 }}"#
             );
             let plan = crate::load::load_plan(&json).expect("the plan loads").plan;
-            let problem = Problem::compile(&plan).expect("compiles");
-            let actuals = Actuals::nominal();
-            let mut sim = Sim::new(&problem, &plan, &actuals);
-            let replan = Replan::new(&plan);
-            assert!(sim.cycle(&problem, &plan, &replan).expect("a cycle runs"));
-            let before = sim.kept;
-            assert!(sim.cycle(&problem, &plan, &replan).expect("a cycle runs"));
             assert_eq!(
-                sim.kept > before,
+                keeps_at_second_cycle(&plan),
                 kept,
                 "J kept at the cycle (window from {from})"
             );
-            let ex = execute(&plan, &actuals).expect("executes");
+            let ex = execute(&plan, &Actuals::nominal()).expect("executes");
             assert_eq!(ex.cycles[1].time, 1000);
             assert_eq!(ex.activities[0].actual.map(|(s, _)| s), Some(start));
             kept_in(&plan, 1);
@@ -715,15 +721,11 @@ mod tests {
           ]
         }"#;
         let plan = crate::load::load_plan(json).expect("the plan loads").plan;
-        let problem = Problem::compile(&plan).expect("compiles");
-        let actuals = Actuals::nominal();
-        let mut sim = Sim::new(&problem, &plan, &actuals);
-        let replan = Replan::new(&plan);
-        assert!(sim.cycle(&problem, &plan, &replan).expect("a cycle runs"));
-        let before = sim.kept;
-        assert!(sim.cycle(&problem, &plan, &replan).expect("a cycle runs"));
-        assert!(sim.kept > before, "K is not kept at the cycle at 800 s");
-        let ex = execute(&plan, &actuals).expect("executes");
+        assert!(
+            keeps_at_second_cycle(&plan),
+            "K is not kept at the cycle at 800 s"
+        );
+        let ex = execute(&plan, &Actuals::nominal()).expect("executes");
         assert_eq!(ex.cycles[1].time, 800);
         assert_eq!(ex.activities[0].actual, Some((1000, 1500)));
         kept_in(&plan, 1);
